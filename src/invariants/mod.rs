@@ -1,0 +1,13 @@
+//! The theorem layer: counts, Euler characteristic, genus, histograms, irregular vertices,
+//! discrete Gauss-Bonnet, and canonical codes for isomorphism.
+//!
+//! Every function here reads a [`Map`](crate::Map) and never changes it.
+
+pub mod canonical;
+mod counts;
+mod gauss_bonnet;
+mod valence;
+
+pub use counts::Counts;
+pub use gauss_bonnet::{gauss_bonnet, GaussBonnet};
+pub use valence::{irregular_vertices, is_irregular, regular_valence, Histograms, MeshKind};

@@ -1,0 +1,1 @@
+//! Mesh files (OBJ and OFF): reading with errors that name the line, atomic writing.

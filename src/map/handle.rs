@@ -1,0 +1,93 @@
+//! Typed 32-bit handles for darts, vertices and faces.
+
+use core::fmt;
+
+/// The value stored in the arrays for "no element" (boundary face, dead slot).
+pub(crate) const NONE: u32 = u32::MAX;
+
+macro_rules! handle {
+    ($(#[$doc:meta])* $name:ident, $prefix:literal) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        pub struct $name(pub(crate) u32);
+
+        impl $name {
+            /// The handle with slot number `index`.
+            ///
+            /// Handles are plain slot numbers: whether the slot is alive in a given map is
+            /// checked by the map's `is_live_*` methods, never assumed.
+            ///
+            /// ```
+            #[doc = concat!("let h = zipmesh::", stringify!($name), "::new(7);")]
+            /// assert_eq!(h.index(), 7);
+            /// ```
+            #[inline]
+            pub const fn new(index: u32) -> Self {
+                Self(index)
+            }
+
+            /// The slot number of this handle.
+            ///
+            /// ```
+            #[doc = concat!("assert_eq!(zipmesh::", stringify!($name), "::new(3).index(), 3);")]
+            /// ```
+            #[inline]
+            pub const fn index(self) -> usize {
+                self.0 as usize
+            }
+        }
+
+        impl fmt::Debug for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, concat!($prefix, "{}"), self.0)
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, concat!($prefix, "{}"), self.0)
+            }
+        }
+    };
+}
+
+handle!(
+    /// A dart (half-edge). The two darts of edge `e` are `2e` and `2e + 1`, so the twin of a
+    /// dart is its index with the lowest bit flipped and needs no storage.
+    Dart,
+    "d"
+);
+handle!(
+    /// A vertex.
+    Vert,
+    "v"
+);
+handle!(
+    /// A face (a polygon; boundary loops are not faces).
+    Face,
+    "f"
+);
+
+impl Dart {
+    /// The other dart of the same edge.
+    ///
+    /// ```
+    /// use zipmesh::Dart;
+    /// assert_eq!(Dart::new(4).twin(), Dart::new(5));
+    /// assert_eq!(Dart::new(5).twin(), Dart::new(4));
+    /// ```
+    #[inline]
+    pub const fn twin(self) -> Dart {
+        Dart(self.0 ^ 1)
+    }
+
+    /// The edge number of this dart (`index / 2`).
+    ///
+    /// ```
+    /// assert_eq!(zipmesh::Dart::new(5).edge(), 2);
+    /// ```
+    #[inline]
+    pub const fn edge(self) -> usize {
+        (self.0 >> 1) as usize
+    }
+}

@@ -1,0 +1,297 @@
+//! The oriented 2-map: darts with `next`, `twin`, origin vertex and face.
+//!
+//! Storage is structure-of-arrays with 12 bytes per dart (`next`, origin, face) and 4 bytes per
+//! vertex and per face (one dart each). `twin` is implicit (`d ^ 1`) and `prev` is computed
+//! (around the face for face darts, around the origin for boundary darts), which keeps a closed
+//! quad mesh at about 56 bytes of topology per face. See `docs/design.md` for the axioms.
+
+mod build;
+mod check;
+mod handle;
+mod raw;
+mod store;
+mod walk;
+
+pub use build::{BuildError, BuildReport};
+pub use check::Violation;
+pub(crate) use handle::NONE;
+pub use handle::{Dart, Face, Vert};
+pub use raw::RawError;
+pub use store::Compaction;
+pub use walk::{FaceDarts, VertexDarts};
+
+use alloc::vec::Vec;
+
+/// An oriented 2-map of a surface with boundary.
+///
+/// * Every dart has a `next` (the following dart around its face or boundary loop, counter-
+///   clockwise seen from the front side), a `twin` (the dart of the same edge in the other
+///   direction), an origin vertex, and a face, or no face when it lies on a boundary loop.
+/// * Every live vertex has exactly one rotation (its darts form one cycle), so the map is a
+///   manifold by construction; a boundary vertex has exactly one outgoing boundary dart.
+/// * Deleted elements are dead slots; [`Map::compact`] removes them.
+///
+/// ```
+/// use zipmesh::Map;
+/// // Two triangles sharing the edge 1-2.
+/// let map = Map::from_polygons(4, &[[0u32, 1, 2], [2, 1, 3]]).unwrap();
+/// assert_eq!((map.num_vertices(), map.num_edges(), map.num_faces()), (4, 5, 2));
+/// assert!(map.check().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Map {
+    /// Per dart: the next dart around its face or boundary loop; `NONE` for a dead dart.
+    pub(crate) next: Vec<u32>,
+    /// Per dart: its origin vertex.
+    pub(crate) vert: Vec<u32>,
+    /// Per dart: its face; `NONE` for a boundary dart.
+    pub(crate) face: Vec<u32>,
+    /// Per vertex: one outgoing dart, the boundary one if there is one; `NONE` if dead.
+    pub(crate) vdart: Vec<u32>,
+    /// Per face: one of its darts; `NONE` if dead.
+    pub(crate) fdart: Vec<u32>,
+    /// Dead edge, vertex and face slots, reused last-in first-out.
+    pub(crate) free_edges: Vec<u32>,
+    pub(crate) free_verts: Vec<u32>,
+    pub(crate) free_faces: Vec<u32>,
+}
+
+impl Map {
+    /// An empty map.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::new();
+    /// assert_eq!(map.num_darts(), 0);
+    /// ```
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of live darts (twice the number of edges).
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.num_darts(), 6);
+    /// ```
+    #[inline]
+    pub fn num_darts(&self) -> usize {
+        2 * self.num_edges()
+    }
+
+    /// Number of live edges.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.num_edges(), 3);
+    /// ```
+    #[inline]
+    pub fn num_edges(&self) -> usize {
+        self.next.len() / 2 - self.free_edges.len()
+    }
+
+    /// Number of live vertices.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.num_vertices(), 3);
+    /// ```
+    #[inline]
+    pub fn num_vertices(&self) -> usize {
+        self.vdart.len() - self.free_verts.len()
+    }
+
+    /// Number of live faces.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.num_faces(), 1);
+    /// ```
+    #[inline]
+    pub fn num_faces(&self) -> usize {
+        self.fdart.len() - self.free_faces.len()
+    }
+
+    /// Number of dart slots, live or dead: every live dart has an index below this.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.dart_slots(), 6);
+    /// ```
+    #[inline]
+    pub fn dart_slots(&self) -> usize {
+        self.next.len()
+    }
+
+    /// Number of vertex slots, live or dead.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(5, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.vertex_slots(), 5); // vertices 3 and 4 are unreferenced: dead slots
+    /// assert_eq!(map.num_vertices(), 3);
+    /// ```
+    #[inline]
+    pub fn vertex_slots(&self) -> usize {
+        self.vdart.len()
+    }
+
+    /// Number of face slots, live or dead.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.face_slots(), 1);
+    /// ```
+    #[inline]
+    pub fn face_slots(&self) -> usize {
+        self.fdart.len()
+    }
+
+    /// Whether `d` names a live dart of this map.
+    ///
+    /// ```
+    /// use zipmesh::{Dart, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_live_dart(Dart::new(5)));
+    /// assert!(!map.is_live_dart(Dart::new(6)));
+    /// ```
+    #[inline]
+    pub fn is_live_dart(&self, d: Dart) -> bool {
+        self.next.get(d.index()).is_some_and(|&n| n != NONE)
+    }
+
+    /// Whether `v` names a live vertex of this map.
+    ///
+    /// ```
+    /// use zipmesh::{Map, Vert};
+    /// let map = Map::from_polygons(4, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_live_vertex(Vert::new(2)));
+    /// assert!(!map.is_live_vertex(Vert::new(3)));
+    /// ```
+    #[inline]
+    pub fn is_live_vertex(&self, v: Vert) -> bool {
+        self.vdart.get(v.index()).is_some_and(|&d| d != NONE)
+    }
+
+    /// Whether `f` names a live face of this map.
+    ///
+    /// ```
+    /// use zipmesh::{Face, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_live_face(Face::new(0)));
+    /// assert!(!map.is_live_face(Face::new(1)));
+    /// ```
+    #[inline]
+    pub fn is_live_face(&self, f: Face) -> bool {
+        self.fdart.get(f.index()).is_some_and(|&d| d != NONE)
+    }
+
+    /// The next dart around the face (or boundary loop) of `d`.
+    ///
+    /// Never panics: for a handle that is out of range or dead the result is a dart that is
+    /// not live (check handles from elsewhere with [`Map::is_live_dart`]).
+    ///
+    /// ```
+    /// use zipmesh::{Dart, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// let d = map.face_dart(zipmesh::Face::new(0));
+    /// assert_eq!(map.next(map.next(map.next(d))), d);
+    /// ```
+    #[inline]
+    pub fn next(&self, d: Dart) -> Dart {
+        Dart(get(&self.next, d.0))
+    }
+
+    /// The origin vertex of `d`.
+    ///
+    /// ```
+    /// use zipmesh::{Map, Vert};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// let d = map.vertex_dart(Vert::new(1));
+    /// assert_eq!(map.origin(d), Vert::new(1));
+    /// ```
+    #[inline]
+    pub fn origin(&self, d: Dart) -> Vert {
+        Vert(get(&self.vert, d.0))
+    }
+
+    /// The vertex `d` points to (the origin of its twin).
+    ///
+    /// ```
+    /// use zipmesh::Map;
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// let d = map.face_dart(zipmesh::Face::new(0));
+    /// assert_eq!(map.dest(d), map.origin(map.next(d)));
+    /// ```
+    #[inline]
+    pub fn dest(&self, d: Dart) -> Vert {
+        Vert(get(&self.vert, d.0 ^ 1))
+    }
+
+    /// The face of `d`, or `None` when `d` lies on a boundary loop.
+    ///
+    /// ```
+    /// use zipmesh::{Face, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// let d = map.face_dart(Face::new(0));
+    /// assert_eq!(map.face(d), Some(Face::new(0)));
+    /// assert_eq!(map.face(d.twin()), None);
+    /// ```
+    #[inline]
+    pub fn face(&self, d: Dart) -> Option<Face> {
+        let f = get(&self.face, d.0);
+        (f != NONE).then_some(Face(f))
+    }
+
+    /// Whether `d` lies on a boundary loop (has no face).
+    ///
+    /// ```
+    /// use zipmesh::{Face, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_boundary_dart(map.face_dart(Face::new(0)).twin()));
+    /// ```
+    #[inline]
+    pub fn is_boundary_dart(&self, d: Dart) -> bool {
+        self.next.get(d.index()).is_some_and(|&n| n != NONE) && self.face[d.index()] == NONE
+    }
+
+    /// One outgoing dart of `v`; the outgoing boundary dart when `v` is on the boundary.
+    ///
+    /// ```
+    /// use zipmesh::{Map, Vert};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_boundary_dart(map.vertex_dart(Vert::new(0))));
+    /// ```
+    #[inline]
+    pub fn vertex_dart(&self, v: Vert) -> Dart {
+        Dart(get(&self.vdart, v.0))
+    }
+
+    /// One dart of face `f`.
+    ///
+    /// ```
+    /// use zipmesh::{Face, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.face(map.face_dart(Face::new(0))), Some(Face::new(0)));
+    /// ```
+    #[inline]
+    pub fn face_dart(&self, f: Face) -> Dart {
+        Dart(get(&self.fdart, f.0))
+    }
+
+    /// Whether `v` lies on the boundary.
+    ///
+    /// ```
+    /// use zipmesh::{Map, Vert};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_boundary_vertex(Vert::new(0)));
+    /// ```
+    #[inline]
+    pub fn is_boundary_vertex(&self, v: Vert) -> bool {
+        self.is_boundary_dart(self.vertex_dart(v))
+    }
+}
+
+/// Total array access: out of range reads as `NONE`, so public accessors never panic.
+#[inline(always)]
+fn get(a: &[u32], i: u32) -> u32 {
+    a.get(i as usize).copied().unwrap_or(NONE)
+}
