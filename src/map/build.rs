@@ -243,83 +243,59 @@ impl Map {
             });
         }
 
-        // Bucket half-edges by their smaller end (counting sort), then pair them by the other end.
-        let lo_hi = |h: usize| {
-            let (a, b) = (corners[h], corners[hnext[h] as usize]);
-            if a < b {
-                (a, b)
-            } else {
-                (b, a)
-            }
-        };
+        // Bucket half-edges by their smaller end (counting sort), the larger end packed beside
+        // each, then pair every half-edge with the other one of its edge.
         let mut start = vec![0u32; n_vertices + 1];
         for h in 0..h_count {
-            start[lo_hi(h).0 as usize + 1] += 1;
+            let (a, b) = (corners[h], corners[hnext[h] as usize]);
+            start[a.min(b) as usize + 1] += 1;
         }
         for v in 0..n_vertices {
             start[v + 1] += start[v];
         }
-        let mut bucket = vec![0u32; h_count];
+        let mut bucket = vec![0u64; h_count];
         {
             let mut fill = start.clone();
             for h in 0..h_count {
-                let lo = lo_hi(h).0 as usize;
-                bucket[fill[lo] as usize] = h as u32;
+                let (a, b) = (corners[h], corners[hnext[h] as usize]);
+                let lo = a.min(b) as usize;
+                bucket[fill[lo] as usize] = u64::from(a.max(b)) << 32 | h as u64;
                 fill[lo] += 1;
             }
         }
-        let mut dart_of = vec![NONE; h_count];
-        let mut n_edges = 0u32;
+        // mate[h]: the other half-edge of h's edge, or h itself on the boundary.
+        let mut mate = vec![NONE; h_count];
         let mut n_boundary = 0usize;
         for v in 0..n_vertices {
             let b = &mut bucket[start[v] as usize..start[v + 1] as usize];
-            if b.len() > 16 {
-                b.sort_unstable_by_key(|&h| lo_hi(h as usize).1);
+            // Small buckets are scanned; large ones sorted so that equal ends are adjacent.
+            let sorted = b.len() > 16;
+            if sorted {
+                b.sort_unstable();
             }
-            let mut i = 0;
-            while i < b.len() {
-                let h1 = b[i] as usize;
-                if dart_of[h1] != NONE {
-                    i += 1;
+            for i in 0..b.len() {
+                let (hi, h1) = ((b[i] >> 32) as u32, b[i] as u32 as usize);
+                if mate[h1] != NONE {
                     continue;
                 }
-                let hi = lo_hi(h1).1;
-                // The other half-edges of this edge: adjacent after a sort, anywhere otherwise.
-                let mut mates = [NONE; 2];
+                let mut found = [NONE; 2];
                 let mut k = 0;
-                let scan_end = if b.len() > 16 {
-                    b.len().min(i + 4)
-                } else {
-                    b.len()
-                };
-                for &h2 in &b[i + 1..scan_end] {
-                    let h2 = h2 as usize;
-                    if dart_of[h2] == NONE && lo_hi(h2).1 == hi {
-                        if k == 2 {
-                            let faces = [
-                                hface[h1],
-                                hface[mates[0] as usize],
-                                hface[mates[1] as usize],
-                            ];
-                            let mut faces = faces.map(|x| x as usize);
-                            faces.sort_unstable();
-                            return Err(BuildError::NonManifoldEdge {
-                                a: v as u32,
-                                b: hi,
-                                faces,
-                            });
+                let end = if sorted { b.len().min(i + 4) } else { b.len() };
+                for &x in &b[i + 1..end] {
+                    if (x >> 32) as u32 == hi {
+                        if k < 2 {
+                            found[k] = x as u32;
                         }
-                        mates[k] = h2 as u32;
                         k += 1;
                     }
                 }
                 match k {
                     0 => {
-                        dart_of[h1] = 2 * n_edges;
+                        mate[h1] = h1 as u32;
                         n_boundary += 1;
                     }
                     1 => {
-                        let h2 = mates[0] as usize;
+                        let h2 = found[0] as usize;
                         if corners[h1] == corners[h2] {
                             let mut faces = [hface[h1] as usize, hface[h2] as usize];
                             faces.sort_unstable();
@@ -329,14 +305,14 @@ impl Map {
                                 faces,
                             });
                         }
-                        dart_of[h1] = 2 * n_edges;
-                        dart_of[h2] = 2 * n_edges + 1;
+                        mate[h1] = h2 as u32;
+                        mate[h2] = h1 as u32;
                     }
                     _ => {
                         let mut faces = [
                             hface[h1],
-                            hface[mates[0] as usize],
-                            hface[mates[1] as usize],
+                            hface[found[0] as usize],
+                            hface[found[1] as usize],
                         ]
                         .map(|x| x as usize);
                         faces.sort_unstable();
@@ -347,12 +323,24 @@ impl Map {
                         });
                     }
                 }
-                n_edges += 1;
-                i += 1;
             }
         }
         drop(bucket);
         drop(start);
+        // Number edges in face order, so that the darts of a face sit close together in memory.
+        let mut dart_of = vec![NONE; h_count];
+        let mut n_edges = 0u32;
+        for h in 0..h_count {
+            if dart_of[h] == NONE {
+                dart_of[h] = 2 * n_edges;
+                let m = mate[h] as usize;
+                if m != h {
+                    dart_of[m] = 2 * n_edges + 1;
+                }
+                n_edges += 1;
+            }
+        }
+        drop(mate);
 
         let n_darts = 2 * n_edges as usize;
         let mut map = Map {

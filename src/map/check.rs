@@ -194,15 +194,17 @@ impl Map {
 
     fn check_free_lists(&self) -> Result<(), Violation> {
         fn one(free: &[u32], slots: usize, dead: impl Fn(usize) -> bool) -> Result<(), Violation> {
-            let mut seen = vec![false; slots];
-            for &s in free {
-                let s = s as usize;
-                if s >= slots || seen[s] || !dead(s) {
-                    return Err(Violation::FreeList);
-                }
-                seen[s] = true;
-            }
             if (0..slots).filter(|&s| dead(s)).count() != free.len() {
+                return Err(Violation::FreeList);
+            }
+            // Free lists are short: a sorted copy finds repeats without a per-slot array.
+            let mut sorted = free.to_vec();
+            sorted.sort_unstable();
+            if sorted.windows(2).any(|w| w[0] == w[1])
+                || sorted
+                    .iter()
+                    .any(|&s| s as usize >= slots || !dead(s as usize))
+            {
                 return Err(Violation::FreeList);
             }
             Ok(())

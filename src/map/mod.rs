@@ -277,6 +277,23 @@ impl Map {
         Dart(get(&self.fdart, f.0))
     }
 
+    /// Heap bytes held by the topology (array capacities, free lists included).
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(4, &[[0u32, 1, 2, 3]]).unwrap();
+    /// assert!(map.heap_bytes() >= 4 * (3 * map.num_darts() + map.num_vertices() + map.num_faces()));
+    /// ```
+    pub fn heap_bytes(&self) -> usize {
+        4 * (self.next.capacity()
+            + self.vert.capacity()
+            + self.face.capacity()
+            + self.vdart.capacity()
+            + self.fdart.capacity()
+            + self.free_edges.capacity()
+            + self.free_verts.capacity()
+            + self.free_faces.capacity())
+    }
+
     /// Whether `v` lies on the boundary.
     ///
     /// ```

@@ -1,0 +1,210 @@
+//! The kernel workload: `cargo run --release --example workload -- [N] [REPS]`.
+//!
+//! Builds the N x N torus (default 1000) as quads and as triangles (each quad cut along the
+//! same diagonal) and prints one line per measurement, the median of REPS (default 5) runs,
+//! each from a fresh copy:
+//!
+//! `RESULT zipmesh <tri|quad> <what> <median> <min> <max> <unit> <count> <reps>`
+//!
+//! Peer programs print the same format so that one run can compare them.
+
+use std::time::Instant;
+use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::invariants::{Counts, Histograms};
+use zipmesh::rng::Rng;
+use zipmesh::{Map, Vert};
+
+fn torus_quads(nx: usize, ny: usize) -> Vec<[u32; 4]> {
+    let id = |i: usize, j: usize| ((j % ny) * nx + (i % nx)) as u32;
+    let mut faces = Vec::with_capacity(nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    faces
+}
+
+fn triangulate(quads: &[[u32; 4]]) -> Vec<[u32; 3]> {
+    quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect()
+}
+
+/// The quads with `k` of them (chosen from a fixed seed) cut into two triangles.
+fn cut_some(quads: &[[u32; 4]], k: usize, seed: u64) -> Vec<Vec<u32>> {
+    let mut rng = Rng::new(seed);
+    let mut cut = vec![false; quads.len()];
+    for _ in 0..k {
+        cut[rng.below(quads.len())] = true;
+    }
+    let mut out = Vec::with_capacity(quads.len() + k);
+    for (q, &c) in quads.iter().zip(&cut) {
+        if c {
+            out.push(vec![q[0], q[1], q[2]]);
+            out.push(vec![q[0], q[2], q[3]]);
+        } else {
+            out.push(q.to_vec());
+        }
+    }
+    out
+}
+
+/// Runs `f` on a fresh `setup()` value `reps` times and returns (median, min, max) seconds.
+fn measure<T, R>(
+    reps: usize,
+    mut setup: impl FnMut() -> T,
+    mut f: impl FnMut(T) -> R,
+) -> (f64, f64, f64) {
+    let mut times: Vec<f64> = (0..reps.max(1))
+        .map(|_| {
+            let input = setup();
+            let t = Instant::now();
+            let r = f(input);
+            let s = t.elapsed().as_secs_f64();
+            std::hint::black_box(r);
+            s
+        })
+        .collect();
+    times.sort_by(|a, b| a.total_cmp(b));
+    (times[times.len() / 2], times[0], times[times.len() - 1])
+}
+
+fn report(
+    kind: &str,
+    what: &str,
+    (med, min, max): (f64, f64, f64),
+    unit: &str,
+    count: usize,
+    reps: usize,
+) {
+    let scale = match unit {
+        "ns/face" | "ns/vertex" | "ns/dart" => 1e9 / count as f64,
+        "ms" => 1e3,
+        _ => 1.0,
+    };
+    println!(
+        "RESULT zipmesh {kind} {what} {:.3} {:.3} {:.3} {unit} {count} {reps}",
+        med * scale,
+        min * scale,
+        max * scale
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1000);
+    let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
+    let quads = torus_quads(n, n);
+    let tris = triangulate(&quads);
+    let nv = n * n;
+
+    for kind in ["quad", "tri"] {
+        let build = |nv: usize| -> Map {
+            if kind == "quad" {
+                Map::from_polygons(nv, &quads).expect("valid torus")
+            } else {
+                Map::from_polygons(nv, &tris).expect("valid torus")
+            }
+        };
+        let nf = if kind == "quad" {
+            quads.len()
+        } else {
+            tris.len()
+        };
+        report(
+            kind,
+            "build",
+            measure(reps, || (), |_| build(nv)),
+            "ns/face",
+            nf,
+            reps,
+        );
+        let map = build(nv);
+        let bytes = map.heap_bytes() as f64 / nf as f64;
+        report(
+            kind,
+            "topology_bytes",
+            (bytes, bytes, bytes),
+            "bytes/face",
+            nf,
+            1,
+        );
+        report(
+            kind,
+            "valence",
+            measure(
+                reps,
+                || map.clone(),
+                |m| {
+                    (0..nv as u32)
+                        .map(|v| m.valence(Vert::new(v)))
+                        .sum::<usize>()
+                },
+            ),
+            "ns/vertex",
+            nv,
+            reps,
+        );
+        report(
+            kind,
+            "euler",
+            measure(
+                reps,
+                || map.clone(),
+                |m| Counts::of(&m).euler_characteristic,
+            ),
+            "ms",
+            nf,
+            reps,
+        );
+        report(
+            kind,
+            "histograms",
+            measure(reps, || map.clone(), |m| Histograms::of(&m)),
+            "ms",
+            nf,
+            reps,
+        );
+        report(
+            kind,
+            "check",
+            measure(reps, || map.clone(), |m| m.check().is_ok()),
+            "ms",
+            nf,
+            reps,
+        );
+        report(
+            kind,
+            "canonical",
+            measure(reps, || map.clone(), |m| CanonicalCode::of(&m).hash()),
+            "ms",
+            nf,
+            reps,
+        );
+    }
+    for side in [32usize, 100, 316] {
+        let q = torus_quads(side, side);
+        let regular = Map::from_polygons(side * side, &q).expect("valid torus");
+        let faces = q.len();
+        report(
+            "quad",
+            &format!("canonical_torus_{faces}"),
+            measure(reps, || regular.clone(), |m| CanonicalCode::of(&m).hash()),
+            "ns/face",
+            faces,
+            reps,
+        );
+        let cut =
+            Map::from_polygons(side * side, &cut_some(&q, 5, side as u64)).expect("valid torus");
+        report(
+            "quad",
+            &format!("canonical_torus_{faces}_cut5"),
+            measure(reps, || cut.clone(), |m| CanonicalCode::of(&m).hash()),
+            "ns/face",
+            cut.num_faces(),
+            reps,
+        );
+    }
+}
