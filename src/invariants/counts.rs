@@ -22,8 +22,19 @@ pub struct Counts {
     pub genus: i64,
 }
 
+/// The Euler characteristic `V - E + F`, in O(1) from the live counts.
+///
+/// ```
+/// use zipmesh::{gen, invariants::euler_characteristic};
+/// assert_eq!(euler_characteristic(&gen::cube(3).map), 2);
+/// assert_eq!(euler_characteristic(&gen::torus_grid(5, 4).map), 0);
+/// ```
+pub fn euler_characteristic(map: &Map) -> i64 {
+    map.num_vertices() as i64 - map.num_edges() as i64 + map.num_faces() as i64
+}
+
 impl Counts {
-    /// Computes every count in O(darts).
+    /// Computes every count in O(darts · α).
     ///
     /// ```
     /// use zipmesh::{invariants::Counts, Map};
@@ -33,75 +44,105 @@ impl Counts {
     /// assert_eq!((c.euler_characteristic, c.components, c.genus), (1, 1, 0));
     /// ```
     pub fn of(map: &Map) -> Counts {
-        let comp = component_of_darts(map);
-        let n_comp = comp
-            .iter()
-            .filter(|&&c| c != NONE)
-            .max()
-            .map_or(0, |&m| m as usize + 1);
+        let (vcomp, n_comp) = vertex_components(map);
         // Per component: V - E + F + b, from which chi and genus follow.
         let mut chi_b = vec![0i64; n_comp];
-        for &d in map.vdart.iter().filter(|&&d| d != NONE) {
-            chi_b[comp[d as usize] as usize] += 1;
+        for c in vcomp.iter().filter(|&&c| c != NONE) {
+            chi_b[*c as usize] += 1;
         }
+        let comp_of_dart = |d: usize| vcomp[map.vert[d] as usize] as usize;
         for &d in map.fdart.iter().filter(|&&d| d != NONE) {
-            chi_b[comp[d as usize] as usize] += 1;
+            chi_b[comp_of_dart(d as usize)] += 1;
         }
-        let mut seen = vec![false; map.next.len()];
+        let mut boundary_darts = 0usize;
+        for e in 0..map.next.len() / 2 {
+            let d = 2 * e;
+            if map.next[d] != NONE {
+                chi_b[comp_of_dart(d)] -= 1;
+                boundary_darts +=
+                    usize::from(map.face[d] == NONE) + usize::from(map.face[d + 1] == NONE);
+            }
+        }
         let mut loops = 0;
-        for d in 0..map.next.len() {
-            if map.next[d] == NONE {
-                continue;
-            }
-            let c = comp[d] as usize;
-            if d % 2 == 0 {
-                chi_b[c] -= 1;
-            }
-            if map.face[d] == NONE && !seen[d] {
+        if boundary_darts > 0 {
+            let mut seen = vec![0u64; map.next.len().div_ceil(64)];
+            for d in 0..map.next.len() {
+                if map.next[d] == NONE || map.face[d] != NONE || seen[d / 64] >> (d % 64) & 1 == 1 {
+                    continue;
+                }
                 loops += 1;
-                chi_b[c] += 1;
+                chi_b[comp_of_dart(d)] += 1;
                 let mut x = d;
-                while !seen[x] {
-                    seen[x] = true;
+                while seen[x / 64] >> (x % 64) & 1 == 0 {
+                    seen[x / 64] |= 1 << (x % 64);
                     x = map.next[x] as usize;
                 }
             }
         }
         let genus = chi_b.iter().map(|&s| (2 - s) / 2).sum();
-        let (vertices, edges, faces) = (map.num_vertices(), map.num_edges(), map.num_faces());
         Counts {
-            vertices,
-            edges,
-            faces,
+            vertices: map.num_vertices(),
+            edges: map.num_edges(),
+            faces: map.num_faces(),
             boundary_loops: loops,
             components: n_comp,
-            euler_characteristic: vertices as i64 - edges as i64 + faces as i64,
+            euler_characteristic: euler_characteristic(map),
             genus,
         }
     }
 }
 
-/// Component number of every dart (`NONE` for dead darts), numbered in order of smallest dart.
-pub(crate) fn component_of_darts(map: &Map) -> Vec<u32> {
-    let nd = map.next.len();
-    let mut comp = vec![NONE; nd];
-    let mut stack = Vec::new();
-    let mut n = 0u32;
-    for s in 0..nd {
-        if map.next[s] == NONE || comp[s] != NONE {
+/// Component number of every vertex slot (`NONE` for dead slots), numbered in slot order of
+/// each component's first vertex, and the number of components. Union-find over the edges.
+pub(crate) fn vertex_components(map: &Map) -> (Vec<u32>, usize) {
+    let nv = map.vdart.len();
+    let mut parent: Vec<u32> = (0..nv as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let p = parent[x as usize];
+            parent[x as usize] = parent[p as usize];
+            x = p;
+        }
+        x
+    }
+    for e in 0..map.next.len() / 2 {
+        if map.next[2 * e] == NONE {
             continue;
         }
-        comp[s] = n;
-        stack.push(s as u32);
-        while let Some(d) = stack.pop() {
-            for x in [map.next[d as usize], d ^ 1] {
-                if comp[x as usize] == NONE {
-                    comp[x as usize] = n;
-                    stack.push(x);
-                }
-            }
+        let a = find(&mut parent, map.vert[2 * e]);
+        let b = find(&mut parent, map.vert[2 * e + 1]);
+        if a != b {
+            // Point the larger root at the smaller: roots stay the first vertex of a component.
+            let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+            parent[hi as usize] = lo;
         }
-        n += 1;
     }
-    comp
+    let mut comp = vec![NONE; nv];
+    let mut n = 0u32;
+    for v in 0..nv {
+        if map.vdart[v] == NONE {
+            continue;
+        }
+        let r = find(&mut parent, v as u32) as usize;
+        if comp[r] == NONE {
+            comp[r] = n;
+            n += 1;
+        }
+        comp[v] = comp[r];
+    }
+    (comp, n as usize)
+}
+
+/// Component number of every dart (`NONE` for dead darts).
+pub(crate) fn component_of_darts(map: &Map) -> Vec<u32> {
+    let (vcomp, _) = vertex_components(map);
+    (0..map.next.len())
+        .map(|d| {
+            if map.next[d] == NONE {
+                NONE
+            } else {
+                vcomp[map.vert[d] as usize]
+            }
+        })
+        .collect()
 }
