@@ -47,6 +47,14 @@ use std::path::{Path, PathBuf};
 /// What is wrong with a mesh file.
 ///
 /// Vertex numbers are given as the file writes them: 1-based for OBJ, 0-based for OFF.
+///
+/// ```
+/// use zipmesh::io::{obj, off, ErrorKind};
+/// let e = obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1\n").unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 1 }));
+/// let e = off::parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 0\n").unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 0 }));
+/// ```
 #[derive(Debug)]
 #[non_exhaustive]
 pub enum ErrorKind {
@@ -280,6 +288,14 @@ impl std::error::Error for MeshFileError {
 }
 
 /// A mesh file format.
+///
+/// ```
+/// use zipmesh::{gen, io::Format};
+/// let mut text = Vec::new();
+/// Format::Off.write(&gen::cube(1), &mut text).unwrap();
+/// let (cube, _) = Format::Off.parse_bytes(&text).unwrap();
+/// assert_eq!(cube.map.num_faces(), 6);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
     /// Wavefront OBJ (see [`obj`]).
