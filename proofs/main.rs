@@ -1,1 +1,12 @@
 //! Bounded model checking by exhaustive enumeration.
+//!
+//! Each property is a plain function that takes its inputs from a [`choice::Choice`]
+//! source: [`choice::Exhaustive`] runs it on every input up to a stated bound, and
+//! [`choice::Random`] samples inputs past the bound. The bounds and counts are in each
+//! module's header and printed by the tests (`cargo test --test proofs -- --nocapture`).
+
+mod choice;
+mod maps;
+mod oracle;
+mod polygons;
+mod raw;

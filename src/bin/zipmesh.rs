@@ -1,1 +1,211 @@
-fn main() {}
+//! The `zipmesh` command-line tool: argument parsing and printing only; every number comes
+//! from the library.
+//!
+//! Exit codes: 0 success (for `iso`: isomorphic), 1 not isomorphic, 2 any error (bad file,
+//! bad usage).
+
+use clap::{Parser, Subcommand};
+use serde_json::{json, Map as JsonMap, Value};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
+use zipmesh::io::{self, MeshFileError};
+use zipmesh::{BuildReport, Mesh};
+
+/// The mesh `zipmesh stats` reads when no file is given (Spot's control mesh, CC0).
+const DEFAULT_MESH: &str = include_str!("../../data/spot_control_mesh.obj");
+const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
+
+#[derive(Parser)]
+#[command(
+    name = "zipmesh",
+    version,
+    about = "Counts, invariants and canonical hashes of quad, triangle and polygon meshes (OBJ, OFF)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Counts, Euler characteristic, genus, histograms, Gauss-Bonnet and the canonical hash.
+    Stats {
+        /// An .obj or .off file; without it, the built-in Spot control mesh.
+        file: Option<PathBuf>,
+        /// Print one JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The 128-bit canonical hash of the mesh's connectivity, in 32 hex digits.
+    Hash {
+        /// An .obj or .off file.
+        file: PathBuf,
+    },
+    /// Whether two meshes have isomorphic connectivity: exit 0 if so, 1 if not.
+    Iso {
+        /// The first mesh.
+        a: PathBuf,
+        /// The second mesh.
+        b: PathBuf,
+        /// Also accept a mirror image (an orientation-reversing isomorphism).
+        #[arg(long)]
+        mirror: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            // Help and version are successes; every usage error exits 2.
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    match run(cli.command) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("zipmesh: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(command: Command) -> Result<ExitCode, MeshFileError> {
+    match command {
+        Command::Stats { file, json } => {
+            let (name, (mesh, report)) = match &file {
+                Some(path) => (path.display().to_string(), io::read_mesh(path)?),
+                None => (
+                    DEFAULT_NAME.to_string(),
+                    io::obj::parse(DEFAULT_MESH).map_err(|e| e.with_path(DEFAULT_NAME))?,
+                ),
+            };
+            let stats = stats(&mesh, &report);
+            if json {
+                let object: JsonMap<String, Value> =
+                    stats.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+                println!("{}", Value::Object(object));
+            } else {
+                print_table(&name, &stats);
+            }
+        }
+        Command::Hash { file } => {
+            let (mesh, _) = io::read_mesh(&file)?;
+            println!("{:032x}", canonical_hash(&mesh.map));
+        }
+        Command::Iso { a, b, mirror } => {
+            let (ma, _) = io::read_mesh(&a)?;
+            let (mb, _) = io::read_mesh(&b)?;
+            let same = if mirror {
+                zipmesh::is_isomorphic_mirror(&ma.map, &mb.map)
+            } else {
+                zipmesh::is_isomorphic(&ma.map, &mb.map)
+            };
+            let how = if mirror {
+                " (mirror images allowed)"
+            } else {
+                ""
+            };
+            let verdict = if same { "isomorphic" } else { "not isomorphic" };
+            println!("{verdict}: {} and {}{how}", a.display(), b.display());
+            return Ok(if same {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            });
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Everything `stats` reports, as JSON values in the order of the table.
+fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
+    let map = &mesh.map;
+    let c = Counts::of(map);
+    let h = Histograms::of(map);
+    let kind = MeshKind::of(map);
+    let gb = gauss_bonnet(map, kind);
+    let hist = |m: &BTreeMap<usize, usize>| -> Value {
+        Value::Object(m.iter().map(|(k, v)| (k.to_string(), json!(v))).collect())
+    };
+    let kind_name = match kind {
+        MeshKind::Triangle => "triangle",
+        MeshKind::Quad => "quad",
+        MeshKind::Mixed => "mixed",
+    };
+    vec![
+        ("kind", json!(kind_name)),
+        ("vertices", json!(c.vertices)),
+        ("edges", json!(c.edges)),
+        ("faces", json!(c.faces)),
+        ("boundary_loops", json!(c.boundary_loops)),
+        ("components", json!(c.components)),
+        ("euler_characteristic", json!(c.euler_characteristic)),
+        ("genus", json!(c.genus)),
+        ("unreferenced_vertices", json!(report.unreferenced.len())),
+        (
+            "irregular_vertices",
+            json!(irregular_vertices(map, kind).len()),
+        ),
+        ("face_degrees", hist(&h.face_degrees)),
+        ("interior_valences", hist(&h.interior_valences)),
+        ("boundary_valences", hist(&h.boundary_valences)),
+        (
+            "gauss_bonnet",
+            json!({
+                "vertex_sum": gb.vertex_sum,
+                "face_sum": gb.face_sum,
+                "rhs": gb.rhs,
+                "holds": gb.holds(),
+            }),
+        ),
+        (
+            "canonical_hash",
+            json!(format!("{:032x}", canonical_hash(map))),
+        ),
+    ]
+}
+
+/// One `key  value` row per entry; histograms as `value:count` pairs in numeric order.
+fn print_table(name: &str, stats: &[(&str, Value)]) {
+    println!("{:<22} {name}", "file");
+    for (key, value) in stats {
+        let text = match value {
+            Value::Object(o) if *key == "gauss_bonnet" => format!(
+                "{} + {} = {} ({})",
+                o["vertex_sum"],
+                o["face_sum"],
+                o["rhs"],
+                if o["holds"] == Value::Bool(true) {
+                    "holds"
+                } else {
+                    "FAILS"
+                }
+            ),
+            Value::Object(o) if o.is_empty() => "-".to_string(),
+            Value::Object(o) => {
+                let mut pairs: Vec<(u64, &Value)> = o
+                    .iter()
+                    .map(|(k, v)| (k.parse().unwrap_or(u64::MAX), v))
+                    .collect();
+                pairs.sort_by_key(|&(k, _)| k);
+                pairs
+                    .iter()
+                    .map(|(k, v)| format!("{k}:{v}"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            }
+            Value::String(s) => s.clone(),
+            other => other.to_string(),
+        };
+        println!("{:<22} {text}", key.replace('_', " "));
+    }
+}

@@ -1,0 +1,331 @@
+//! The `zipmesh` binary: JSON stats against the library, hashes, `iso` exit codes, and
+//! errors for bad files and bad usage.
+#![cfg(feature = "cli")]
+
+use glam::DVec3;
+use serde_json::Value;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
+use zipmesh::{gen, io, Mesh};
+
+fn zipmesh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(args)
+        .output()
+        .expect("the zipmesh binary runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+fn shared(rel: &str) -> PathBuf {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data")
+        .join(rel);
+    assert!(p.is_file(), "missing shared test mesh {}", p.display());
+    p
+}
+
+/// Compares `stats --json` output with the library's own numbers for `mesh`.
+fn assert_stats_match(json: &Value, mesh: &Mesh, unreferenced: usize) {
+    let map = &mesh.map;
+    let c = Counts::of(map);
+    let h = Histograms::of(map);
+    let kind = MeshKind::of(map);
+    let gb = gauss_bonnet(map, kind);
+    let hist = |m: &std::collections::BTreeMap<usize, usize>| -> Value {
+        m.iter()
+            .map(|(k, v)| (k.to_string(), Value::from(*v)))
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    assert_eq!(json["vertices"], c.vertices);
+    assert_eq!(json["edges"], c.edges);
+    assert_eq!(json["faces"], c.faces);
+    assert_eq!(json["boundary_loops"], c.boundary_loops);
+    assert_eq!(json["components"], c.components);
+    assert_eq!(json["euler_characteristic"], c.euler_characteristic);
+    assert_eq!(json["genus"], c.genus);
+    assert_eq!(json["face_degrees"], hist(&h.face_degrees));
+    assert_eq!(json["interior_valences"], hist(&h.interior_valences));
+    assert_eq!(json["boundary_valences"], hist(&h.boundary_valences));
+    assert_eq!(json["unreferenced_vertices"], unreferenced);
+    assert_eq!(
+        json["irregular_vertices"],
+        irregular_vertices(map, kind).len()
+    );
+    assert_eq!(json["gauss_bonnet"]["vertex_sum"], gb.vertex_sum);
+    assert_eq!(json["gauss_bonnet"]["face_sum"], gb.face_sum);
+    assert_eq!(json["gauss_bonnet"]["rhs"], gb.rhs);
+    assert_eq!(json["gauss_bonnet"]["holds"], true);
+    assert_eq!(
+        json["canonical_hash"],
+        format!("{:032x}", canonical_hash(map))
+    );
+}
+
+#[test]
+fn stats_json_equals_the_library() {
+    for rel in [
+        "tri/circle_disk.obj",
+        "quad/osd_catmark_helmet.obj",
+        "poly/blub_control_mesh.obj",
+    ] {
+        let path = shared(rel);
+        let out = zipmesh(&["stats", s(&path), "--json"]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        let (mesh, report) = io::read_mesh(&path).unwrap();
+        assert_stats_match(&json, &mesh, report.unreferenced.len());
+    }
+    let kinds = [
+        ("tri/torus.obj", "triangle"),
+        ("quad/osd_catmark_torus.obj", "quad"),
+        ("poly/spot_control_mesh.obj", "mixed"),
+    ];
+    for (rel, kind) in kinds {
+        let out = zipmesh(&["stats", "--json", s(&shared(rel))]);
+        let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        assert_eq!(json["kind"], kind, "{rel}");
+    }
+}
+
+#[test]
+fn stats_counts_unreferenced_vertices_in_an_off_file() {
+    let dir = temp_dir("unreferenced");
+    let path = dir.join("extra.off");
+    fs::write(
+        &path,
+        "OFF\n5 1 0\n0 0 0\n1 0 0\n9 9 9\n1 1 0\n0 1 0\n4 0 1 3 4\n",
+    )
+    .unwrap();
+    let out = zipmesh(&["stats", "--json", s(&path)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let (mesh, _) = io::read_mesh(&path).unwrap();
+    assert_stats_match(&json, &mesh, 1);
+    assert_eq!(json["vertices"], 4);
+}
+
+#[test]
+fn stats_without_a_file_reads_the_shipped_mesh_from_any_directory() {
+    let dir = temp_dir("cwd");
+    let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(["stats", "--json"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/spot_control_mesh.obj");
+    let (mesh, _) = io::read_mesh(shipped).unwrap();
+    assert_stats_match(&json, &mesh, 0);
+
+    // The table names every quantity and the built-in file.
+    let out = zipmesh(&["stats"]);
+    assert!(out.status.success());
+    let table = stdout(&out);
+    assert!(table.contains("spot_control_mesh.obj"), "{table}");
+    for (label, value) in [
+        ("vertices", mesh.map.num_vertices()),
+        ("edges", mesh.map.num_edges()),
+        ("faces", mesh.map.num_faces()),
+    ] {
+        let row = table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(label))
+            .unwrap_or_else(|| panic!("no {label} row in {table}"));
+        assert!(row.ends_with(&format!(" {value}")), "{row}");
+    }
+}
+
+/// The same connectivity under another numbering: vertices reversed, faces reversed in
+/// order and each face's corners rotated by one.
+fn relabelled(mesh: &Mesh) -> Mesh {
+    let n = mesh.positions.len() as u32;
+    let positions: Vec<DVec3> = mesh.positions.iter().rev().copied().collect();
+    let faces: Vec<Vec<u32>> = mesh
+        .polygons()
+        .into_iter()
+        .rev()
+        .map(|p| {
+            let mut q: Vec<u32> = p.iter().map(|&v| n - 1 - v).collect();
+            q.rotate_left(1);
+            q
+        })
+        .collect();
+    Mesh::from_polygons(positions, &faces).unwrap().0
+}
+
+/// The mirror image: every face's corners reversed.
+fn mirrored(mesh: &Mesh) -> Mesh {
+    let faces: Vec<Vec<u32>> = mesh
+        .polygons()
+        .into_iter()
+        .map(|mut p| {
+            p.reverse();
+            p
+        })
+        .collect();
+    Mesh::from_polygons(mesh.positions.clone(), &faces)
+        .unwrap()
+        .0
+}
+
+#[test]
+fn hash_is_independent_of_numbering() {
+    let dir = temp_dir("hash");
+    let mesh = gen::torus_grid(5, 3);
+    let (a, b, c) = (dir.join("a.obj"), dir.join("b.off"), dir.join("c.obj"));
+    io::write_mesh(&a, &mesh).unwrap();
+    io::write_mesh(&b, &relabelled(&mesh)).unwrap();
+    io::write_mesh(&c, &gen::torus_grid(5, 4)).unwrap();
+    assert_ne!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
+    let hash = |p: &Path| {
+        let out = zipmesh(&["hash", s(p)]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        stdout(&out).trim().to_string()
+    };
+    let ha = hash(&a);
+    assert_eq!(ha.len(), 32);
+    assert!(ha.bytes().all(|b| b.is_ascii_hexdigit()));
+    assert_eq!(ha, format!("{:032x}", canonical_hash(&mesh.map)));
+    assert_eq!(hash(&b), ha);
+    assert_ne!(hash(&c), ha);
+}
+
+/// A torus grid with a few quads cut into triangles, chosen (deterministically) so that
+/// the map is not isomorphic to its mirror image.
+fn chiral_mesh() -> Mesh {
+    let torus = gen::torus_grid(6, 5);
+    for seed in 0..200 {
+        let mut rng = zipmesh::rng::Rng::new(seed);
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        for q in torus.polygons() {
+            if rng.chance(1, 5) {
+                let k = rng.below(2);
+                faces.push(vec![q[k], q[k + 1], q[(k + 2) % 4]]);
+                faces.push(vec![q[(k + 2) % 4], q[(k + 3) % 4], q[k]]);
+            } else {
+                faces.push(q);
+            }
+        }
+        let (mesh, _) = Mesh::from_polygons(torus.positions.clone(), &faces).unwrap();
+        if !zipmesh::is_isomorphic(&mesh.map, &mesh.map.mirror()) {
+            return mesh;
+        }
+    }
+    panic!("no chiral cut torus found");
+}
+
+#[test]
+fn iso_exit_codes() {
+    let dir = temp_dir("iso");
+    let chiral = chiral_mesh();
+    let (a, b, m, other) = (
+        dir.join("a.obj"),
+        dir.join("b.obj"),
+        dir.join("m.off"),
+        dir.join("other.obj"),
+    );
+    io::write_mesh(&a, &chiral).unwrap();
+    io::write_mesh(&b, &relabelled(&chiral)).unwrap();
+    io::write_mesh(&m, &mirrored(&relabelled(&chiral))).unwrap();
+    io::write_mesh(&other, &gen::cube(3)).unwrap();
+
+    let code = |args: &[&str]| zipmesh(args).status.code();
+    assert_eq!(code(&["iso", s(&a), s(&b)]), Some(0));
+    assert_eq!(code(&["iso", s(&a), s(&other)]), Some(1));
+    assert_eq!(code(&["iso", s(&a), s(&m), "--mirror"]), Some(0));
+    assert_eq!(code(&["iso", "--mirror", s(&a), s(&other)]), Some(1));
+    // Without --mirror the verdict on the mirror image is the library's.
+    let (ma, _) = io::read_mesh(&a).unwrap();
+    let (mm, _) = io::read_mesh(&m).unwrap();
+    let expect = if zipmesh::is_isomorphic(&ma.map, &mm.map) {
+        0
+    } else {
+        1
+    };
+    assert_eq!(code(&["iso", s(&a), s(&m)]), Some(expect));
+
+    let out = zipmesh(&["iso", s(&a), s(&b)]);
+    let verdict = stdout(&out);
+    assert_eq!(verdict.lines().count(), 1);
+    assert!(verdict.starts_with("isomorphic"), "{verdict}");
+    let out = zipmesh(&["iso", s(&a), s(&other)]);
+    assert!(stdout(&out).starts_with("not isomorphic"));
+
+    let missing = dir.join("missing.obj");
+    let out = zipmesh(&["iso", s(&a), s(&missing)]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("missing.obj"), "{}", stderr(&out));
+}
+
+#[test]
+fn bad_files_exit_2_naming_file_line_and_defect() {
+    let dir = temp_dir("bad");
+    let bad = dir.join("bowtie.obj");
+    fs::write(
+        &bad,
+        "# two triangles sharing one edge three times\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 2 0\n\
+f 1 2 3\nf 2 1 4\nf 1 2 5\n",
+    )
+    .unwrap();
+    for args in [
+        vec!["stats", s(&bad)],
+        vec!["stats", "--json", s(&bad)],
+        vec!["hash", s(&bad)],
+        vec!["iso", s(&bad), s(&bad)],
+    ] {
+        let out = zipmesh(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains("bowtie.obj:9:"), "{err}");
+        assert!(err.contains("non-manifold edge"), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(out.stdout.is_empty());
+    }
+    let bad_off = dir.join("short.off");
+    fs::write(&bad_off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n").unwrap();
+    let out = zipmesh(&["hash", s(&bad_off)]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("short.off:5:"), "{}", stderr(&out));
+    let out = zipmesh(&["stats", s(&dir.join("notes.txt"))]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("notes.txt"));
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        vec![],
+        vec!["frobnicate"],
+        vec!["hash"],
+        vec!["iso", "only-one.obj"],
+        vec!["stats", "--yaml"],
+    ] {
+        let out = zipmesh(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(!stderr(&out).is_empty());
+    }
+    assert_eq!(zipmesh(&["--help"]).status.code(), Some(0));
+}
