@@ -361,7 +361,10 @@ impl Map {
             map.vert[d] = a;
             map.face[d] = hface[h];
             map.vdart[a as usize] = d as u32;
-            map.fdart[hface[h] as usize] = d as u32;
+            if map.fdart[hface[h] as usize] == NONE {
+                // The first corner's dart, so that faces read back in their input order.
+                map.fdart[hface[h] as usize] = d as u32;
+            }
             out_deg[a as usize] += 1;
         }
         if n_boundary > 0 {
@@ -396,12 +399,11 @@ impl Map {
             }
         }
         // One fan per vertex: the rotation from vdart must visit every outgoing dart.
-        for v in 0..n_vertices {
+        for (v, &want) in out_deg.iter().enumerate() {
             let d0 = map.vdart[v];
             if d0 == NONE {
                 continue;
             }
-            let want = out_deg[v];
             let mut d = d0;
             let mut seen = 0u32;
             loop {
