@@ -239,13 +239,17 @@ impl<'a> Canonizer<'a> {
             if state == Cmp::Equal {
                 let b = [self.best_code[2 * i], self.best_code[2 * i + 1]];
                 if sym < b {
+                    // Only a better code is kept: its prefix so far is the best one's.
                     state = Cmp::Better;
+                    self.code.extend_from_slice(&self.best_code[..2 * i]);
                 } else if sym > b {
                     state = Cmp::Worse;
                     break;
                 }
             }
-            self.code.extend_from_slice(&sym);
+            if state == Cmp::Better {
+                self.code.extend_from_slice(&sym);
+            }
             i += 1;
         }
         for &d in &self.order {
