@@ -31,6 +31,8 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+#[cfg(feature = "arbitrary")]
+pub mod arbitrary;
 pub mod gen;
 pub mod invariants;
 #[cfg(feature = "std")]
