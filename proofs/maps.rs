@@ -6,8 +6,12 @@
 //! `2^cycles` over a symmetric group). Every valid map on `2n` darts is among them.
 //!
 //! Bound: `MAX_EDGES` = 4 edges (8 darts), 368 047 candidates in all (1 + 6 + 120 + 5040 +
-//! 362880); the accepted and rejected counts are printed by the test (`-- --nocapture`) and
-//! the published counts of rooted maps by genus are asserted.
+//! 362 880, asserted). Each candidate's acceptance is decided by the oracle; the test prints
+//! the tallies (`-- --nocapture`), which were: 103 981 accepted (1, 4, 56, 1776 and 102 144
+//! for 0 to 4 edges), 218 218 rejected as `FacelessEdge` and 45 848 as `PinchedBoundary`.
+//! Against published enumerations it asserts the rooted maps by genus (OEIS A238396), the
+//! sensed planar maps (A006384: 2, 4, 14, 57) and the reflexible maps by genus, which checks
+//! the enumeration, the genus, `mirror` and the canonical code at once.
 
 use crate::choice::{Choice, Exhaustive, Random};
 use crate::oracle::{permutations, Expected, RawMap};
