@@ -6,6 +6,12 @@ use crate::mesh::Mesh;
 use alloc::vec::Vec;
 use glam::DVec3;
 
+mod catmull_clark;
+mod random;
+
+pub use catmull_clark::catmull_clark;
+pub use random::{random_mixed, random_quad, random_triangle, MAX_RANDOM_FACES, MAX_RANDOM_GENUS};
+
 /// An `nx` x `ny` grid of quads in the plane z = 0: a disk with one boundary loop.
 /// `nx` and `ny` are clamped to at least 1.
 ///
