@@ -107,6 +107,8 @@ struct Canonizer<'a> {
     best_order: Vec<u32>,
     best_code: Vec<u32>,
     parent: Vec<u32>,
+    /// Per union-find root: whether a start in its orbit was tried.
+    tried: Vec<bool>,
 }
 
 impl<'a> Canonizer<'a> {
@@ -120,6 +122,7 @@ impl<'a> Canonizer<'a> {
             best_order: Vec::new(),
             best_code: Vec::new(),
             parent: Vec::new(),
+            tried: vec![false; nd],
         }
     }
 
@@ -181,16 +184,14 @@ impl<'a> Canonizer<'a> {
     fn component_code(&mut self, starts: &[u32]) -> Vec<u32> {
         self.best_code.clear();
         self.best_order.clear();
-        let mut tried_roots: Vec<u32> = Vec::new();
-        for (i, &s) in starts.iter().enumerate() {
-            if i > 0 {
-                let r = self.find(s);
-                if tried_roots.iter().any(|&t| self.find(t) == r) {
-                    continue;
-                }
+        for &s in starts {
+            let r = self.find(s);
+            if self.tried[r as usize] {
+                continue;
             }
-            tried_roots.push(s);
-            match self.run(s, i == 0) {
+            self.tried[r as usize] = true;
+            let first = self.best_order.is_empty();
+            match self.run(s, first) {
                 Cmp::Better => {
                     core::mem::swap(&mut self.best_code, &mut self.code);
                     core::mem::swap(&mut self.best_order, &mut self.order);
@@ -201,7 +202,9 @@ impl<'a> Canonizer<'a> {
                         let (a, b) = (self.best_order[k], self.order[k]);
                         let (ra, rb) = (self.find(a), self.find(b));
                         if ra != rb {
+                            // The merged orbit is tried if either part was.
                             self.parent[ra as usize] = rb;
+                            self.tried[rb as usize] |= self.tried[ra as usize];
                         }
                     }
                 }

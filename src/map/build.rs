@@ -5,6 +5,10 @@ use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
 
+/// The most corners a polygon list may have: at most twice as many darts, and the
+/// canonical code needs dart numbers below 2^31.
+pub const MAX_CORNERS: usize = 1 << 30;
+
 /// Why a polygon list does not describe an oriented manifold surface.
 ///
 /// Face numbers are 0-based positions in the input list; vertex numbers are the input's
@@ -173,7 +177,7 @@ impl Map {
         offsets.push(0u32);
         for f in faces {
             corners.extend_from_slice(f.as_ref());
-            if corners.len() >= NONE as usize / 2 {
+            if corners.len() > MAX_CORNERS {
                 return Err(BuildError::TooLarge { corners: total });
             }
             offsets.push(corners.len() as u32);
@@ -198,7 +202,7 @@ impl Map {
         offsets: &[u32],
     ) -> Result<(Map, BuildReport), BuildError> {
         let h_count = corners.len();
-        if h_count >= NONE as usize / 2 || n_vertices >= NONE as usize {
+        if h_count > MAX_CORNERS || n_vertices >= NONE as usize {
             return Err(BuildError::TooLarge { corners: h_count });
         }
         let n_faces = offsets.len().saturating_sub(1);

@@ -12,7 +12,7 @@ mod raw;
 mod store;
 mod walk;
 
-pub use build::{BuildError, BuildReport};
+pub use build::{BuildError, BuildReport, MAX_CORNERS};
 pub use check::Violation;
 pub(crate) use handle::NONE;
 pub use handle::{Dart, Face, Vert};

@@ -55,7 +55,7 @@ impl Map {
     /// ```
     pub fn from_permutation(next: &[u32], boundary: &[bool]) -> Result<Map, RawError> {
         let nd = next.len();
-        if nd % 2 != 0 || boundary.len() != nd || nd >= NONE as usize {
+        if nd % 2 != 0 || boundary.len() != nd || nd > 2 * super::build::MAX_CORNERS {
             return Err(RawError::Size);
         }
         let mut seen = vec![false; nd];
