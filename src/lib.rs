@@ -39,6 +39,7 @@ pub mod invariants;
 pub mod io;
 pub mod map;
 pub mod mesh;
+pub mod ops;
 pub mod rng;
 
 pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};

@@ -1,0 +1,70 @@
+//! Atomic editing operators, each paired with a pure precondition check and an exact inverse.
+//!
+//! Contract of every operator `x` (see `docs/operators.md`):
+//! * `can_x(&map, ...) -> Result<(), Refusal>` says, without changing anything, whether `x`
+//!   applies and if not why (a typed [`Refusal`]).
+//! * `x(&mut map, ...) -> Result<XRecord, Refusal>` applies it, or refuses with the same reason
+//!   as `can_x` and leaves the map exactly as it was (every array, not only the shape).
+//! * The record names the handles created and holds what the exact inverse needs;
+//!   `record.undo(&mut map)` restores a map equal (`==`) to the one before, as long as the
+//!   map has not been changed in between (other records undone in reverse order are fine).
+//! * Handles of elements the operator did not touch stay valid.
+//!
+//! Modules: [`quad`] (Q-zip paper, Sec. 2.2) and [`tri`] (irregular-vertex paper, Sec. 6.1).
+
+use core::fmt;
+
+pub mod quad;
+pub mod tri;
+
+/// Why an operator refuses. Each variant's documentation says which rule it enforces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Refusal {
+    /// A handle argument is not a live element of this map.
+    DeadHandle,
+    /// The arguments do not fit together (for example a split's two edges do not leave the
+    /// vertex, or are the same edge).
+    BadArguments,
+    /// The operator needs an interior element and this one is on the boundary.
+    Boundary,
+    /// A face involved does not have the degree the operator works on.
+    WrongDegree,
+    /// The result would have a face of degree below 3.
+    FaceTooSmall,
+    /// The result would have a vertex of valence below the operator's minimum.
+    ValenceTooLow,
+    /// The result would have two edges between the same two vertices.
+    MultiEdge,
+    /// The result would have an edge from a vertex to itself.
+    Loop,
+    /// Edge collapse: the link condition fails (the two ends share a neighbour other than the
+    /// two apexes), so the collapse would pinch the surface.
+    LinkCondition,
+    /// The record does not match the map (it was changed since, or the record is foreign).
+    StaleRecord,
+    // Quad-specific reasons: add below this line (quad operators only).
+
+    // Triangle-specific reasons: add below this line (triangle operators only).
+}
+
+impl fmt::Display for Refusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = match self {
+            Refusal::DeadHandle => "a handle is not live in this map",
+            Refusal::BadArguments => "the arguments do not fit together",
+            Refusal::Boundary => "the element is on the boundary",
+            Refusal::WrongDegree => "a face has the wrong degree for this operator",
+            Refusal::FaceTooSmall => "a face of degree below 3 would result",
+            Refusal::ValenceTooLow => "a vertex of too low valence would result",
+            Refusal::MultiEdge => "a multi-edge would result",
+            Refusal::Loop => "a loop edge would result",
+            Refusal::LinkCondition => "the link condition fails",
+            Refusal::StaleRecord => "the record does not match the map",
+        };
+        f.write_str(s)
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for Refusal {}

@@ -1,0 +1,1 @@
+//! Quad operators (in progress).

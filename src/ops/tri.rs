@@ -1,0 +1,1 @@
+//! Triangle operators (in progress).
