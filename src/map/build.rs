@@ -206,9 +206,8 @@ impl Map {
             return Err(BuildError::TooLarge { corners: h_count });
         }
         let n_faces = offsets.len().saturating_sub(1);
-        // Validate every face and build the half-edge successor and face arrays.
-        let mut hnext = vec![0u32; h_count];
-        let mut hface = vec![0u32; h_count];
+        // Validate every face and record each half-edge's destination.
+        let mut hdest = vec![0u32; h_count];
         if offsets.first().is_some_and(|&o| o != 0) || (n_faces == 0 && h_count != 0) {
             return Err(BuildError::FaceTooSmall {
                 face: 0,
@@ -235,10 +234,8 @@ impl Map {
             if let Some(v) = repeated(poly, &mut scratch) {
                 return Err(BuildError::RepeatedCorner { face: f, vertex: v });
             }
-            for h in s..e {
-                hnext[h] = if h + 1 == e { s as u32 } else { h as u32 + 1 };
-                hface[h] = f as u32;
-            }
+            hdest[s..e - 1].copy_from_slice(&poly[1..]);
+            hdest[e - 1] = poly[0];
         }
         if offsets.last().is_some_and(|&o| o as usize != h_count) {
             return Err(BuildError::FaceTooSmall {
@@ -247,31 +244,36 @@ impl Map {
             });
         }
 
+        // The face of a half-edge, for error reports only.
+        let face_of = |h: usize| {
+            offsets
+                .partition_point(|&o| o as usize <= h)
+                .saturating_sub(1)
+        };
         // Bucket half-edges by their smaller end (counting sort), the larger end packed beside
         // each, then pair every half-edge with the other one of its edge.
         let mut start = vec![0u32; n_vertices + 1];
-        for h in 0..h_count {
-            let (a, b) = (corners[h], corners[hnext[h] as usize]);
+        for (&a, &b) in corners.iter().zip(&hdest) {
             start[a.min(b) as usize + 1] += 1;
         }
         for v in 0..n_vertices {
             start[v + 1] += start[v];
         }
         let mut bucket = vec![0u64; h_count];
-        {
-            let mut fill = start.clone();
-            for h in 0..h_count {
-                let (a, b) = (corners[h], corners[hnext[h] as usize]);
-                let lo = a.min(b) as usize;
-                bucket[fill[lo] as usize] = u64::from(a.max(b)) << 32 | h as u64;
-                fill[lo] += 1;
-            }
+        for (h, (&a, &b)) in corners.iter().zip(&hdest).enumerate() {
+            let lo = a.min(b) as usize;
+            bucket[start[lo] as usize] = u64::from(a.max(b)) << 32 | h as u64;
+            start[lo] += 1;
         }
-        // mate[h]: the other half-edge of h's edge, or h itself on the boundary.
-        let mut mate = vec![NONE; h_count];
+        // Now start[v] is the end of v's bucket (and the beginning of v + 1's).
+        // mate[h]: the other half-edge of h's edge, or h itself on the boundary. It reuses
+        // the destination array, which is not read again.
+        let mut mate = hdest;
+        mate.fill(NONE);
         let mut n_boundary = 0usize;
         for v in 0..n_vertices {
-            let b = &mut bucket[start[v] as usize..start[v + 1] as usize];
+            let begin = if v == 0 { 0 } else { start[v - 1] as usize };
+            let b = &mut bucket[begin..start[v] as usize];
             // Small buckets are scanned; large ones sorted so that equal ends are adjacent.
             let sorted = b.len() > 16;
             if sorted {
@@ -301,11 +303,15 @@ impl Map {
                     1 => {
                         let h2 = found[0] as usize;
                         if corners[h1] == corners[h2] {
-                            let mut faces = [hface[h1] as usize, hface[h2] as usize];
+                            let mut faces = [face_of(h1), face_of(h2)];
                             faces.sort_unstable();
                             return Err(BuildError::InconsistentOrientation {
                                 a: corners[h1],
-                                b: corners[hnext[h1] as usize],
+                                b: if corners[h1] == v as u32 {
+                                    hi
+                                } else {
+                                    v as u32
+                                },
                                 faces,
                             });
                         }
@@ -314,9 +320,9 @@ impl Map {
                     }
                     _ => {
                         let mut faces = [
-                            hface[h1],
-                            hface[found[0] as usize],
-                            hface[found[1] as usize],
+                            face_of(h1),
+                            face_of(found[0] as usize),
+                            face_of(found[1] as usize),
                         ]
                         .map(|x| x as usize);
                         faces.sort_unstable();
@@ -332,19 +338,24 @@ impl Map {
         drop(bucket);
         drop(start);
         // Number edges in face order, so that the darts of a face sit close together in memory.
-        let mut dart_of = vec![NONE; h_count];
+        // In place: a set top bit marks a slot that already holds its dart (a mate always
+        // comes after its half-edge, and corners are below 2^30, so the bit is free).
+        const DONE: u32 = 1 << 31;
+        let mut dart_of = mate;
         let mut n_edges = 0u32;
         for h in 0..h_count {
-            if dart_of[h] == NONE {
-                dart_of[h] = 2 * n_edges;
-                let m = mate[h] as usize;
-                if m != h {
-                    dart_of[m] = 2 * n_edges + 1;
+            let m = dart_of[h];
+            if m & DONE == 0 {
+                dart_of[h] = DONE | 2 * n_edges;
+                if m as usize != h {
+                    dart_of[m as usize] = DONE | (2 * n_edges + 1);
                 }
                 n_edges += 1;
             }
         }
-        drop(mate);
+        for d in &mut dart_of {
+            *d &= !DONE;
+        }
 
         let n_darts = 2 * n_edges as usize;
         let mut map = Map {
@@ -358,18 +369,19 @@ impl Map {
             free_faces: Vec::new(),
         };
         let mut out_deg = vec![0u32; n_vertices];
-        for h in 0..h_count {
-            let d = dart_of[h] as usize;
-            let a = corners[h];
-            map.next[d] = dart_of[hnext[h] as usize];
-            map.vert[d] = a;
-            map.face[d] = hface[h];
-            map.vdart[a as usize] = d as u32;
-            if map.fdart[hface[h] as usize] == NONE {
-                // The first corner's dart, so that faces read back in their input order.
-                map.fdart[hface[h] as usize] = d as u32;
+        for f in 0..n_faces {
+            let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+            // The first corner's dart, so that faces read back in their input order.
+            map.fdart[f] = dart_of[s];
+            for h in s..e {
+                let d = dart_of[h] as usize;
+                let a = corners[h];
+                map.next[d] = dart_of[if h + 1 == e { s } else { h + 1 }];
+                map.vert[d] = a;
+                map.face[d] = f as u32;
+                map.vdart[a as usize] = d as u32;
+                out_deg[a as usize] += 1;
             }
-            out_deg[a as usize] += 1;
         }
         if n_boundary > 0 {
             // Boundary darts: origin is the face dart's destination; each vertex may own one.
@@ -378,12 +390,12 @@ impl Map {
                 let d = dart_of[h];
                 let t = (d ^ 1) as usize;
                 if map.vert[t] == NONE {
-                    let b = corners[hnext[h] as usize];
+                    let b = map.vert[map.next[d as usize] as usize];
                     map.vert[t] = b;
                     if boundary_out[b as usize] != NONE {
                         return Err(BuildError::NonManifoldVertex {
                             vertex: b,
-                            face: hface[h] as usize,
+                            face: face_of(h),
                         });
                     }
                     boundary_out[b as usize] = t as u32;
@@ -447,7 +459,29 @@ impl Map {
 }
 
 /// The first vertex repeated in `poly`, if any.
+#[inline]
 fn repeated(poly: &[u32], scratch: &mut Vec<u32>) -> Option<u32> {
+    // Triangles and quads, the common case, without loops; same answer as the general scan.
+    if let &[a, b, c, d] = poly {
+        return if b == a {
+            Some(b)
+        } else if c == a || c == b {
+            Some(c)
+        } else if d == a || d == b || d == c {
+            Some(d)
+        } else {
+            None
+        };
+    }
+    if let &[a, b, c] = poly {
+        return if b == a {
+            Some(b)
+        } else if c == a || c == b {
+            Some(c)
+        } else {
+            None
+        };
+    }
     if poly.len() <= 12 {
         for i in 1..poly.len() {
             if poly[..i].contains(&poly[i]) {
