@@ -323,8 +323,7 @@ impl Map {
                             face_of(h1),
                             face_of(found[0] as usize),
                             face_of(found[1] as usize),
-                        ]
-                        .map(|x| x as usize);
+                        ];
                         faces.sort_unstable();
                         return Err(BuildError::NonManifoldEdge {
                             a: v as u32,
@@ -346,7 +345,7 @@ impl Map {
         for h in 0..h_count {
             let m = dart_of[h];
             if m & DONE == 0 {
-                dart_of[h] = DONE | 2 * n_edges;
+                dart_of[h] = DONE | (2 * n_edges);
                 if m as usize != h {
                     dart_of[m as usize] = DONE | (2 * n_edges + 1);
                 }
