@@ -385,8 +385,7 @@ impl Map {
         if n_boundary > 0 {
             // Boundary darts: origin is the face dart's destination; each vertex may own one.
             let mut boundary_out = vec![NONE; n_vertices];
-            for h in 0..h_count {
-                let d = dart_of[h];
+            for (h, &d) in dart_of.iter().enumerate() {
                 let t = (d ^ 1) as usize;
                 if map.vert[t] == NONE {
                     let b = map.vert[map.next[d as usize] as usize];
