@@ -93,110 +93,125 @@ impl Map {
             return Err(Violation::Layout);
         }
         self.check_free_lists()?;
-        let (nv, nf) = (self.vdart.len(), self.fdart.len());
         let mut has_pred = vec![0u64; nd.div_ceil(64)];
         let mut n_live = 0usize;
         let mut n_face_darts = 0usize;
-        for d in 0..nd {
-            let n = self.next[d];
-            if n == NONE {
-                if self.next[d ^ 1] != NONE {
-                    return Err(Violation::DeadReference(Dart(d as u32 ^ 1)));
+        let mut dead_edges = 0usize;
+        // Edge by edge, so that each dart's twin fields are loaded once.
+        for e in 0..nd / 2 {
+            let (d0, d1) = (2 * e, 2 * e + 1);
+            let (n0, n1) = (self.next[d0], self.next[d1]);
+            if n0 == NONE || n1 == NONE {
+                if n0 != n1 {
+                    let live = if n0 == NONE { d1 } else { d0 };
+                    return Err(Violation::DeadReference(Dart(live as u32)));
                 }
+                dead_edges += 1;
                 continue;
             }
-            n_live += 1;
-            let (v, f) = (self.vert[d], self.face[d]);
-            let dead =
-                |x: u32, len: usize, rec: &[u32]| x as usize >= len || rec[x as usize] == NONE;
-            if self.next[d ^ 1] == NONE
-                || n as usize >= nd
-                || self.next[n as usize] == NONE
-                || dead(v, nv, &self.vdart)
-                || (f != NONE && dead(f, nf, &self.fdart))
-            {
-                return Err(Violation::DeadReference(Dart(d as u32)));
+            n_live += 2;
+            let (v0, v1) = (self.vert[d0], self.vert[d1]);
+            let (f0, f1) = (self.face[d0], self.face[d1]);
+            let dead = |x: u32, rec: &[u32]| rec.get(x as usize).is_none_or(|&r| r == NONE);
+            for (d, n, v, f) in [(d0, n0, v0, f0), (d1, n1, v1, f1)] {
+                if self.next.get(n as usize).is_none_or(|&x| x == NONE)
+                    || dead(v, &self.vdart)
+                    || (f != NONE && dead(f, &self.fdart))
+                {
+                    return Err(Violation::DeadReference(Dart(d as u32)));
+                }
+                let (w, b) = (n as usize / 64, 1u64 << (n % 64));
+                if has_pred[w] & b != 0 {
+                    return Err(Violation::NextNotPermutation(Dart(n)));
+                }
+                has_pred[w] |= b;
+                // A boundary dart must be its origin's record: so at most one leaves a vertex.
+                if f == NONE && self.vdart[v as usize] != d as u32 {
+                    let rec = self.vdart[v as usize] as usize;
+                    return Err(if self.face.get(rec) == Some(&NONE) {
+                        Violation::PinchedBoundary(Vert(v))
+                    } else {
+                        Violation::BoundaryRecord(Vert(v))
+                    });
+                }
             }
-            let (w, b) = (n as usize / 64, 1u64 << (n % 64));
-            if has_pred[w] & b != 0 {
-                return Err(Violation::NextNotPermutation(Dart(n)));
+            if self.vert[n0 as usize] != v1 {
+                return Err(Violation::TwinOrigin(Dart(d0 as u32)));
             }
-            has_pred[w] |= b;
-            if self.vert[d ^ 1] != self.vert[n as usize] {
-                return Err(Violation::TwinOrigin(Dart(d as u32)));
+            if self.vert[n1 as usize] != v0 {
+                return Err(Violation::TwinOrigin(Dart(d1 as u32)));
             }
-            if self.face[n as usize] != f {
-                return Err(Violation::FaceNotConstant(Dart(d as u32)));
+            if self.face[n0 as usize] != f0 {
+                return Err(Violation::FaceNotConstant(Dart(d0 as u32)));
             }
-            if f == NONE && self.face[d ^ 1] == NONE {
-                return Err(Violation::FacelessEdge(Dart(d as u32)));
+            if self.face[n1 as usize] != f1 {
+                return Err(Violation::FaceNotConstant(Dart(d1 as u32)));
             }
-            n_face_darts += usize::from(f != NONE);
+            if f0 == NONE && f1 == NONE {
+                return Err(Violation::FacelessEdge(Dart(d0 as u32)));
+            }
+            n_face_darts += usize::from(f0 != NONE) + usize::from(f1 != NONE);
+        }
+        if dead_edges != self.free_edges.len() {
+            return Err(Violation::FreeList);
         }
         // Each face record starts a cycle of its own face; the cycles cover all face darts.
-        let mut covered = 0usize;
+        let mut dead_faces = 0usize;
         for (f, &d0) in self.fdart.iter().enumerate() {
             if d0 == NONE {
-                continue;
-            }
-            if d0 as usize >= nd
-                || self.next[d0 as usize] == NONE
+                dead_faces += 1;
+            } else if self.next.get(d0 as usize).is_none_or(|&n| n == NONE)
                 || self.face[d0 as usize] != f as u32
             {
                 return Err(Violation::FaceRecord(Face(f as u32)));
             }
-            let mut d = d0;
-            loop {
-                covered += 1;
-                d = self.next[d as usize];
-                if d == d0 || covered > n_face_darts {
-                    break;
-                }
-            }
         }
-        if covered != n_face_darts {
+        if dead_faces != self.free_faces.len() {
+            return Err(Violation::FreeList);
+        }
+        if self.cover(&self.fdart, 0, n_face_darts) != n_face_darts {
             return Err(Violation::FaceSplit);
         }
         // Each vertex record starts a rotation; the rotations cover all live darts.
-        let mut covered = 0usize;
+        let mut dead_verts = 0usize;
         for (v, &d0) in self.vdart.iter().enumerate() {
             if d0 == NONE {
-                continue;
-            }
-            if d0 as usize >= nd
-                || self.next[d0 as usize] == NONE
+                dead_verts += 1;
+            } else if self.next.get(d0 as usize).is_none_or(|&n| n == NONE)
                 || self.vert[d0 as usize] != v as u32
             {
                 return Err(Violation::VertexRecord(Vert(v as u32)));
             }
-            let mut boundary = 0u32;
-            let mut d = d0;
-            loop {
-                covered += 1;
-                boundary += u32::from(self.face[d as usize] == NONE);
-                d = self.next[(d ^ 1) as usize];
-                if d == d0 || covered > n_live {
-                    break;
-                }
-            }
-            if boundary > 1 {
-                return Err(Violation::PinchedBoundary(Vert(v as u32)));
-            }
-            if boundary == 1 && self.face[d0 as usize] != NONE {
-                return Err(Violation::BoundaryRecord(Vert(v as u32)));
-            }
         }
-        if covered != n_live {
+        if dead_verts != self.free_verts.len() {
+            return Err(Violation::FreeList);
+        }
+        if self.cover(&self.vdart, 1, n_live) != n_live {
             return Err(Violation::VertexSplit);
         }
         Ok(())
     }
 
-    fn check_free_lists(&self) -> Result<(), Violation> {
-        fn one(free: &[u32], slots: usize, dead: impl Fn(usize) -> bool) -> Result<(), Violation> {
-            if (0..slots).filter(|&s| dead(s)).count() != free.len() {
-                return Err(Violation::FreeList);
+    /// Total length of the cycles of `d -> next(d ^ flip)` through each live record (each a
+    /// live dart, checked before); stops once past `limit`.
+    fn cover(&self, records: &[u32], flip: u32, limit: usize) -> usize {
+        let mut covered = 0usize;
+        for &d0 in records.iter().filter(|&&d| d != NONE) {
+            let mut d = d0;
+            loop {
+                covered += 1;
+                d = self.next[(d ^ flip) as usize];
+                if d == d0 || covered > limit {
+                    break;
+                }
             }
+        }
+        covered
+    }
+
+    fn check_free_lists(&self) -> Result<(), Violation> {
+        // Each entry is a dead slot, named once; the loops in `check` count the dead slots.
+        fn one(free: &[u32], slots: usize, dead: impl Fn(usize) -> bool) -> Result<(), Violation> {
             // Free lists are short: a sorted copy finds repeats without a per-slot array.
             let mut sorted = free.to_vec();
             sorted.sort_unstable();
