@@ -183,7 +183,7 @@ pub fn polygon_properties(
     match &got {
         Ok(_) => "Ok",
         Err(e) => {
-            assert!(e.face().map_or(true, |f| f < faces.len()), "{}", ctx());
+            assert!(e.face().is_none_or(|f| f < faces.len()), "{}", ctx());
             assert!(!e.to_string().is_empty());
             match e {
                 BuildError::FaceTooSmall { .. } => "FaceTooSmall",
