@@ -46,6 +46,10 @@ pub enum Refusal {
     // Quad-specific reasons: add below this line (quad operators only).
 
     // Triangle-specific reasons: add below this line (triangle operators only).
+    /// Triangle operators: a triangle involved has two equal corners (so one of its edges is
+    /// a loop), or an edge argument is a loop. The triangle operators work on triangles with
+    /// three distinct corners, where their valence changes are the ones documented.
+    DegenerateTriangle,
 }
 
 impl fmt::Display for Refusal {
@@ -61,6 +65,7 @@ impl fmt::Display for Refusal {
             Refusal::Loop => "a loop edge would result",
             Refusal::LinkCondition => "the link condition fails",
             Refusal::StaleRecord => "the record does not match the map",
+            Refusal::DegenerateTriangle => "a triangle with a repeated corner is involved",
         };
         f.write_str(s)
     }
