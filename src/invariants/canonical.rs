@@ -107,6 +107,7 @@ struct Canonizer<'a> {
     best_order: Vec<u32>,
     best_code: Vec<u32>,
     parent: Vec<u32>,
+    rank: Vec<u8>,
     /// Per union-find root: whether a start in its orbit was tried.
     tried: Vec<bool>,
 }
@@ -122,6 +123,7 @@ impl<'a> Canonizer<'a> {
             best_order: Vec::new(),
             best_code: Vec::new(),
             parent: Vec::new(),
+            rank: Vec::new(),
             tried: vec![false; nd],
         }
     }
@@ -134,30 +136,34 @@ impl<'a> Canonizer<'a> {
             .filter(|&&c| c != NONE)
             .max()
             .map_or(0, |&m| m as usize + 1);
-        let keys = dart_keys(map);
-        // Darts of each component, and the rarest key class of each.
-        let mut members: Vec<Vec<u32>> = vec![Vec::new(); n_comp];
-        for d in 0..map.next.len() {
-            if comp[d] != NONE {
-                members[comp[d] as usize].push(d as u32);
+        let keys = Keys::new(map);
+        // Darts grouped by component (a counting sort), then the rarest key class of each.
+        let mut comp_start = vec![0usize; n_comp + 1];
+        for &c in comp.iter().filter(|&&c| c != NONE) {
+            comp_start[c as usize + 1] += 1;
+        }
+        for c in 0..n_comp {
+            comp_start[c + 1] += comp_start[c];
+        }
+        let mut by_comp = vec![0u32; comp_start[n_comp]];
+        {
+            let mut fill = comp_start.clone();
+            for (d, &c) in comp.iter().enumerate().filter(|(_, &c)| c != NONE) {
+                by_comp[fill[c as usize]] = d as u32;
+                fill[c as usize] += 1;
             }
         }
+        drop(comp);
         let mut parts: Vec<Vec<u32>> = Vec::with_capacity(n_comp);
         self.parent = (0..map.next.len() as u32).collect();
-        for darts in &members {
-            let mut count: hashbrown::HashMap<u64, u32> = hashbrown::HashMap::new();
-            for &d in darts {
-                *count.entry(keys[d as usize]).or_insert(0) += 1;
-            }
-            let best_key = count
-                .iter()
-                .map(|(&k, &c)| (c, k))
-                .min()
-                .map_or(0, |(_, k)| k);
+        self.rank = vec![0; map.next.len()];
+        for c in 0..n_comp {
+            let darts = &by_comp[comp_start[c]..comp_start[c + 1]];
+            let best_key = rarest(darts.iter().map(|&d| keys.of(map, d as usize)));
             let starts: Vec<u32> = darts
                 .iter()
                 .copied()
-                .filter(|&d| keys[d as usize] == best_key)
+                .filter(|&d| keys.of(map, d as usize) == best_key)
                 .collect();
             parts.push(self.component_code(&starts));
         }
@@ -202,9 +208,18 @@ impl<'a> Canonizer<'a> {
                         let (a, b) = (self.best_order[k], self.order[k]);
                         let (ra, rb) = (self.find(a), self.find(b));
                         if ra != rb {
-                            // The merged orbit is tried if either part was.
-                            self.parent[ra as usize] = rb;
-                            self.tried[rb as usize] |= self.tried[ra as usize];
+                            // Union by rank keeps the trees shallow; the merged orbit is
+                            // tried if either part was.
+                            let (lo, hi) = if self.rank[ra as usize] < self.rank[rb as usize] {
+                                (ra, rb)
+                            } else {
+                                (rb, ra)
+                            };
+                            self.parent[lo as usize] = hi;
+                            if self.rank[lo as usize] == self.rank[hi as usize] {
+                                self.rank[hi as usize] += 1;
+                            }
+                            self.tried[hi as usize] |= self.tried[lo as usize];
                         }
                     }
                 }
@@ -255,56 +270,86 @@ impl<'a> Canonizer<'a> {
             }
             i += 1;
         }
-        for &d in &self.order {
-            self.label[d as usize] = NONE;
+        if self.order.len() * 4 >= self.label.len() {
+            // Most darts were numbered: one sequential fill beats scattered resets.
+            self.label.fill(NONE);
+        } else {
+            for &d in &self.order {
+                self.label[d as usize] = NONE;
+            }
         }
         state
     }
 }
 
 /// Per dart: an isomorphism-invariant key (boundary bit, cycle length, origin and
-/// destination valences, each capped to 21 bits).
-fn dart_keys(map: &Map) -> Vec<u64> {
-    let nd = map.next.len();
-    let cap = |x: u32| u64::from(x.min((1 << 21) - 1));
-    let mut valence = vec![0u32; map.vdart.len()];
-    for d in 0..nd {
-        if map.next[d] != NONE {
-            valence[map.vert[d] as usize] += 1;
+/// destination valences, each capped to 21 bits), computed on demand.
+struct Keys {
+    valence: Vec<u32>,
+    cycle: Vec<u32>,
+}
+
+impl Keys {
+    fn new(map: &Map) -> Keys {
+        let nd = map.next.len();
+        let mut valence = vec![0u32; map.vdart.len()];
+        for d in 0..nd {
+            if map.next[d] != NONE {
+                valence[map.vert[d] as usize] += 1;
+            }
+        }
+        let mut cycle = vec![0u32; nd];
+        for d0 in 0..nd {
+            if map.next[d0] == NONE || cycle[d0] != 0 {
+                continue;
+            }
+            let mut len = 0u32;
+            let mut d = d0;
+            loop {
+                len += 1;
+                d = map.next[d] as usize;
+                if d == d0 {
+                    break;
+                }
+            }
+            loop {
+                cycle[d] = len;
+                d = map.next[d] as usize;
+                if d == d0 {
+                    break;
+                }
+            }
+        }
+        Keys { valence, cycle }
+    }
+
+    #[inline]
+    fn of(&self, map: &Map, d: usize) -> u64 {
+        let cap = |x: u32| u64::from(x.min((1 << 21) - 1));
+        u64::from(map.face[d] == NONE) << 63
+            | cap(self.cycle[d]) << 42
+            | cap(self.valence[map.vert[d] as usize]) << 21
+            | cap(self.valence[map.vert[d ^ 1] as usize])
+    }
+}
+
+/// The key with the fewest darts (the smallest key on a tie). Meshes have few distinct
+/// keys, so a short list is scanned before a hash map is needed.
+fn rarest(keys: impl Iterator<Item = u64>) -> u64 {
+    let mut few: Vec<(u64, u32)> = Vec::new();
+    let mut many: hashbrown::HashMap<u64, u32> = hashbrown::HashMap::new();
+    for k in keys {
+        if let Some(e) = few.iter_mut().find(|e| e.0 == k) {
+            e.1 += 1;
+        } else if few.len() < 16 {
+            few.push((k, 1));
+        } else {
+            *many.entry(k).or_insert(0) += 1;
         }
     }
-    let mut cycle = vec![0u32; nd];
-    for d0 in 0..nd {
-        if map.next[d0] == NONE || cycle[d0] != 0 {
-            continue;
-        }
-        let mut len = 0u32;
-        let mut d = d0;
-        loop {
-            len += 1;
-            d = map.next[d] as usize;
-            if d == d0 {
-                break;
-            }
-        }
-        loop {
-            cycle[d] = len;
-            d = map.next[d] as usize;
-            if d == d0 {
-                break;
-            }
-        }
-    }
-    (0..nd)
-        .map(|d| {
-            if map.next[d] == NONE {
-                return 0;
-            }
-            let b = u64::from(map.face[d] == NONE);
-            b << 63
-                | cap(cycle[d]) << 42
-                | cap(valence[map.vert[d] as usize]) << 21
-                | cap(valence[map.vert[d ^ 1] as usize])
-        })
-        .collect()
+    few.iter()
+        .map(|&(k, c)| (c, k))
+        .chain(many.iter().map(|(&k, &c)| (c, k)))
+        .min()
+        .map_or(0, |(_, k)| k)
 }
