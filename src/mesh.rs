@@ -8,6 +8,11 @@ use glam::DVec3;
 ///
 /// Positions follow vertex slots (`positions[v.index()]`); a dead slot keeps whatever
 /// position it had. The topology never reads positions.
+///
+/// ```
+/// let mesh = zipmesh::gen::cube(1);
+/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// ```
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Mesh {
     /// The connectivity.

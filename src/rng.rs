@@ -5,6 +5,11 @@
 //! on that, and `rand` does not promise value stability across releases.
 
 /// SplitMix64 (Steele, Lea and Flood, 2014): 64 bits of state, passes BigCrush.
+///
+/// ```
+/// let mut rng = zipmesh::rng::Rng::new(42);
+/// assert!(rng.below(6) < 6);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rng(u64);
 

@@ -25,6 +25,13 @@ use alloc::vec::Vec;
 
 /// A canonical code: equal for two maps exactly when they are isomorphic (orientation
 /// preserving, boundary included), whatever their handle numbering and dead slots.
+///
+/// ```
+/// use zipmesh::{gen, invariants::canonical::CanonicalCode};
+/// let a = CanonicalCode::of(&gen::torus_grid(5, 4).map);
+/// let b = CanonicalCode::of(&gen::torus_grid(4, 5).map);
+/// assert_eq!(a, b); // the same torus, turned a quarter
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct CanonicalCode(pub Vec<u32>);
 

@@ -3,6 +3,12 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 /// Element counts and the topological invariants derived from them.
+///
+/// ```
+/// use zipmesh::{gen, invariants::Counts};
+/// let c = Counts::of(&gen::grid(2, 2).map);
+/// assert_eq!((c.vertices, c.edges, c.faces, c.euler_characteristic), (9, 12, 4, 1));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Counts {
     /// Live vertices.

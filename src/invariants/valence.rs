@@ -3,6 +3,11 @@ use alloc::collections::BTreeMap;
 use alloc::vec::Vec;
 
 /// Which regular valences a mesh is judged by.
+///
+/// ```
+/// use zipmesh::{gen, invariants::MeshKind};
+/// assert_eq!(MeshKind::of(&gen::cube(2).map), MeshKind::Quad);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MeshKind {
     /// Every face is a triangle: regular is 6 inside, 4 on the boundary.
@@ -77,6 +82,12 @@ pub fn irregular_vertices(map: &Map, kind: MeshKind) -> Vec<Vert> {
 }
 
 /// Valence and face-degree histograms (value to count).
+///
+/// ```
+/// use zipmesh::{gen, invariants::Histograms};
+/// let h = Histograms::of(&gen::grid(1, 1).map);
+/// assert_eq!(h.boundary_valences.get(&2), Some(&4));
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Histograms {
     /// Face degree to number of faces.

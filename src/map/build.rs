@@ -13,6 +13,12 @@ pub const MAX_CORNERS: usize = 1 << 30;
 ///
 /// Face numbers are 0-based positions in the input list; vertex numbers are the input's
 /// indices. The I/O layer turns face numbers into file lines.
+///
+/// ```
+/// use zipmesh::{BuildError, Map};
+/// let err = Map::from_polygons(3, &[[0u32, 1, 5]]).unwrap_err();
+/// assert_eq!(err, BuildError::IndexOutOfRange { face: 0, vertex: 5, n_vertices: 3 });
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum BuildError {
     /// A face has fewer than three corners.
@@ -131,6 +137,11 @@ impl fmt::Display for BuildError {
 impl std::error::Error for BuildError {}
 
 /// What a successful build found besides the map.
+///
+/// ```
+/// let (_, report) = zipmesh::Map::from_polygons_with_report(4, &[[0u32, 1, 2]]).unwrap();
+/// assert_eq!(report.unreferenced, vec![zipmesh::Vert::new(3)]);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct BuildReport {
     /// Vertices no face refers to. They are dropped from the topology: their slots stay

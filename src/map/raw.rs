@@ -7,6 +7,12 @@ use alloc::vec::Vec;
 use core::fmt;
 
 /// Why a pair (`next`, boundary marks) does not describe a valid map.
+///
+/// ```
+/// use zipmesh::{Map, RawError};
+/// // Both darts of the only edge marked boundary: an edge without a face.
+/// assert_eq!(Map::from_permutation(&[1, 0], &[true, true]), Err(RawError::FacelessEdge));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RawError {
     /// The number of darts is odd, the arrays differ in length, or it exceeds the handle range.

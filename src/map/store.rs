@@ -5,6 +5,12 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 /// Old-to-new slot maps returned by [`Map::compact`]; `None` for a removed (dead) slot.
+///
+/// ```
+/// let mut map = zipmesh::Map::from_polygons(4, &[[0u32, 2, 3]]).unwrap();
+/// let c = map.compact();
+/// assert_eq!(c.vertices.iter().filter(|v| v.is_some()).count(), 3);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Compaction {
     /// Per old dart slot, its new dart.

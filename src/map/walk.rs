@@ -209,6 +209,12 @@ impl Map {
 }
 
 /// Iterator over a face or boundary cycle; see [`Map::face_cycle`].
+///
+/// ```
+/// use zipmesh::{gen, Face};
+/// let m = gen::grid(1, 1).map;
+/// assert_eq!(m.face_darts(Face::new(0)).count(), 4);
+/// ```
 #[derive(Clone, Debug)]
 pub struct FaceDarts<'a> {
     map: &'a Map,
@@ -233,6 +239,12 @@ impl Iterator for FaceDarts<'_> {
 }
 
 /// Iterator over the outgoing darts of a vertex, clockwise; see [`Map::vertex_darts`].
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// let m = gen::torus_grid(3, 3).map;
+/// assert_eq!(m.vertex_darts(Vert::new(0)).count(), 4);
+/// ```
 #[derive(Clone, Debug)]
 pub struct VertexDarts<'a> {
     map: &'a Map,
