@@ -10,3 +10,4 @@ mod maps;
 mod oracle;
 mod polygons;
 mod raw;
+mod ops_quad;

@@ -44,6 +44,19 @@ pub enum Refusal {
     /// The record does not match the map (it was changed since, or the record is foreign).
     StaleRecord,
     // Quad-specific reasons: add below this line (quad operators only).
+    /// Two corners the operator needs distinct are the same vertex: the corners a quad
+    /// collapse would merge, the four corners of a valence-2 removal's merged quad or of a
+    /// doublet insertion's quad, or the six corners of an edge rotation's hexagon.
+    CornersCoincide,
+    /// Quad collapse: both merged corners are on the boundary, so the merged vertex would
+    /// have two boundary darts (the surface would be pinched there).
+    BoundaryPinch,
+    /// The vertex does not have the valence the operator works on (valence-2 removal needs
+    /// exactly 2, the high-valence split at least 6).
+    WrongValence,
+    /// The two faces the operator would merge or re-divide (valence-2 removal, edge
+    /// rotation) are one and the same face.
+    SameFace,
 
     // Triangle-specific reasons: add below this line (triangle operators only).
     /// Triangle operators: a triangle involved has two equal corners (so one of its edges is
@@ -65,6 +78,10 @@ impl fmt::Display for Refusal {
             Refusal::Loop => "a loop edge would result",
             Refusal::LinkCondition => "the link condition fails",
             Refusal::StaleRecord => "the record does not match the map",
+            Refusal::CornersCoincide => "two corners that must differ are the same vertex",
+            Refusal::BoundaryPinch => "the merge would pinch the boundary",
+            Refusal::WrongValence => "a vertex has the wrong valence for this operator",
+            Refusal::SameFace => "the two faces involved are the same face",
             Refusal::DegenerateTriangle => "a triangle with a repeated corner is involved",
         };
         f.write_str(s)

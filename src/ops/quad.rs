@@ -1,1 +1,0 @@
-//! Quad operators (in progress).

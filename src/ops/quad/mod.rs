@@ -1,0 +1,353 @@
+//! Quad operators (the Q-zip paper, Sec. 2.2): quad collapse and its inverse the vertex split,
+//! the high-valence split, valence-2 removal and its inverse the doublet insertion, and the
+//! edge rotation in both directions.
+//!
+//! Every operator follows the contract of [`crate::ops`]: a pure `can_*` check, an operation
+//! that refuses with the same [`Refusal`] and an untouched map or returns a record, and an
+//! exact inverse `record.undo(&mut map)`. The full rules, with before/after diagrams, are in
+//! `docs/operators-quad.md`; each function's documentation states its own.
+//!
+//! | operator | V | E | F | valences |
+//! |---|---|---|---|---|
+//! | [`quad_collapse`] | −1 | −2 | −1 | merged `val(a) + val(c) − 2`; `b`, `d` −1 |
+//! | [`vertex_split`] | +1 | +2 | +1 | copies `arc₁ + 2`, `arc₂ + 2`; both ends +1 |
+//! | [`split_high_valence`] | +1 | +2 | +1 | `k` → `⌊k/2⌋ + 1` and `⌈k/2⌉ + 1`; ends +1 |
+//! | [`remove_valence2`] | −1 | −2 | −1 | the two neighbours −1 |
+//! | [`insert_doublet`] | +1 | +2 | +1 | new vertex 2; the diagonal's ends +1 |
+//! | [`rotate_edge`] | 0 | 0 | 0 | old ends −1, new ends +1 |
+//!
+//! **Policies shared by all of them.** Loops and multi-edges are never created, and none
+//! exists at a vertex whose edges an operator redistributes (so every operator and its inverse
+//! refuse exactly the same configurations: the inverse of an applied operator is always
+//! allowed). No face of degree below 3 results (every face keeps its degree or is a new quad).
+//! A vertex may be left with valence 2 (Q-zip removes those afterwards with
+//! [`remove_valence2`]) but never with valence 1. The boundary is never pinched.
+//!
+//! **Handles.** Operators keep the handles of every element they do not delete; new elements
+//! take free slots last-in first-out, so undoing in reverse order gives back the same slots.
+//!
+//! ```
+//! use zipmesh::{gen, ops::quad, Dart};
+//! let mut map = gen::torus_grid(4, 4).map;
+//! let before = map.clone();
+//! let d = Dart::new(0);
+//! let rec = quad::quad_collapse(&mut map, d).unwrap();
+//! assert_eq!(map.num_faces(), before.num_faces() - 1);
+//! assert_eq!(map.check(), Ok(()));
+//! rec.undo(&mut map).unwrap();
+//! assert_eq!(map, before);
+//! ```
+
+use super::Refusal;
+use crate::map::{Dart, Face, Map, Vert, NONE};
+use alloc::vec::Vec;
+
+mod collapse;
+mod doublet;
+mod mesh;
+mod rotate;
+#[cfg(test)]
+mod tests;
+
+pub use collapse::{
+    can_quad_collapse, can_split_high_valence, can_vertex_split, quad_collapse, split_high_valence,
+    vertex_split, QuadCollapse, VertexSplit, MIN_HIGH_VALENCE,
+};
+pub use doublet::{
+    can_insert_doublet, can_remove_valence2, insert_doublet, remove_valence2, DoubletInsertion,
+    Valence2Removal,
+};
+pub use mesh::{
+    mesh_insert_doublet, mesh_quad_collapse, mesh_remove_valence2, mesh_rotate_edge,
+    mesh_split_high_valence, mesh_vertex_split, MeshEdit,
+};
+pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
+
+/// Any quad operator's record, for undo stacks that mix operators.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let before = map.clone();
+/// let mut stack: Vec<QuadRecord> = Vec::new();
+/// stack.push(quad::quad_collapse(&mut map, Dart::new(0)).unwrap().into());
+/// stack.push(quad::rotate_edge(&mut map, Dart::new(20), quad::Rotation::Clockwise).unwrap().into());
+/// while let Some(r) = stack.pop() {
+///     r.undo(&mut map).unwrap();
+/// }
+/// assert_eq!(map, before);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum QuadRecord {
+    /// A [`quad_collapse`].
+    Collapse(QuadCollapse),
+    /// A [`vertex_split`] or [`split_high_valence`].
+    Split(VertexSplit),
+    /// A [`remove_valence2`].
+    RemoveValence2(Valence2Removal),
+    /// An [`insert_doublet`].
+    InsertDoublet(DoubletInsertion),
+    /// A [`rotate_edge`].
+    Rotate(EdgeRotation),
+}
+
+impl QuadRecord {
+    /// Undoes the recorded operation; see each record's `undo`.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
+    /// let mut map = gen::grid(3, 3).map;
+    /// let before = map.clone();
+    /// let r: QuadRecord = quad::insert_doublet(&mut map, Dart::new(0)).unwrap().into();
+    /// r.undo(&mut map).unwrap();
+    /// assert_eq!(map, before);
+    /// ```
+    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+        match self {
+            QuadRecord::Collapse(r) => r.undo(map),
+            QuadRecord::Split(r) => r.undo(map),
+            QuadRecord::RemoveValence2(r) => r.undo(map),
+            QuadRecord::InsertDoublet(r) => r.undo(map),
+            QuadRecord::Rotate(r) => r.undo(map),
+        }
+    }
+}
+
+macro_rules! into_record {
+    ($t:ty, $v:ident) => {
+        impl From<$t> for QuadRecord {
+            fn from(r: $t) -> QuadRecord {
+                QuadRecord::$v(r)
+            }
+        }
+    };
+}
+into_record!(QuadCollapse, Collapse);
+into_record!(VertexSplit, Split);
+into_record!(Valence2Removal, RemoveValence2);
+into_record!(DoubletInsertion, InsertDoublet);
+into_record!(EdgeRotation, Rotate);
+
+// ---------------------------------------------------------------------------------------
+// Shared helpers. They read the map through its total accessors and write only to slots the
+// caller has shown to be live, so no operator can index out of range.
+
+/// The four darts of the quad face of `d`, starting at `d`.
+fn quad_of(map: &Map, d: Dart) -> Result<[Dart; 4], Refusal> {
+    if !map.is_live_dart(d) {
+        return Err(Refusal::DeadHandle);
+    }
+    if map.face(d).is_none() {
+        return Err(Refusal::Boundary);
+    }
+    let d1 = map.next(d);
+    let d2 = map.next(d1);
+    let d3 = map.next(d2);
+    if d1 == d || d2 == d || d3 == d || map.next(d3) != d {
+        return Err(Refusal::WrongDegree);
+    }
+    Ok([d, d1, d2, d3])
+}
+
+/// `rotate_cw(rotate_cw(d)) == d`: the origin of `d` has valence at most 2.
+#[inline]
+fn valence_at_most_2(map: &Map, d: Dart) -> bool {
+    map.rotate_cw(map.rotate_cw(d)) == d
+}
+
+/// Neighbour lists for the "simple vertex" checks: inline for the common case, on the heap
+/// only past 32 entries (a vertex of valence over 30).
+struct Neighbours {
+    inline: [u32; 32],
+    len: usize,
+    heap: Vec<u32>,
+}
+
+impl Neighbours {
+    fn new() -> Self {
+        Neighbours {
+            inline: [0; 32],
+            len: 0,
+            heap: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, v: Vert) {
+        if self.len < self.inline.len() {
+            self.inline[self.len] = v.0;
+        } else {
+            if self.heap.is_empty() {
+                self.heap.extend_from_slice(&self.inline);
+            }
+            self.heap.push(v.0);
+        }
+        self.len += 1;
+    }
+
+    /// `Loop` if a neighbour is one of `forbidden` (the vertex itself, or the two vertices
+    /// being merged), `MultiEdge` if a neighbour repeats.
+    fn check(&mut self, forbidden: [Vert; 2]) -> Result<(), Refusal> {
+        let list: &mut [u32] = if self.heap.is_empty() {
+            &mut self.inline[..self.len]
+        } else {
+            &mut self.heap
+        };
+        if list
+            .iter()
+            .any(|&x| x == forbidden[0].0 || x == forbidden[1].0)
+        {
+            return Err(Refusal::Loop);
+        }
+        if list.len() <= 32 {
+            for i in 1..list.len() {
+                if list[..i].contains(&list[i]) {
+                    return Err(Refusal::MultiEdge);
+                }
+            }
+        } else {
+            list.sort_unstable();
+            if list.windows(2).any(|w| w[0] == w[1]) {
+                return Err(Refusal::MultiEdge);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The old value of `vdart[v]` put back if it is still a correct record for `v` (a live dart
+/// leaving `v`, the boundary one if `v` has one); otherwise the operator's own choice stays.
+/// With the record's own map the old value is always correct, which gives exact undo; with a
+/// foreign record the map stays valid.
+fn restore_vdart(map: &mut Map, v: Vert, old: Dart) {
+    let cur = map.vertex_dart(v);
+    if !map.is_live_vertex(v) || !map.is_live_dart(old) || map.origin(old) != v {
+        return;
+    }
+    if old == cur || (!map.is_boundary_dart(cur) && !map.is_boundary_dart(old)) {
+        map.vdart[v.index()] = old.0;
+    }
+}
+
+/// The old value of `fdart[f]` put back if it is still a dart of `f`.
+fn restore_fdart(map: &mut Map, f: Option<Face>, old: Dart) {
+    if let Some(f) = f {
+        if map.is_live_face(f) && map.is_live_dart(old) && map.face(old) == Some(f) {
+            map.fdart[f.index()] = old.0;
+        }
+    }
+}
+
+/// The recorded value of `fdart[f]` (or `NONE` for a boundary loop).
+fn fdart_of(map: &Map, f: Option<Face>) -> Dart {
+    f.map_or(Dart(NONE), |f| map.face_dart(f))
+}
+
+/// Sets `fdart[f] = to` if it was `from` (`f` may be a boundary loop: nothing to do).
+#[inline]
+fn replace_fdart(map: &mut Map, f: u32, from: Dart, to: Dart) {
+    if f != NONE && map.fdart[f as usize] == from.0 {
+        map.fdart[f as usize] = to.0;
+    }
+}
+
+/// Sets `vdart[v] = to` if it was `from`.
+#[inline]
+fn replace_vdart(map: &mut Map, v: Vert, from: Dart, to: Dart) {
+    if map.vdart[v.index()] == from.0 {
+        map.vdart[v.index()] = to.0;
+    }
+}
+
+/// Slots for the elements an operator creates: taken from the free lists (last-in first-out)
+/// or appended; `appended` says which, so that undo can give them back exactly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Slots {
+    /// Two fresh edges (their even darts), a vertex and a face.
+    edges: [Dart; 2],
+    vert: Vert,
+    face: Face,
+    /// Per element (edge 0, edge 1, vertex, face): appended rather than reused.
+    appended: [bool; 4],
+}
+
+impl Slots {
+    /// Allocates two edges, then a vertex, then a face.
+    fn alloc(map: &mut Map) -> Slots {
+        let mut appended = [false; 4];
+        appended[0] = map.free_edges.is_empty();
+        let e0 = map.alloc_edge();
+        appended[1] = map.free_edges.is_empty();
+        let e1 = map.alloc_edge();
+        appended[2] = map.free_verts.is_empty();
+        let vert = map.alloc_vert();
+        appended[3] = map.free_faces.is_empty();
+        let face = map.alloc_face();
+        Slots {
+            edges: [e0, e1],
+            vert,
+            face,
+            appended,
+        }
+    }
+
+    /// Takes back exactly the given slots from the tops of the free lists (the state a
+    /// deleting operator left them in), or refuses if they are not there.
+    fn reclaim(map: &mut Map, edges: [Dart; 2], vert: Vert, face: Face) -> Result<(), Refusal> {
+        let fe = &map.free_edges;
+        let n = fe.len();
+        if n < 2
+            || fe[n - 2] as usize != edges[0].edge()
+            || fe[n - 1] as usize != edges[1].edge()
+            || map.free_verts.last() != Some(&vert.0)
+            || map.free_faces.last() != Some(&face.0)
+        {
+            return Err(Refusal::StaleRecord);
+        }
+        map.free_edges.truncate(n - 2);
+        map.free_verts.pop();
+        map.free_faces.pop();
+        Ok(())
+    }
+
+    /// Whether the slots can be given back as `release` will: appended ones must be the
+    /// last slots of their arrays.
+    fn releasable(&self, map: &Map) -> bool {
+        let last_edge = map.next.len() / 2;
+        let e = [self.edges[0].edge(), self.edges[1].edge()];
+        let edges_ok = match (self.appended[0], self.appended[1]) {
+            (true, true) => e[0] + 2 == last_edge && e[1] + 1 == last_edge,
+            (false, true) => e[1] + 1 == last_edge,
+            (true, false) => e[0] + 1 == last_edge,
+            (false, false) => true,
+        };
+        edges_ok
+            && (!self.appended[2] || self.vert.index() + 1 == map.vdart.len())
+            && (!self.appended[3] || self.face.index() + 1 == map.fdart.len())
+    }
+
+    /// Frees the slots in reverse order of allocation: appended slots are cut off the arrays,
+    /// reused ones go back on the free lists, which restores both exactly.
+    fn release(&self, map: &mut Map) {
+        if self.appended[3] {
+            map.fdart.pop();
+        } else {
+            map.free_face(self.face);
+        }
+        if self.appended[2] {
+            map.vdart.pop();
+        } else {
+            map.free_vert(self.vert);
+        }
+        for i in [1, 0] {
+            if self.appended[i] {
+                let n = map.next.len() - 2;
+                map.next.truncate(n);
+                map.vert.truncate(n);
+                map.face.truncate(n);
+            } else {
+                map.free_edge(self.edges[i]);
+            }
+        }
+    }
+}
