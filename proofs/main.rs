@@ -11,3 +11,4 @@ mod oracle;
 mod polygons;
 mod raw;
 mod ops_quad;
+mod ops_tri;

@@ -1,1 +1,0 @@
-//! Triangle operators (in progress).

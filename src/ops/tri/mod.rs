@@ -1,0 +1,242 @@
+//! Triangle operators (irregular-vertex paper, Sec. 6.1): edge flip, edge collapse with the
+//! link condition, vertex split (the collapse's inverse) and edge split.
+//!
+//! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
+//! the same [`Refusal`] and leaves the map untouched, or applies and returns a record whose
+//! `undo` restores the map exactly (`==`, free lists included). [`mesh`] wraps each operator
+//! for a [`crate::Mesh`] and places new vertices.
+//!
+//! # Conventions
+//! Faces run counter-clockwise seen from the front; `rotate_cw(d) = next(twin(d))`. Valence is
+//! the number of darts leaving a vertex. A *proper triangle* is a face of degree 3 with three
+//! distinct corners. Every triangle an operator touches must be proper
+//! ([`Refusal::DegenerateTriangle`] otherwise); faces elsewhere may have any degree.
+//!
+//! **Valence minimum.** No operator leaves an interior vertex of valence below 3 or a boundary
+//! vertex of valence below 2 where there was none ([`Refusal::ValenceTooLow`]). An interior
+//! vertex of valence 2 means two triangles folded onto each other along two edges: zero area
+//! and an undefined normal, the defect pmp-library's issue 245 reports after a collapse.
+//!
+//! # Changes in counts (V, E, F) and valences, as tested
+//! | operator | V | E | F | valences |
+//! |---|---|---|---|---|
+//! | [`flip`] of a-b (apexes c, d) | 0 | 0 | 0 | a, b: -1; c, d: +1 |
+//! | [`collapse`] of v→u, interior edge | -1 | -3 | -2 | u: d(u) + d(v) - 4; apexes -1 |
+//! | [`collapse`] of v→u, boundary edge | -1 | -2 | -1 | u: d(u) + d(v) - 3; apex -1 |
+//! | [`split_vertex`] of w at w→a, w→b | +1 | +3 | +2 | w: k_w + 3, new v: k_v + 3; a, b: +1 |
+//! | [`split_edge`] of a-b, interior edge | +1 | +3 | +2 | new m: 4; apexes +1 |
+//! | [`split_edge`] of a-b, boundary edge | +1 | +2 | +1 | new m: 3; apex +1 |
+//!
+//! Every other vertex keeps its valence. `k_w` and `k_v` count the darts of `w` strictly
+//! inside the kept and the moved arc (see [`split_vertex`]); the paper's `d1 + 3`, `d2 + 3`.
+//! Diagrams and the reasons for each rule: `docs/operators-tri.md`.
+//!
+//! # Cost
+//! Flip: O(valence of c) for the multi-edge test. Collapse: O(d(v) + sum of the valences of
+//! v's other neighbours) for the link test, plus O(d(u)) when the edge is on the boundary.
+//! Vertex split: O(size of the moved arc + valences of its ends). Edge split: O(1), plus
+//! O(d(b)) on a boundary edge whose face is on the side of `twin(h)`. No operator allocates
+//! unless a free list is empty (then the arrays grow) or a free list grows.
+
+use super::Refusal;
+use crate::map::{Dart, Face, Map, Vert, NONE};
+
+mod collapse;
+mod edge_split;
+mod flip;
+pub mod mesh;
+#[cfg(test)]
+mod tests;
+
+pub use collapse::{can_collapse, can_split_vertex, collapse, split_vertex};
+pub use collapse::{CollapseRecord, VertexSplitRecord};
+pub use edge_split::{can_split_edge, split_edge, EdgeSplitRecord};
+pub use flip::{can_flip, flip, FlipRecord};
+
+/// A record that can restore the map it was made on; implemented by every triangle record.
+///
+/// ```
+/// use zipmesh::ops::tri::{self, Undo};
+/// use zipmesh::{Dart, Map};
+/// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap();
+/// let before = map.clone();
+/// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
+/// Undo::undo(&rec, &mut map).unwrap();
+/// assert_eq!(map, before);
+/// ```
+pub trait Undo {
+    /// Restores the map as it was before the operation (see the record's own `undo`).
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal>;
+}
+
+/// Minimum valence of a vertex after an operation: 3 inside, 2 on the boundary.
+#[inline]
+pub(crate) fn min_valence(boundary: bool) -> usize {
+    if boundary {
+        2
+    } else {
+        3
+    }
+}
+
+#[inline]
+pub(crate) fn nx(m: &Map, d: u32) -> u32 {
+    m.next[d as usize]
+}
+
+#[inline]
+pub(crate) fn org(m: &Map, d: u32) -> u32 {
+    m.vert[d as usize]
+}
+
+#[inline]
+pub(crate) fn fc(m: &Map, d: u32) -> u32 {
+    m.face[d as usize]
+}
+
+/// `rotate_cw` on raw darts.
+#[inline]
+pub(crate) fn rot(m: &Map, d: u32) -> u32 {
+    m.next[(d ^ 1) as usize]
+}
+
+/// Whether the live vertex `v` is on the boundary (its record names its boundary dart).
+#[inline]
+pub(crate) fn on_boundary(m: &Map, v: u32) -> bool {
+    m.face[m.vdart[v as usize] as usize] == NONE
+}
+
+/// The darts `[d, next d, next next d]` of the face of the live face dart `d`, if that face
+/// is a triangle ([`Refusal::WrongDegree`] otherwise).
+#[inline]
+pub(crate) fn triangle(map: &Map, d: u32) -> Result<[u32; 3], Refusal> {
+    let n1 = nx(map, d);
+    let n2 = nx(map, n1);
+    if n1 == d || n2 == d || nx(map, n2) != d {
+        return Err(Refusal::WrongDegree);
+    }
+    Ok([d, n1, n2])
+}
+
+/// Whether the triangle's three corners are distinct.
+#[inline]
+pub(crate) fn distinct_corners(map: &Map, t: [u32; 3]) -> bool {
+    let (a, b, c) = (org(map, t[0]), org(map, t[1]), org(map, t[2]));
+    a != b && b != c && a != c
+}
+
+/// Whether the vertex with outgoing dart `d` has at least `k` darts (walks at most `k`).
+#[inline]
+pub(crate) fn valence_at_least(map: &Map, d: u32, k: usize) -> bool {
+    let mut x = d;
+    for i in 1..k {
+        x = rot(map, x);
+        if x == d {
+            return i >= k;
+        }
+    }
+    true
+}
+
+/// Whether some dart leaving the vertex of `d` ends at `target` (walks that rotation).
+#[inline]
+pub(crate) fn joined(map: &Map, d: u32, target: u32) -> bool {
+    let mut x = d;
+    for _ in 0..map.next.len() {
+        if org(map, x ^ 1) == target {
+            return true;
+        }
+        x = rot(map, x);
+        if x == d {
+            break;
+        }
+    }
+    false
+}
+
+/// The dart before `d` around its face or boundary loop (see [`Map::prev`]).
+#[inline]
+pub(crate) fn prev_of(map: &Map, d: u32) -> u32 {
+    if fc(map, d) != NONE {
+        // Faces here are mostly triangles: walk the face, cheaper than the rotation.
+        let mut x = d;
+        loop {
+            let y = nx(map, x);
+            if y == d {
+                return x;
+            }
+            x = y;
+        }
+    }
+    map.prev(Dart(d)).0
+}
+
+/// Slot counts before an operation allocated: a slot at or past them was appended, so the
+/// undo truncates the arrays instead of pushing the slot on a free list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Lens {
+    darts: u32,
+    verts: u32,
+    faces: u32,
+}
+
+impl Lens {
+    pub(crate) fn of(map: &Map) -> Lens {
+        Lens {
+            darts: map.next.len() as u32,
+            verts: map.vdart.len() as u32,
+            faces: map.fdart.len() as u32,
+        }
+    }
+}
+
+/// Undoes the allocation of the edge of `d`: truncates if it was appended, else frees it.
+/// Allocations are undone in reverse order, so an appended slot is then the last one.
+pub(crate) fn release_edge(m: &mut Map, d: u32, lens: Lens) {
+    let e = d & !1;
+    if e >= lens.darts {
+        m.next.truncate(e as usize);
+        m.vert.truncate(e as usize);
+        m.face.truncate(e as usize);
+    } else {
+        m.free_edge(Dart(e));
+    }
+}
+
+/// Undoes the allocation of vertex `v` (see [`release_edge`]).
+pub(crate) fn release_vert(m: &mut Map, v: u32, lens: Lens) {
+    if v >= lens.verts {
+        m.vdart.truncate(v as usize);
+    } else {
+        m.free_vert(Vert(v));
+    }
+}
+
+/// Undoes the allocation of face `f` (see [`release_edge`]).
+pub(crate) fn release_face(m: &mut Map, f: u32, lens: Lens) {
+    if f >= lens.faces {
+        m.fdart.truncate(f as usize);
+    } else {
+        m.free_face(Face(f));
+    }
+}
+
+/// Whether slots allocated in the order given can be un-allocated in reverse: the appended
+/// ones (at or past `before`, the count before the allocation) are exactly the last slots,
+/// consecutive from `before`, and come after every reused one.
+pub(crate) fn fresh_tail(slots: &[u32], before: u32, len: usize) -> bool {
+    let mut expect = before;
+    let mut fresh = false;
+    for &s in slots {
+        if s >= before {
+            if s != expect {
+                return false;
+            }
+            expect += 1;
+            fresh = true;
+        } else if fresh {
+            return false;
+        }
+    }
+    !fresh || expect as usize == len
+}

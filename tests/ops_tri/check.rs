@@ -1,0 +1,348 @@
+//! The oracle for the triangle operators, shared by `tests/ops_tri.rs` and
+//! `proofs/ops_tri.rs`: apply an operator and check every documented promise using only the
+//! public accessors of the map (never the operator's own code paths).
+
+#![allow(dead_code)]
+
+use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::ops::tri::{self, CollapseRecord, EdgeSplitRecord, FlipRecord, VertexSplitRecord};
+use zipmesh::ops::Refusal;
+use zipmesh::{Dart, Face, Map, Vert};
+
+/// One operator with its arguments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Op {
+    Flip(Dart),
+    Collapse(Dart),
+    SplitVertex(Dart, Dart),
+    SplitEdge(Dart),
+}
+
+/// The record of an applied operator.
+#[derive(Clone, Copy, Debug)]
+pub enum Rec {
+    Flip(FlipRecord),
+    Collapse(CollapseRecord),
+    SplitVertex(VertexSplitRecord),
+    SplitEdge(EdgeSplitRecord),
+}
+
+impl Rec {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        match self {
+            Rec::Flip(r) => r.undo(map),
+            Rec::Collapse(r) => r.undo(map),
+            Rec::SplitVertex(r) => r.undo(map),
+            Rec::SplitEdge(r) => r.undo(map),
+        }
+    }
+}
+
+pub fn can(map: &Map, op: Op) -> Result<(), Refusal> {
+    match op {
+        Op::Flip(h) => tri::can_flip(map, h),
+        Op::Collapse(h) => tri::can_collapse(map, h),
+        Op::SplitVertex(a, b) => tri::can_split_vertex(map, a, b),
+        Op::SplitEdge(h) => tri::can_split_edge(map, h),
+    }
+}
+
+pub fn run(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
+    Ok(match op {
+        Op::Flip(h) => Rec::Flip(tri::flip(map, h)?),
+        Op::Collapse(h) => Rec::Collapse(tri::collapse(map, h)?),
+        Op::SplitVertex(a, b) => Rec::SplitVertex(tri::split_vertex(map, a, b)?),
+        Op::SplitEdge(h) => Rec::SplitEdge(tri::split_edge(map, h)?),
+    })
+}
+
+/// Per vertex slot: its valence if live.
+pub fn valences(map: &Map) -> Vec<Option<usize>> {
+    (0..map.vertex_slots() as u32)
+        .map(|v| {
+            let v = Vert::new(v);
+            map.is_live_vertex(v).then(|| map.valence(v))
+        })
+        .collect()
+}
+
+fn counts(map: &Map) -> [i64; 3] {
+    [
+        map.num_vertices() as i64,
+        map.num_edges() as i64,
+        map.num_faces() as i64,
+    ]
+}
+
+/// The third corner of the face of `d` (a triangle), from the public accessors.
+fn apex(map: &Map, d: Dart) -> Vert {
+    map.dest(map.next(d))
+}
+
+/// Applies `op` and checks: the refusal equals `can_*`'s and leaves the map equal to
+/// before; or the operator applied, `check()` passes, and V, E, F, the valence of every
+/// vertex and the liveness of every old element are exactly as documented. Returns the
+/// operator's result.
+pub fn checked(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
+    let before = map.clone();
+    let allowed = can(map, op);
+    match run(map, op) {
+        Err(e) => {
+            assert_eq!(allowed, Err(e), "{op:?}: can_* disagrees with the operator");
+            assert!(
+                *map == before,
+                "{op:?} refused with {e:?} but changed the map"
+            );
+            Err(e)
+        }
+        Ok(rec) => {
+            assert_eq!(allowed, Ok(()), "{op:?}: applied though can_* refused");
+            if let Err(v) = map.check() {
+                panic!("{op:?} on {before:?} broke the map: {v:?}\n{map:?}");
+            }
+            deltas(&before, map, op, &rec);
+            Ok(rec)
+        }
+    }
+}
+
+/// The documented changes of an applied operator, checked against the maps before and after.
+pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
+    let vb = valences(before);
+    let va = valences(after);
+    let mut want: Vec<Option<i64>> = vb.iter().map(|x| x.map(|v| v as i64)).collect();
+    want.resize(va.len().max(want.len()), None);
+    let add = |w: &mut Vec<Option<i64>>, v: Vert, k: i64| {
+        let x = w[v.index()].as_mut().expect("a changed vertex was live");
+        *x += k;
+    };
+    let val = |v: Vert| vb[v.index()].expect("live") as i64;
+    // Elements that the operator removes (checked dead after; all others stay live).
+    let mut dead_edges: Vec<usize> = Vec::new();
+    let mut dead_verts: Vec<Vert> = Vec::new();
+    let mut dead_faces: Vec<Face> = Vec::new();
+    let dc: [i64; 3];
+    match (op, rec) {
+        (Op::Flip(h), Rec::Flip(r)) => {
+            let (a, b) = (before.origin(h), before.dest(h));
+            let (c, d) = (apex(before, h), apex(before, h.twin()));
+            add(&mut want, a, -1);
+            add(&mut want, b, -1);
+            add(&mut want, c, 1);
+            add(&mut want, d, 1);
+            assert_eq!(r.dart, h);
+            assert_eq!(
+                (after.origin(h), after.dest(h)),
+                (d, c),
+                "{op:?}: h runs d -> c"
+            );
+            dc = [0, 0, 0];
+        }
+        (Op::Collapse(h), Rec::Collapse(r)) => {
+            let (v, u) = (before.origin(h), before.dest(h));
+            let has_l = before.face(h).is_some();
+            let has_r = before.face(h.twin()).is_some();
+            let interior = has_l && has_r;
+            assert_eq!((r.kept, r.removed), (u, v));
+            want[u.index()] = Some(val(u) + val(v) - if interior { 4 } else { 3 });
+            want[v.index()] = None;
+            dead_verts.push(v);
+            dead_edges.push(h.edge());
+            if has_l {
+                add(&mut want, apex(before, h), -1);
+                dead_edges.push(before.next(before.next(h)).edge());
+                dead_faces.push(before.face(h).unwrap());
+            }
+            if has_r {
+                add(&mut want, apex(before, h.twin()), -1);
+                dead_edges.push(before.next(h.twin()).edge());
+                dead_faces.push(before.face(h.twin()).unwrap());
+            }
+            dc = if interior { [-1, -3, -2] } else { [-1, -2, -1] };
+        }
+        (Op::SplitVertex(d1, d2), Rec::SplitVertex(r)) => {
+            let w = before.origin(d1);
+            let (a, b) = (before.dest(d1), before.dest(d2));
+            // Kept arc: clockwise from d1 to d2; moved arc: clockwise from d2 to d1.
+            let arc = |from: Dart, to: Dart| {
+                let mut out = Vec::new();
+                let mut x = before.rotate_cw(from);
+                while x != to {
+                    out.push(x);
+                    x = before.rotate_cw(x);
+                }
+                out
+            };
+            let kept = arc(d1, d2);
+            let moved = arc(d2, d1);
+            assert_eq!(kept.len() + moved.len() + 2, val(w) as usize);
+            let v = r.vertex;
+            assert!(
+                !before.is_live_vertex(v),
+                "the new vertex reused a live slot"
+            );
+            assert!(want.len() > v.index());
+            want[v.index()] = Some(moved.len() as i64 + 3);
+            want[w.index()] = Some(kept.len() as i64 + 3);
+            add(&mut want, a, 1);
+            add(&mut want, b, 1);
+            assert_eq!((after.origin(r.edge), after.dest(r.edge)), (v, w));
+            for &x in &moved {
+                assert_eq!(after.origin(x), v, "{op:?}: moved dart {x:?}");
+            }
+            for &x in kept.iter().chain([&d1, &d2]) {
+                assert_eq!(after.origin(x), w, "{op:?}: kept dart {x:?}");
+            }
+            // The new triangles (v, w, a) and (w, v, b).
+            let corners = |d: Dart| [after.origin(d), after.dest(d), apex(after, d)];
+            assert_eq!(corners(r.edge), [v, w, a]);
+            assert_eq!(corners(r.edge.twin()), [w, v, b]);
+            dc = [1, 3, 2];
+        }
+        (Op::SplitEdge(h), Rec::SplitEdge(r)) => {
+            let (a, b) = (before.origin(h), before.dest(h));
+            let has_l = before.face(h).is_some();
+            let has_r = before.face(h.twin()).is_some();
+            let m = r.vertex;
+            assert!(
+                !before.is_live_vertex(m),
+                "the new vertex reused a live slot"
+            );
+            want[m.index()] = Some(if has_l && has_r { 4 } else { 3 });
+            if has_l {
+                add(&mut want, apex(before, h), 1);
+            }
+            if has_r {
+                add(&mut want, apex(before, h.twin()), 1);
+            }
+            assert_eq!((after.origin(h), after.dest(h)), (a, m));
+            assert_eq!((after.origin(r.dart), after.dest(r.dart)), (m, b));
+            dc = if has_l && has_r { [1, 3, 2] } else { [1, 2, 1] };
+        }
+        _ => unreachable!("record kind does not match the operator"),
+    }
+    let (cb, ca) = (counts(before), counts(after));
+    assert_eq!(
+        [ca[0] - cb[0], ca[1] - cb[1], ca[2] - cb[2]],
+        dc,
+        "{op:?}: V, E, F deltas"
+    );
+    let got: Vec<Option<i64>> = (0..want.len())
+        .map(|i| va.get(i).copied().flatten().map(|x| x as i64))
+        .collect();
+    assert_eq!(
+        got, want,
+        "{op:?}: valences (per vertex slot) on {before:?}"
+    );
+    // Every element alive before, and not removed, is alive after (handles stay valid).
+    for d in before.darts() {
+        assert_eq!(
+            after.is_live_dart(d),
+            !dead_edges.contains(&d.edge()),
+            "{op:?}: dart {d:?}"
+        );
+    }
+    for f in before.faces() {
+        assert_eq!(
+            after.is_live_face(f),
+            !dead_faces.contains(&f),
+            "{op:?}: {f:?}"
+        );
+    }
+    for v in before.vertices() {
+        assert_eq!(
+            after.is_live_vertex(v),
+            !dead_verts.contains(&v),
+            "{op:?}: {v:?}"
+        );
+    }
+}
+
+/// Applies `op` checked; if it applied, undoes it and checks the map is equal to before,
+/// then checks the inverse operator (when it is one) gives back the map up to isomorphism.
+/// Returns whether it applied.
+pub fn checked_roundtrip(map: &Map, op: Op) -> Option<Refusal> {
+    let mut m = map.clone();
+    let rec = match checked(&mut m, op) {
+        Err(e) => return Some(e),
+        Ok(rec) => rec,
+    };
+    let after = m.clone();
+    rec.undo(&mut m)
+        .unwrap_or_else(|e| panic!("{op:?}: undo refused: {e:?}"));
+    assert!(
+        m == *map,
+        "{op:?}: undo did not restore the arrays\n{map:?}\n{m:?}"
+    );
+    inverse(map, &after, op, &rec);
+    None
+}
+
+/// Whether the map has no loop and no two edges between the same two vertices.
+pub fn is_simple(map: &Map) -> bool {
+    let mut pairs = Vec::new();
+    for d in map.darts().filter(|d| d.index() % 2 == 0) {
+        let (a, b) = (map.origin(d), map.dest(d));
+        if a == b {
+            return false;
+        }
+        pairs.push((a.min(b), a.max(b)));
+    }
+    pairs.sort();
+    pairs.windows(2).all(|w| w[0] != w[1])
+}
+
+/// Whether every vertex meets the valence minimum (3 inside, 2 on the boundary).
+fn meets_minimum(map: &Map, v: Vert) -> bool {
+    map.valence(v) >= if map.is_boundary_vertex(v) { 2 } else { 3 }
+}
+
+/// The public inverse of an applied operator: flip again, vertex split after an interior
+/// collapse, collapse of the new edge after a vertex split, collapse of `twin(h)` after an
+/// edge split. Where the documentation promises the inverse applies, it must; whenever it
+/// applies, it must give back a map isomorphic to `before` (canonical code).
+pub fn inverse(before: &Map, after: &Map, op: Op, rec: &Rec) {
+    let mut m = after.clone();
+    let (inv, promised) = match (op, rec) {
+        (Op::Flip(h), _) => {
+            // Flipping back lowers c and d again: promised when they meet the minimum.
+            let (c, d) = (apex(before, h), apex(before, h.twin()));
+            let ok = is_simple(before) && meets_minimum(before, c) && meets_minimum(before, d);
+            (Op::Flip(h), ok)
+        }
+        (Op::Collapse(h), _) => {
+            if before.face(h).is_none() || before.face(h.twin()).is_none() {
+                return; // a boundary collapse's inverse is only its record
+            }
+            let h1 = before.next(h);
+            let t2 = before.next(before.next(h.twin()));
+            (Op::SplitVertex(h1, t2.twin()), true)
+        }
+        (Op::SplitVertex(d1, d2), Rec::SplitVertex(r)) => {
+            let w = before.origin(d1);
+            let (a, b) = (before.dest(d1), before.dest(d2));
+            let ok = [w, a, b].iter().all(|&x| meets_minimum(before, x));
+            (Op::Collapse(r.edge), ok)
+        }
+        (Op::SplitEdge(h), _) => {
+            // The collapse lowers a (kept), c and d back: promised when they meet the minimum.
+            let mut ends = vec![before.origin(h)];
+            for x in [h, h.twin()] {
+                if before.face(x).is_some() {
+                    ends.push(apex(before, x));
+                }
+            }
+            let ok = is_simple(before) && ends.iter().all(|&x| meets_minimum(before, x));
+            (Op::Collapse(h.twin()), ok)
+        }
+        _ => unreachable!(),
+    };
+    match checked(&mut m, inv) {
+        Ok(_) => assert_eq!(
+            CanonicalCode::of(&m),
+            CanonicalCode::of(before),
+            "{op:?} then {inv:?} is not the identity up to isomorphism"
+        ),
+        Err(e) => assert!(!promised, "{op:?}: the inverse {inv:?} was refused: {e:?}"),
+    }
+}
