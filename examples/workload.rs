@@ -6,13 +6,16 @@
 //!
 //! `RESULT zipmesh <tri|quad> <what> <median> <min> <max> <unit> <count> <reps>`
 //!
-//! Peer programs print the same format so that one run can compare them.
+//! Peer programs print the same format so that one run can compare them. Operator rows
+//! (issue 3) give ns per attempted operation on 100,000 random darts, refusals included;
+//! how many were applied goes to stderr.
 
 use std::time::Instant;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::invariants::{euler_characteristic, Counts, Histograms};
+use zipmesh::ops::{quad, tri};
 use zipmesh::rng::Rng;
-use zipmesh::{Map, Vert};
+use zipmesh::{Dart, Face, Map, Vert};
 
 fn torus_quads(nx: usize, ny: usize) -> Vec<[u32; 4]> {
     let id = |i: usize, j: usize| ((j % ny) * nx + (i % nx)) as u32;
@@ -80,7 +83,8 @@ fn report(
     reps: usize,
 ) {
     let scale = match unit {
-        "ns/face" | "ns/vertex" | "ns/dart" => 1e9 / count as f64,
+        "ns/face" | "ns/vertex" | "ns/dart" | "ns/op" => 1e9 / count as f64,
+        "us/chain" => 1e6 / count as f64,
         "ms" => 1e3,
         _ => 1.0,
     };
@@ -210,6 +214,98 @@ fn main() {
             measure(reps, || cut.clone(), |m| CanonicalCode::of(&m).hash()),
             "ns/face",
             cut.num_faces(),
+            reps,
+        );
+    }
+
+    // Operators (issue 3): 100,000 random darts from a fixed seed per repetition, each
+    // repetition on a fresh copy; refused attempts are included in the time.
+    let quad_map = Map::from_polygons(nv, &quads).expect("valid torus");
+    let tri_map = Map::from_polygons(nv, &tris).expect("valid torus");
+    const OPS: usize = 100_000;
+    let random_darts = |m: &Map, seed: u64| -> Vec<Dart> {
+        let mut rng = Rng::new(seed);
+        (0..OPS)
+            .map(|_| Dart::new(rng.below(m.dart_slots()) as u32))
+            .collect()
+    };
+    type Op = fn(&mut Map, Dart) -> bool;
+    let tri_ops: [(&str, Op); 4] = [
+        ("op_flip", |m, d| tri::flip(m, d).is_ok()),
+        ("op_collapse", |m, d| tri::collapse(m, d).is_ok()),
+        ("op_edge_split", |m, d| tri::split_edge(m, d).is_ok()),
+        ("op_vertex_split", |m, d| {
+            let d2 = (0..3).fold(d, |x, _| m.rotate_cw(x));
+            tri::split_vertex(m, d, d2).is_ok()
+        }),
+    ];
+    let quad_ops: [(&str, Op); 4] = [
+        ("op_quad_collapse", |m, d| quad::quad_collapse(m, d).is_ok()),
+        ("op_vertex_split", |m, d| {
+            let d2 = m.rotate_cw(m.rotate_cw(d));
+            quad::vertex_split(m, d, d2).is_ok()
+        }),
+        ("op_rotate_edge", |m, d| {
+            quad::rotate_edge(m, d, quad::Rotation::Clockwise).is_ok()
+        }),
+        ("op_doublet_insert", |m, d| {
+            quad::insert_doublet(m, d).is_ok()
+        }),
+    ];
+    for (kind, base, ops) in [
+        ("tri", &tri_map, &tri_ops[..]),
+        ("quad", &quad_map, &quad_ops[..]),
+    ] {
+        for (k, (what, op)) in ops.iter().enumerate() {
+            let darts = random_darts(base, 1000 + k as u64);
+            let mut applied = 0;
+            let t = measure(
+                reps,
+                || base.clone(),
+                |mut m| {
+                    applied = darts.iter().filter(|&&d| op(&mut m, d)).count();
+                    m
+                },
+            );
+            report(kind, what, t, "ns/op", OPS, reps);
+            eprintln!("# {kind} {what}: {applied} of {OPS} applied");
+        }
+    }
+    // A chain of k quad collapses along a grid row (each merging a quad's lower-left corner
+    // with its upper-right one, the strip collapse of Q-zip), then the restoring splits.
+    let row = n / 2;
+    for k in [7usize, 100] {
+        let chain = |m: &mut Map| -> bool {
+            let mut records = Vec::with_capacity(k);
+            for i in 0..k {
+                let f = Face::new((row * n + 10 + i) as u32);
+                let corner = Vert::new((row * n + 10 + i) as u32);
+                let Some(d) = m.face_darts(f).find(|&d| m.origin(d) == corner) else {
+                    return false;
+                };
+                match quad::quad_collapse(m, d) {
+                    Ok(r) => records.push(r),
+                    Err(_) => return false,
+                }
+            }
+            records.into_iter().rev().all(|r| r.undo(m).is_ok())
+        };
+        let mut ok = true;
+        let t = measure(
+            reps,
+            || quad_map.clone(),
+            |mut m| {
+                ok &= chain(&mut m);
+                m
+            },
+        );
+        assert!(ok, "the chain of {k} collapses applies and restores");
+        report(
+            "quad",
+            &format!("chain{k}_collapse_restore"),
+            t,
+            "us/chain",
+            1,
             reps,
         );
     }

@@ -7,8 +7,8 @@
 
 mod choice;
 mod maps;
+mod ops_quad;
+mod ops_tri;
 mod oracle;
 mod polygons;
 mod raw;
-mod ops_quad;
-mod ops_tri;
