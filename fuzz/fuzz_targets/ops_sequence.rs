@@ -1,0 +1,168 @@
+//! Arbitrary operator sequences on generated quad and triangle meshes: never a panic, every
+//! refusal leaves the map unchanged and agrees with its `can_*`, `check()` passes after every
+//! step, and undoing the whole sequence gives back the original map (arrays and canonical code).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::ops::quad::{self, QuadRecord, Rotation};
+use zipmesh::ops::tri::{self, Undo};
+use zipmesh::ops::Refusal;
+use zipmesh::{gen, Dart, Map};
+
+/// The mesh the bytes ask for: small, so that sequences run into every refusal rule.
+fn mesh(pick: u8, a: u8, b: u8, seed: u64) -> (Map, bool) {
+    let (a, b) = (3 + usize::from(a % 5), 3 + usize::from(b % 5));
+    let quads = |m: zipmesh::Mesh| (m.map, true);
+    let triangulate = |m: &Map| {
+        let polys: Vec<Vec<u32>> = m
+            .faces()
+            .flat_map(|f| {
+                let c: Vec<u32> = m
+                    .face_darts(f)
+                    .map(|d| m.origin(d).index() as u32)
+                    .collect();
+                [vec![c[0], c[1], c[2]], vec![c[0], c[2], c[3]]]
+            })
+            .collect();
+        Map::from_polygons(m.vertex_slots(), &polys).expect("a triangulated quad mesh")
+    };
+    match pick % 7 {
+        0 => quads(gen::torus_grid(a, b)),
+        1 => quads(gen::grid(a - 2, b - 2)),
+        2 => quads(gen::cube(a / 2)),
+        3 => quads(gen::random_quad(
+            40 + 8 * a,
+            usize::from(b % 3),
+            usize::from(a % 2),
+            seed,
+        )),
+        4 => (triangulate(&gen::torus_grid(a, b).map), false),
+        5 => (triangulate(&gen::grid(a - 2, b - 2).map), false),
+        _ => (
+            gen::random_triangle(40 + 8 * a, usize::from(b % 3), usize::from(a % 2), seed).map,
+            false,
+        ),
+    }
+}
+
+enum Record {
+    Quad(QuadRecord),
+    Tri(Box<dyn Undo>),
+}
+
+/// Applies operator `op` at dart `d` (`e` picks the second dart of a split), checking the
+/// refusal contract; returns the record when it applied.
+fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record> {
+    let second = |m: &Map| (0..=usize::from(e % 8)).fold(d, |x, _| m.rotate_cw(x));
+    let before = map.clone();
+    let (can, done): (Result<(), Refusal>, Result<Record, Refusal>) = if is_quad {
+        match op % 6 {
+            0 => (
+                quad::can_quad_collapse(map, d),
+                quad::quad_collapse(map, d).map(|r| Record::Quad(r.into())),
+            ),
+            1 => {
+                let s = second(map);
+                (
+                    quad::can_vertex_split(map, d, s),
+                    quad::vertex_split(map, d, s).map(|r| Record::Quad(r.into())),
+                )
+            }
+            2 => (
+                quad::can_remove_valence2(map, d),
+                quad::remove_valence2(map, d).map(|r| Record::Quad(r.into())),
+            ),
+            3 => (
+                quad::can_insert_doublet(map, d),
+                quad::insert_doublet(map, d).map(|r| Record::Quad(r.into())),
+            ),
+            4 => {
+                let dir = if e % 2 == 0 {
+                    Rotation::Clockwise
+                } else {
+                    Rotation::CounterClockwise
+                };
+                (
+                    quad::can_rotate_edge(map, d, dir),
+                    quad::rotate_edge(map, d, dir).map(|r| Record::Quad(r.into())),
+                )
+            }
+            _ => {
+                let v = map.origin(d);
+                (
+                    quad::can_split_high_valence(map, v, d),
+                    quad::split_high_valence(map, v, d).map(|r| Record::Quad(r.into())),
+                )
+            }
+        }
+    } else {
+        match op % 4 {
+            0 => (
+                tri::can_flip(map, d),
+                tri::flip(map, d).map(|r| Record::Tri(Box::new(r))),
+            ),
+            1 => (
+                tri::can_collapse(map, d),
+                tri::collapse(map, d).map(|r| Record::Tri(Box::new(r))),
+            ),
+            2 => (
+                tri::can_split_edge(map, d),
+                tri::split_edge(map, d).map(|r| Record::Tri(Box::new(r))),
+            ),
+            _ => {
+                let s = second(map);
+                (
+                    tri::can_split_vertex(map, d, s),
+                    tri::split_vertex(map, d, s).map(|r| Record::Tri(Box::new(r))),
+                )
+            }
+        }
+    };
+    match done {
+        Ok(r) => {
+            assert_eq!(can, Ok(()), "applied although can_* refused");
+            assert_eq!(map.check(), Ok(()));
+            Some(r)
+        }
+        Err(why) => {
+            assert_eq!(can, Err(why), "refusal differs from can_*");
+            assert!(*map == before, "a refused operator changed the map");
+            None
+        }
+    }
+}
+
+fuzz_target!(|data: &[u8]| {
+    let [pick, a, b, s, rest @ ..] = data else {
+        return;
+    };
+    let (mut map, is_quad) = mesh(*pick, *a, *b, u64::from(*s));
+    let original = map.clone();
+    let code = CanonicalCode::of(&map);
+    let mut records = Vec::new();
+    for step in rest.chunks_exact(4).take(64) {
+        let d = Dart::new(
+            u32::from(u16::from_le_bytes([step[1], step[2]])) % map.dart_slots().max(1) as u32,
+        );
+        if !map.is_live_dart(d) {
+            continue;
+        }
+        if let Some(r) = apply(&mut map, is_quad, step[0], d, step[3]) {
+            records.push(r);
+        }
+    }
+    while let Some(r) = records.pop() {
+        let undone = match r {
+            Record::Quad(r) => r.undo(&mut map),
+            Record::Tri(r) => r.undo(&mut map),
+        };
+        assert_eq!(undone, Ok(()));
+        assert_eq!(map.check(), Ok(()));
+    }
+    assert!(
+        map == original,
+        "undoing every step did not restore the map"
+    );
+    assert_eq!(CanonicalCode::of(&map), code);
+});
