@@ -31,16 +31,11 @@ fn mesh(pick: u8, a: u8, b: u8, seed: u64) -> (Map, bool) {
         0 => quads(gen::torus_grid(a, b)),
         1 => quads(gen::grid(a - 2, b - 2)),
         2 => quads(gen::cube(a / 2)),
-        3 => quads(gen::random_quad(
-            40 + 8 * a,
-            usize::from(b % 3),
-            usize::from(a % 2),
-            seed,
-        )),
+        3 => quads(gen::random_quad(40 + 8 * a, b % 3, a % 2, seed)),
         4 => (triangulate(&gen::torus_grid(a, b).map), false),
         5 => (triangulate(&gen::grid(a - 2, b - 2).map), false),
         _ => (
-            gen::random_triangle(40 + 8 * a, usize::from(b % 3), usize::from(a % 2), seed).map,
+            gen::random_triangle(40 + 8 * a, b % 3, a % 2, seed).map,
             false,
         ),
     }
