@@ -73,7 +73,7 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
                 quad::insert_doublet(map, d).map(|r| Record::Quad(r.into())),
             ),
             4 => {
-                let dir = if e % 2 == 0 {
+                let dir = if e & 1 == 0 {
                     Rotation::Clockwise
                 } else {
                     Rotation::CounterClockwise
