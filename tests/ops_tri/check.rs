@@ -221,6 +221,19 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
         }
         _ => unreachable!("record kind does not match the operator"),
     }
+    // The valence minimum: no vertex is newly left below it (3 inside, 2 on the boundary):
+    // every vertex that is new, that lost darts, or that is the kept end of a collapse.
+    let kept = match rec {
+        Rec::Collapse(r) => Some(r.kept),
+        _ => None,
+    };
+    for v in after.vertices() {
+        let (a, b) = (va[v.index()].unwrap(), vb.get(v.index()).copied().flatten());
+        if b.is_none_or(|b| a < b) || kept == Some(v) {
+            let min = if after.is_boundary_vertex(v) { 2 } else { 3 };
+            assert!(a >= min, "{op:?} left {v:?} with valence {a} on {before:?}");
+        }
+    }
     let (cb, ca) = (counts(before), counts(after));
     assert_eq!(
         [ca[0] - cb[0], ca[1] - cb[1], ca[2] - cb[2]],

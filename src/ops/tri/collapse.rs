@@ -950,7 +950,8 @@ impl VertexSplitRecord {
     /// let mut map = gen::random_triangle(200, 0, 2, 9).map;
     /// let before = map.clone();
     /// let d1 = map.vertex_dart(Vert::new(7));
-    /// let rec = tri::split_vertex(&mut map, d1, map.rotate_cw(d1)).unwrap();
+    /// let d2 = map.rotate_cw(d1);
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```

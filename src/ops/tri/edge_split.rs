@@ -36,8 +36,11 @@ pub struct EdgeSplitRecord {
     lens: Lens,
 }
 
+/// `h` and the darts of the triangles of `h` and of `twin(h)` (absent on a boundary side).
+type Sides = (u32, Option<[u32; 3]>, Option<[u32; 3]>);
+
 /// The triangles at the edge, or why the split does not apply.
-fn plan(map: &Map, h: Dart) -> Result<(u32, Option<[u32; 3]>, Option<[u32; 3]>), Refusal> {
+fn plan(map: &Map, h: Dart) -> Result<Sides, Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
