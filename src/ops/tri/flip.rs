@@ -177,6 +177,9 @@ impl FlipRecord {
             || nx(map, h1) != t
             || [h2, t1, t2, h1].iter().any(|&x| x >> 1 == h >> 1)
             || [org(map, h), org(map, t)] != self.ends
+            // d and c lose h and t again: their records must not name them.
+            || map.vdart[org(map, h) as usize] == h
+            || map.vdart[org(map, t) as usize] == t
         {
             return Err(Refusal::StaleRecord);
         }

@@ -154,6 +154,54 @@ pub(crate) fn joined(map: &Map, d: u32, target: u32) -> bool {
     false
 }
 
+/// How many neighbours [`gather`] keeps on the stack; longer walks fall back to walking the
+/// neighbours' own rotations. (Unit tests pass a smaller limit to test the fallback.)
+pub(crate) const SMALL: usize = 16;
+
+/// The ends of a run of darts around one vertex, kept on the stack for membership tests.
+pub(crate) struct Ends {
+    ids: [u32; SMALL],
+    len: usize,
+}
+
+impl Ends {
+    #[inline]
+    pub(crate) fn contains(&self, v: u32) -> bool {
+        self.ids[..self.len].contains(&v)
+    }
+
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+}
+
+/// The destinations of the darts clockwise from `start` through `end` (the whole rotation if
+/// `end` is not met), or `None` if there are more than `limit` (at most [`SMALL`]). One walk
+/// of the rotation and no other memory: cheaper than walking each candidate's rotation.
+#[inline]
+pub(crate) fn gather(map: &Map, start: u32, end: u32, limit: usize) -> Option<Ends> {
+    let mut e = Ends {
+        ids: [NONE; SMALL],
+        len: 0,
+    };
+    let mut x = start;
+    loop {
+        if e.len >= limit.min(SMALL) {
+            return None;
+        }
+        e.ids[e.len] = org(map, x ^ 1);
+        e.len += 1;
+        if x == end {
+            return Some(e);
+        }
+        x = rot(map, x);
+        if x == start {
+            return Some(e);
+        }
+    }
+}
+
 /// The dart before `d` around its face or boundary loop (see [`Map::prev`]).
 #[inline]
 pub(crate) fn prev_of(map: &Map, d: u32) -> u32 {

@@ -563,10 +563,78 @@ fn a_long_chain_of_collapses_and_its_undo() {
         assert_eq!(x.check(), Ok(()));
     }
     assert_eq!(Counts::of(&x).vertices, 144 - 8);
+    assert_eq!(val(&x, 61), 6 + 8 * 2); // each collapse adds d(v) - 4 = 2
+                                        // The public inverse, splitting the merged vertex back one by one (the kept arc is long,
+                                        // so this takes the fallback path of the link test), gives the same map up to slots.
+    let mut y = x.clone();
+    for i in (2..10u32).rev() {
+        let row = 5 * 12;
+        // The collapsed dart ran from row + i to its left neighbour (merged by then); its
+        // triangles are the original ones.
+        let h = dart(&m, row + i, row + i - 1);
+        let h1 = m.next(h);
+        let t2 = m.next(m.next(h.twin()));
+        split_vertex(&mut y, h1, t2.twin()).unwrap();
+    }
+    assert_eq!(code(&y), code(&m));
     for r in recs.iter().rev() {
         r.undo(&mut x).unwrap();
     }
     assert_eq!(x, m);
+}
+
+#[test]
+fn records_are_small_and_copy() {
+    // Records are returned by value and kept by callers: no heap, a fixed small size.
+    assert_eq!(core::mem::size_of::<CollapseRecord>(), 180);
+    assert!(core::mem::size_of::<VertexSplitRecord>() <= 48);
+    assert!(core::mem::size_of::<EdgeSplitRecord>() <= 80);
+    assert!(core::mem::size_of::<FlipRecord>() <= 32);
+}
+
+#[test]
+fn stack_and_fallback_link_tests_agree() {
+    // The link tests gather up to 16 neighbours on the stack and otherwise walk each
+    // candidate's rotation: both paths must give the same answer everywhere.
+    let mut maps = vec![
+        hexagon(),
+        tri_grid(5),
+        tetrahedron(),
+        octahedron(),
+        two_triangle_sphere(),
+        looped_triangle(),
+        Map::from_permutation(&[4, 2, 3, 1, 5, 0], &[false; 6]).unwrap(),
+        Map::from_permutation(&[3, 2, 1, 0], &[false; 4]).unwrap(),
+        crate::gen::random_triangle(300, 1, 2, 11).map,
+        crate::gen::random_mixed(300, 1, 1, 12).map,
+    ];
+    // A vertex of high valence: a row of a grid collapsed into one vertex.
+    let mut chain = tri_grid(12);
+    for i in 2..10u32 {
+        let h = dart(&chain, 60 + i, 61);
+        collapse(&mut chain, h).unwrap();
+    }
+    assert!(chain.valence(Vert(61)) > 16);
+    maps.push(chain);
+    let mut compared = 0;
+    for m in &maps {
+        for h in m.darts() {
+            let fast = super::collapse::can_with(m, h, None, 16);
+            assert_eq!(
+                fast,
+                super::collapse::can_with(m, h, None, 0),
+                "collapse {h:?}"
+            );
+            assert_eq!(fast, can_collapse(m, h));
+            for d2 in m.vertex_darts(m.origin(h)) {
+                let fast = super::collapse::can_with(m, h, Some(d2), 16);
+                let slow = super::collapse::can_with(m, h, Some(d2), 0);
+                assert_eq!(fast, slow, "split {h:?} {d2:?}");
+                compared += 1;
+            }
+        }
+    }
+    assert!(compared > 10_000);
 }
 
 #[test]
