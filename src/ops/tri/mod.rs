@@ -6,6 +6,19 @@
 //! `undo` restores the map exactly (`==`, free lists included). [`mesh`] wraps each operator
 //! for a [`crate::Mesh`] and places new vertices.
 //!
+//! ```
+//! use zipmesh::{gen, ops::tri};
+//! let mut map = gen::random_triangle(500, 1, 0, 7).map;
+//! let before = map.clone();
+//! let h = map.darts().find(|&d| tri::can_flip(&map, d).is_ok()).unwrap();
+//! let flip = tri::flip(&mut map, h).unwrap();
+//! let split = tri::split_edge(&mut map, h).unwrap();
+//! assert!(map.check().is_ok());
+//! split.undo(&mut map).unwrap(); // records are undone in reverse order
+//! flip.undo(&mut map).unwrap();
+//! assert_eq!(map, before);
+//! ```
+//!
 //! # Conventions
 //! Faces run counter-clockwise seen from the front; `rotate_cw(d) = next(twin(d))`. Valence is
 //! the number of darts leaving a vertex. A *proper triangle* is a face of degree 3 with three
