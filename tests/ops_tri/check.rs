@@ -81,8 +81,8 @@ fn apex(map: &Map, d: Dart) -> Vert {
 
 /// Applies `op` and checks: the refusal equals `can_*`'s and leaves the map equal to
 /// before; or the operator applied, `check()` passes, and V, E, F, the valence of every
-/// vertex and the liveness of every old element are exactly as documented. Returns the
-/// operator's result.
+/// vertex, the degree of every face and the liveness of every old element are exactly as
+/// documented. Returns the operator's result.
 pub fn checked(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
     let before = map.clone();
     let allowed = can(map, op);
@@ -268,6 +268,16 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             !dead_verts.contains(&v),
             "{op:?}: {v:?}"
         );
+    }
+    // Faces: every surviving face keeps its degree (so no face below degree 3 appears), and
+    // every new face is a triangle.
+    for f in after.faces() {
+        let want = if before.is_live_face(f) {
+            before.degree(f)
+        } else {
+            3
+        };
+        assert_eq!(after.degree(f), want, "{op:?}: degree of {f:?}");
     }
 }
 
