@@ -34,6 +34,7 @@ use crate::choice::{Choice, Exhaustive, Random};
 use crate::oracle::RawMap;
 use check::{checked, Op};
 use std::collections::{BTreeMap, HashSet};
+use std::sync::OnceLock;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::ops::Refusal;
 use zipmesh::rng::Rng;
@@ -217,6 +218,13 @@ fn gluing(c: &mut impl Choice, f: usize) -> Map {
         .unwrap_or_else(|e| panic!("gluing {partner:?} is not a valid map: {e:?}"))
 }
 
+/// For `f` = 1..=4: the class representatives of gluings of `f` triangles and the number of
+/// labelled gluings, enumerated once and shared by the tests.
+fn classes(f: usize) -> &'static (Vec<Map>, u64) {
+    static CLASSES: OnceLock<Vec<(Vec<Map>, u64)>> = OnceLock::new();
+    &CLASSES.get_or_init(|| (1..=4).map(gluing_classes).collect())[f - 1]
+}
+
 /// One representative map per isomorphism class of gluings of exactly `f` triangles, and the
 /// number of labelled gluings.
 fn gluing_classes(f: usize) -> (Vec<Map>, u64) {
@@ -289,17 +297,17 @@ fn every_operator_on_every_map_up_to_8_darts() {
 #[test]
 fn every_operator_on_every_gluing_of_up_to_4_triangles() {
     let mut tally = Tally::default();
-    let mut classes = 0;
+    let mut n_classes = 0;
     let mut tetrahedra = 0;
     let tet = CanonicalCode::of(
         &Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap(),
     );
     for f in 1..=4 {
-        let (reps, labelled) = gluing_classes(f);
-        assert_eq!(labelled, telephone(3 * f), "gluings of {f} triangles");
+        let (reps, labelled) = classes(f);
+        assert_eq!(*labelled, telephone(3 * f), "gluings of {f} triangles");
         eprintln!("{f} triangles: {labelled} gluings, {} classes", reps.len());
-        classes += reps.len();
-        for m in &reps {
+        n_classes += reps.len();
+        for m in reps {
             if CanonicalCode::of(m) == tet {
                 tetrahedra += 1;
                 // The known failure elsewhere: no collapse of a tetrahedron is allowed.
@@ -317,7 +325,7 @@ fn every_operator_on_every_gluing_of_up_to_4_triangles() {
         tetrahedra, 1,
         "the tetrahedron is one of the gluing classes"
     );
-    eprintln!("{classes} classes of gluings of 1 to 4 triangles");
+    eprintln!("{n_classes} classes of gluings of 1 to 4 triangles");
     tally.print("gluings <= 4 triangles");
     for (k, r) in [
         ("flip", "applied"),
@@ -356,10 +364,10 @@ fn every_pair_and_triple_of_operators_on_small_gluings() {
     let mut pairs = 0;
     let mut triples = 0;
     let mut n_classes = 0;
-    for f in 1..=3 {
-        let (reps, _) = gluing_classes(f);
+    for f in 1..=4 {
+        let (reps, _) = classes(f);
         n_classes += reps.len();
-        for m in &reps {
+        for m in reps {
             pairs += sequences(m, 2);
             if f <= 2 {
                 triples += sequences(m, 3);
@@ -367,7 +375,7 @@ fn every_pair_and_triple_of_operators_on_small_gluings() {
         }
     }
     eprintln!(
-        "gluing classes of <= 3 triangles ({n_classes}): {pairs} applied pairs; \
+        "gluing classes of <= 4 triangles ({n_classes}): {pairs} applied pairs; \
          of <= 2 triangles: {triples} applied triples"
     );
     assert!(pairs > 0 && triples > 0);

@@ -180,6 +180,21 @@ fn check_applied(before: &Map, before_val: &[usize], after: &Map, op: Op, e: &Ex
     }
     assert_eq!(created, usize::from(e.created.is_some()), "{op:?}");
     assert!(after.faces().all(|f| after.degree(f) == 4), "{op:?}");
+    assert_eq!(defects(after), defects(before), "{op:?}");
+}
+
+/// Loops plus surplus parallel edges: operators neither create nor remove any.
+fn defects(m: &Map) -> usize {
+    let mut pairs: Vec<(Vert, Vert)> = m
+        .darts()
+        .filter(|d| d.index() % 2 == 0)
+        .map(|d| (m.origin(d).min(m.dest(d)), m.origin(d).max(m.dest(d))))
+        .collect();
+    let loops = pairs.iter().filter(|(a, b)| a == b).count();
+    let n = pairs.len();
+    pairs.sort();
+    pairs.dedup();
+    loops + n - pairs.len()
 }
 
 fn random_dart(m: &Map, rng: &mut Rng, hot: &[Dart]) -> Dart {

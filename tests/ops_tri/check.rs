@@ -81,8 +81,8 @@ fn apex(map: &Map, d: Dart) -> Vert {
 
 /// Applies `op` and checks: the refusal equals `can_*`'s and leaves the map equal to
 /// before; or the operator applied, `check()` passes, and V, E, F, the valence of every
-/// vertex and the liveness of every old element are exactly as documented. Returns the
-/// operator's result.
+/// vertex, the degree of every face and the liveness of every old element are exactly as
+/// documented. Returns the operator's result.
 pub fn checked(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
     let before = map.clone();
     let allowed = can(map, op);
@@ -221,6 +221,19 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
         }
         _ => unreachable!("record kind does not match the operator"),
     }
+    // The valence minimum: no vertex is newly left below it (3 inside, 2 on the boundary):
+    // every vertex that is new, that lost darts, or that is the kept end of a collapse.
+    let kept = match rec {
+        Rec::Collapse(r) => Some(r.kept),
+        _ => None,
+    };
+    for v in after.vertices() {
+        let (a, b) = (va[v.index()].unwrap(), vb.get(v.index()).copied().flatten());
+        if b.is_none_or(|b| a < b) || kept == Some(v) {
+            let min = if after.is_boundary_vertex(v) { 2 } else { 3 };
+            assert!(a >= min, "{op:?} left {v:?} with valence {a} on {before:?}");
+        }
+    }
     let (cb, ca) = (counts(before), counts(after));
     assert_eq!(
         [ca[0] - cb[0], ca[1] - cb[1], ca[2] - cb[2]],
@@ -255,6 +268,16 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             !dead_verts.contains(&v),
             "{op:?}: {v:?}"
         );
+    }
+    // Faces: every surviving face keeps its degree (so no face below degree 3 appears), and
+    // every new face is a triangle.
+    for f in after.faces() {
+        let want = if before.is_live_face(f) {
+            before.degree(f)
+        } else {
+            3
+        };
+        assert_eq!(after.degree(f), want, "{op:?}: degree of {f:?}");
     }
 }
 

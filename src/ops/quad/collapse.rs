@@ -176,7 +176,7 @@ pub fn can_quad_collapse(map: &Map, d: Dart) -> Result<(), Refusal> {
 ///   Q-zip makes such vertices on purpose and removes them with
 ///   [`remove_valence2`](super::remove_valence2).
 ///
-/// Cost: O(val(a) + val(c)), no allocation unless the merged vertex has valence over 30.
+/// Cost: O(val(a) + val(c)), no allocation unless the merged vertex has valence over 32.
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart};
@@ -440,14 +440,11 @@ pub fn can_vertex_split(map: &Map, s1: Dart, s2: Dart) -> Result<(), Refusal> {
 /// `s2: w→b` into two vertices joined by a new quad; the exact inverse of [`quad_collapse`].
 ///
 /// ```text
-///   (arc₁)        (arc₁)
-///      \ | /        \ | /
-///   a --- w --- b    a ---w---  b        the new quad is (w, a, w', b):
-///      / | \          \      /           w keeps s1 (to a) and arc₁,
-///   (arc₂)    ==>      \    /            w' (new) keeps s2 (to b) and arc₂,
-///                       -w'-             each gets one new edge, to the other end
-///                       /|\
-///                     (arc₂)
+///           a                       a
+///           |                     /   \
+///   (arc₂)  w  (arc₁)     ==>   w'  f   w      w  keeps s1 (to a), arc₁, gets a new edge to b
+///           |                     \   /        w' keeps s2 (to b), arc₂, gets a new edge to a
+///           b                       b
 /// ```
 ///
 /// Let arc₁ be the darts strictly between `s1` and `s2` clockwise around `w`, arc₂ those

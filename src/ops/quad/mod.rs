@@ -156,7 +156,7 @@ fn valence_at_most_2(map: &Map, d: Dart) -> bool {
 }
 
 /// Neighbour lists for the "simple vertex" checks: inline for the common case, on the heap
-/// only past 32 entries (a vertex of valence over 30).
+/// only past 32 entries (a merged or split vertex of valence over 32).
 struct Neighbours {
     inline: [u32; 32],
     len: usize,

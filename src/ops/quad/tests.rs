@@ -110,6 +110,48 @@ fn collapse_refusals() {
     // The pillow: b and d have valence 2 and would keep one edge.
     let p = pillow();
     assert_eq!(c(&p, Dart(0)), Refusal::ValenceTooLow);
+    // Only d (vertex 3) has valence 2: quad 0-1-2-3 beside a pentagon through 0-3-2, on a
+    // closed sphere, so that no other rule applies. Refused from either diagonal end, since
+    // d is b for the other end. ValenceTooLow is the last rule checked, so every other rule
+    // passes here.
+    let m = polys(
+        7,
+        &[
+            &[0, 1, 2, 3],
+            &[0, 3, 2, 4, 5],
+            &[0, 5, 6, 1],
+            &[6, 5, 4, 2, 1],
+        ],
+    );
+    assert_eq!(m.valence(Vert(3)), 2);
+    assert_eq!(m.valence(Vert(1)), 3);
+    assert_eq!(c(&m, dart(&m, 0, 1)), Refusal::ValenceTooLow);
+    assert_eq!(c(&m, dart(&m, 2, 3)), Refusal::ValenceTooLow);
+}
+
+/// A closed map from faces given as dart lists (`2e` runs from the first to the second end of
+/// edge `e`, `2e + 1` back): lets tests build multi-edges, which polygon lists cannot.
+fn from_dart_faces(faces: &[&[u32]]) -> Map {
+    let n = faces.iter().map(|f| f.len()).sum::<usize>();
+    let mut next = vec![0u32; n];
+    for f in faces {
+        for (i, &d) in f.iter().enumerate() {
+            next[d as usize] = f[(i + 1) % f.len()];
+        }
+    }
+    Map::from_permutation(&next, &vec![false; n]).unwrap()
+}
+
+/// Two quads F = (u, v, x, y) and G = (v, u, z, w) whose ends u, v are also joined by a
+/// second edge (the sphere is closed by two more quads along it).
+fn rotation_with_parallel_edge() -> Map {
+    // Edges: 0 u-v, 1 v-x, 2 x-y, 3 y-u, 4 u-z, 5 z-w, 6 w-v, 7 u-v (parallel).
+    from_dart_faces(&[
+        &[0, 2, 4, 6],    // F: u->v->x->y
+        &[1, 8, 10, 12],  // G: v->u->z->w
+        &[7, 5, 3, 15],   // u->y->x->v, back to u along edge 7
+        &[14, 13, 11, 9], // u->v along edge 7, v->w->z->u
+    ])
 }
 
 #[test]
@@ -466,6 +508,16 @@ fn rotation_refusals() {
     assert_eq!(c(&m, h, Rotation::CounterClockwise), Refusal::MultiEdge);
     // Clockwise the new ends are 3 and 5, which are not joined: allowed.
     assert_eq!(can_rotate_edge(&m, h, cw), Ok(()));
+    // A second edge joins the old ends: rotating would remove one of a pair of parallel edges
+    // and the inverse rotation would recreate it; refused both ways.
+    let m = rotation_with_parallel_edge();
+    assert_eq!(m.check(), Ok(()));
+    let (u, v) = (m.origin(Dart(0)), m.dest(Dart(0)));
+    assert_eq!(m.dest(Dart(14)), v);
+    assert_eq!(m.origin(Dart(14)), u);
+    for r in [cw, Rotation::CounterClockwise] {
+        assert_eq!(c(&m, Dart(0), r), Refusal::MultiEdge);
+    }
 }
 
 #[test]

@@ -15,8 +15,8 @@
 //! A boundary edge has only one of L and R.
 
 use super::{
-    distinct_corners, fc, fresh_tail, joined, min_valence, nx, on_boundary, org, prev_of,
-    release_edge, release_face, release_vert, rot, triangle, valence_at_least, Lens, Undo,
+    distinct_corners, fc, fresh_tail, gather, joined, min_valence, nx, on_boundary, org, prev_of,
+    release_edge, release_face, release_vert, rot, triangle, valence_at_least, Lens, Undo, SMALL,
 };
 use crate::map::{Dart, Map, Vert, NONE};
 use crate::ops::Refusal;
@@ -47,6 +47,11 @@ struct Plan {
 /// Without it (undoing a vertex split) only the rules that keep the map valid apply (proper
 /// triangles, not both ends on the boundary of an interior edge, distinct apexes).
 fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
+    plan_with(map, hd, policy, SMALL)
+}
+
+/// [`plan`] with the limit of neighbours gathered on the stack.
+fn plan_with(map: &Map, hd: Dart, policy: bool, small: usize) -> Result<Plan, Refusal> {
     if !map.is_live_dart(hd) {
         return Err(Refusal::DeadHandle);
     }
@@ -82,6 +87,13 @@ fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
     let start = r.map_or(h, |x| x[1]);
     let stop = l.map_or(h, |x| x[2] ^ 1);
     let first = rot(map, start);
+    // The neighbours of u, when u has few; otherwise each candidate's rotation is walked
+    // instead of u's, so that a growing u (repeated collapses into it) costs nothing more.
+    let near_u = if policy {
+        gather(map, t, NONE, small)
+    } else {
+        None
+    };
     let (mut y, mut last, mut count) = (first, start, 0u32);
     while y != stop {
         if count as usize > map.next.len() {
@@ -90,10 +102,13 @@ fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
         }
         if policy {
             // Vertex part of the link condition: a neighbour of v other than u, c, d must
-            // not be u nor a neighbour of u (walks the neighbour's rotation, not u's, so a
-            // growing u does not make repeated collapses slower).
+            // not be u nor a neighbour of u.
             let x = org(map, y ^ 1);
-            if x == u || joined(map, y ^ 1, u) {
+            let adjacent = match &near_u {
+                Some(n) => n.contains(x),
+                None => joined(map, y ^ 1, u),
+            };
+            if x == u || adjacent {
                 return Err(Refusal::LinkCondition);
             }
         }
@@ -112,7 +127,11 @@ fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
         let dv = count as usize + 1 + usize::from(l.is_some()) + usize::from(r.is_some());
         let loss = if interior { 4 } else { 3 };
         let need_u = (min_valence(bu || bv) + loss).saturating_sub(dv);
-        if !valence_at_least(map, t, need_u) {
+        let enough = match &near_u {
+            Some(n) => n.len() >= need_u,
+            None => valence_at_least(map, t, need_u),
+        };
+        if !enough {
             return Err(Refusal::ValenceTooLow);
         }
         for apex in [l.map(|x| x[2]), r.map(|x| x[2])].into_iter().flatten() {
@@ -215,7 +234,7 @@ pub struct CollapseRecord {
 ///    boundary; `u` ends on the boundary if `u` or `v` was), then `c`, then `d`.
 ///
 /// Cost: O(d(v) + the valences of v's other neighbours) for the link condition; `u`'s
-/// rotation is walked only as far as the valence rule needs (at most 5 darts).
+/// rotation is walked only as far as the valence rule needs (at most 4 darts).
 ///
 /// ```
 /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
@@ -519,8 +538,10 @@ impl CollapseRecord {
         Ok(())
     }
 
-    /// Whether the map is as the collapse left it, as far as the undo depends on it; also
-    /// makes every index the undo uses in range.
+    /// Whether the map is as the collapse left it, as far as the undo depends on it: every
+    /// index in range, the freed slots on top of the free lists, the rewritten successors
+    /// and the moved arc as the collapse left them, and every entry the undo restores
+    /// consistent with its neighbours (so the result satisfies every axiom locally).
     fn fits(&self, map: &Map) -> bool {
         let nd = map.next.len();
         let live = |x: u32| (x as usize) < nd && map.next[x as usize] != NONE;
@@ -528,9 +549,11 @@ impl CollapseRecord {
         let in_range = |x: u32| (x as usize) < nd;
         let [h, h1, h2, t1, t2] = self.darts;
         let [fl, fr, fx, fz] = self.faces;
+        let [c, d] = self.apex;
         let has_l = h1 != NONE;
         let has_r = t1 != NONE;
         let (u, v) = (self.kept.0, self.removed.0);
+        let nw = self.n_writes as usize;
         let vert_ok = |x: u32, present: bool| {
             if present {
                 (x as usize) < map.vdart.len() && (x == v || map.vdart[x as usize] != NONE)
@@ -549,20 +572,22 @@ impl CollapseRecord {
             && map.vdart[u as usize] != NONE
             && vert_ok(v, true)
             && map.vdart[v as usize] == NONE
-            && vert_ok(self.apex[0], has_l)
-            && vert_ok(self.apex[1], has_r)
+            && vert_ok(c, has_l)
+            && vert_ok(d, has_r)
             && self.faces.iter().all(|&f| face_ok(f))
             && self.count as usize <= nd
-            && (self.count == 0 || in_range(self.first));
+            && (self.count == 0 || in_range(self.first))
+            && nw <= self.writes.len();
         if !shape {
             return false;
         }
-        let dead_present = [true, true, has_l, has_l, has_r, has_r];
-        let olds_ok = self
-            .dead_next
+        let oh2 = if has_l { h2 ^ 1 } else { NONE };
+        let ot1 = if has_r { t1 ^ 1 } else { NONE };
+        let removed = [h, h ^ 1, h2, oh2, t1, ot1];
+        let olds_ok = removed
             .iter()
-            .zip(dead_present)
-            .all(|(&x, p)| !p || in_range(x))
+            .zip(self.dead_next)
+            .all(|(&x, n)| x == NONE || in_range(n))
             && self
                 .old_vdart
                 .iter()
@@ -572,9 +597,11 @@ impl CollapseRecord {
                 .old_fdart
                 .iter()
                 .zip(self.faces)
-                .all(|(&x, f)| f == NONE || in_range(x));
-        // The freed slots are on top of the free lists, in the order they were freed, and
-        // the rewritten successors still hold what the collapse wrote.
+                .all(|(&x, f)| f == NONE || in_range(x))
+            && self.writes[..nw]
+                .iter()
+                .all(|&(c, old, new)| live(c) && in_range(old) && map.next[c as usize] == new);
+        // The freed slots are on top of the free lists, in the order they were freed.
         let mut edges = [NONE; 3];
         let mut ne = 0;
         for x in [h, h2, t1] {
@@ -591,32 +618,67 @@ impl CollapseRecord {
                 nf += 1;
             }
         }
-        // The moved darts are still the arc of u that ends just before h1 (or before u's own
-        // boundary dart, the old next of h, when there is no L), and nothing else of theirs
-        // changed; whether u's boundary dart is among them decides u's status after.
-        let arc_end = if has_l { h1 } else { self.dead_next[0] };
+        if !olds_ok
+            || !map.free_edges.ends_with(&edges[..ne])
+            || !map.free_verts.ends_with(&[v])
+            || !map.free_faces.ends_with(&faces[..nf])
+        {
+            return false;
+        }
+        // The successors the undo restores, and the darts whose origin after the undo
+        // depends on whether they are among the moved ones (probes).
+        let mut pairs = [(NONE, NONE); 11];
+        let mut np = 0;
+        for (&x, n) in removed.iter().zip(self.dead_next) {
+            if x != NONE {
+                pairs[np] = (x, n);
+                np += 1;
+            }
+        }
+        for &(cell, old, _) in &self.writes[..nw] {
+            pairs[np] = (cell, old);
+            np += 1;
+        }
         let [ou, ov, oc, od] = self.old_vdart;
+        let mut probes = [NONE; 24];
+        for (k, &(x, n)) in pairs[..np].iter().enumerate() {
+            probes[2 * k] = x ^ 1;
+            probes[2 * k + 1] = n;
+        }
+        probes[22] = ou;
+        probes[23] = ov;
+        let mut moved = [false; 24];
+        // The moved darts are still the arc of u that ends just before h1 (or before u's own
+        // boundary dart, the old next of h, when there is no L); where it starts is pinned
+        // by a rewritten successor (of t2, or of prev(t) without R).
+        let arc_end = if has_l { h1 } else { self.dead_next[0] };
         let mut y = self.first;
         let (mut record_moves, mut moved_boundary) = (false, false);
-        let (mut ou_moves, mut ov_moves) = (false, false);
         for _ in 0..self.count {
             if !live(y) || map.vert[y as usize] != u {
                 return false;
             }
             record_moves |= map.vdart[u as usize] == y;
-            ou_moves |= ou == y;
-            ov_moves |= ov == y;
             moved_boundary |= map.face[y as usize] == NONE;
+            for (p, m) in probes.iter().zip(moved.iter_mut()) {
+                *m |= *p == y;
+            }
             y = map.next[(y ^ 1) as usize];
         }
         if self.count > 0 && y != arc_end {
             return false;
         }
-        // Each restored record must name a dart of its element after the undo, the boundary
-        // one for a boundary vertex. Faces after the undo: h1 back in L, t2 in R, twin(h2) in
-        // X, twin(t1) in Z, h and t in L and R.
-        let oh2 = if has_l { h2 ^ 1 } else { NONE };
-        let ot1 = if has_r { t1 ^ 1 } else { NONE };
+        // Origins and faces after the undo.
+        let vert_after = |x: u32, is_moved: bool| match x {
+            _ if is_moved => v,
+            _ if x == h => v,
+            _ if x == (h ^ 1) => u,
+            _ if x == h2 => c,
+            _ if x == oh2 => v,
+            _ if x == t1 => v,
+            _ if x == ot1 => d,
+            _ => map.vert[x as usize],
+        };
         let face_after = |x: u32| match x {
             _ if x == h => fl,
             _ if x == (h ^ 1) => fr,
@@ -626,42 +688,42 @@ impl CollapseRecord {
             _ if x == ot1 => fz,
             _ => map.face[x as usize],
         };
-        // u's present boundary dart stays with u unless it moves to v or is h1 (back to L).
+        // Each restored successor: origin(twin x) == origin(next x), one face along next.
+        for (k, &(x, n)) in pairs[..np].iter().enumerate() {
+            if vert_after(x ^ 1, moved[2 * k]) != vert_after(n, moved[2 * k + 1])
+                || face_after(x) != face_after(n)
+            {
+                return false;
+            }
+        }
+        // Each restored record must name a dart of its element after the undo, the boundary
+        // one for a boundary vertex. u's present boundary dart stays with u unless it moves
+        // to v or is h1 (back to L).
         let u_keeps = on_boundary(map, u) && !record_moves && map.vdart[u as usize] != h1;
         let u_boundary = u_keeps || !has_r;
         let v_boundary = !has_l || fx == NONE || moved_boundary;
-        let leaves_u = ou == (h ^ 1) || (!ou_moves && live(ou) && map.vert[ou as usize] == u);
-        let leaves_v = ov_moves || (ov != NONE && [h, t1, oh2].contains(&ov));
+        let leaves_u = ou == (h ^ 1) || (!moved[22] && live(ou) && map.vert[ou as usize] == u);
+        let leaves_v = moved[23] || (ov != NONE && [h, t1, oh2].contains(&ov));
         let records_ok = leaves_u
             && (face_after(ou) == NONE) == u_boundary
             && leaves_v
-            && ov != NONE
             && (face_after(ov) == NONE) == v_boundary
             && (!has_l
-                || ((oc == h2 || (live(oc) && map.vert[oc as usize] == self.apex[0]))
-                    && (face_after(oc) == NONE) == on_boundary(map, self.apex[0])))
+                || ((oc == h2 || (live(oc) && map.vert[oc as usize] == c))
+                    && (face_after(oc) == NONE) == on_boundary(map, c)))
             && (!has_r
-                || ((od == ot1 || (live(od) && map.vert[od as usize] == self.apex[1]))
-                    && (face_after(od) == NONE) == on_boundary(map, self.apex[1])));
-        let restored = [h, h ^ 1, h2, oh2, t1, ot1];
+                || ((od == ot1 || (live(od) && map.vert[od as usize] == d))
+                    && (face_after(od) == NONE) == on_boundary(map, d)));
         let in_face =
-            |x: u32, f: u32| x != NONE && (live(x) || restored.contains(&x)) && face_after(x) == f;
-        let faces_ok = self
-            .faces
-            .iter()
-            .zip(self.old_fdart)
-            .all(|(&f, x)| f == NONE || in_face(x, f))
-            && (!has_l || map.face[h1 as usize] == fx)
-            && (!has_r || map.face[t2 as usize] == fz);
-        olds_ok
-            && records_ok
-            && faces_ok
-            && map.free_edges.ends_with(&edges[..ne])
-            && map.free_verts.ends_with(&[v])
-            && map.free_faces.ends_with(&faces[..nf])
-            && self.writes[..self.n_writes as usize]
+            |x: u32, f: u32| x != NONE && (live(x) || removed.contains(&x)) && face_after(x) == f;
+        records_ok
+            && self
+                .faces
                 .iter()
-                .all(|&(c, old, new)| live(c) && in_range(old) && map.next[c as usize] == new)
+                .zip(self.old_fdart)
+                .all(|(&f, x)| f == NONE || in_face(x, f))
+            && (!has_l || map.face[h1 as usize] == fx)
+            && (!has_r || map.face[t2 as usize] == fz)
     }
 }
 
@@ -744,6 +806,11 @@ pub fn can_split_vertex(map: &Map, d1: Dart, d2: Dart) -> Result<(), Refusal> {
 }
 
 fn split_plan(map: &Map, d1: Dart, d2: Dart) -> Result<SplitPlan, Refusal> {
+    split_plan_with(map, d1, d2, SMALL)
+}
+
+/// [`split_plan`] with the limit of kept ends gathered on the stack.
+fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitPlan, Refusal> {
     if !map.is_live_dart(d1) || !map.is_live_dart(d2) {
         return Err(Refusal::DeadHandle);
     }
@@ -766,6 +833,9 @@ fn split_plan(map: &Map, d1: Dart, d2: Dart) -> Result<SplitPlan, Refusal> {
     }
     let first = rot(map, d2);
     let rec = map.vdart[w as usize];
+    // The ends of the kept darts (d1 through d2), when there are few; otherwise each moved
+    // dart's end is searched for an edge back to w.
+    let kept = gather(map, d1, d2, small);
     let (mut y, mut last, mut count, mut record_moves) = (first, d2, 0u32, false);
     let in_moved = |z: u32| {
         let mut x = first;
@@ -786,12 +856,20 @@ fn split_plan(map: &Map, d1: Dart, d2: Dart) -> Result<SplitPlan, Refusal> {
             return Err(Refusal::MultiEdge);
         }
         // Another edge x-w whose w end stays with w: v and w would share the neighbour x.
-        let mut z = rot(map, y ^ 1);
-        while z != y ^ 1 {
-            if org(map, z ^ 1) == w && !in_moved(z ^ 1) {
-                return Err(Refusal::LinkCondition);
+        let shared = match &kept {
+            Some(k) => k.contains(x),
+            None => {
+                let mut z = rot(map, y ^ 1);
+                let mut found = false;
+                while z != y ^ 1 && !found {
+                    found = org(map, z ^ 1) == w && !in_moved(z ^ 1);
+                    z = rot(map, z);
+                }
+                found
             }
-            z = rot(map, z);
+        };
+        if shared {
+            return Err(Refusal::LinkCondition);
         }
         record_moves |= y == rec;
         last = y;
@@ -950,7 +1028,8 @@ impl VertexSplitRecord {
     /// let mut map = gen::random_triangle(200, 0, 2, 9).map;
     /// let before = map.clone();
     /// let d1 = map.vertex_dart(Vert::new(7));
-    /// let rec = tri::split_vertex(&mut map, d1, map.rotate_cw(d1)).unwrap();
+    /// let d2 = map.rotate_cw(d1);
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
@@ -993,5 +1072,15 @@ impl VertexSplitRecord {
 impl Undo for VertexSplitRecord {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         VertexSplitRecord::undo(self, map)
+    }
+}
+
+/// [`can_collapse`] and [`can_split_vertex`] with at most `small` neighbours on the stack, so
+/// that unit tests can compare the stack path with the fallback.
+#[cfg(test)]
+pub(super) fn can_with(map: &Map, h: Dart, d2: Option<Dart>, small: usize) -> Result<(), Refusal> {
+    match d2 {
+        None => plan_with(map, h, true, small).map(|_| ()),
+        Some(d2) => split_plan_with(map, h, d2, small).map(|_| ()),
     }
 }

@@ -36,8 +36,11 @@ pub struct EdgeSplitRecord {
     lens: Lens,
 }
 
+/// `h` and the darts of the triangles of `h` and of `twin(h)` (absent on a boundary side).
+type Sides = (u32, Option<[u32; 3]>, Option<[u32; 3]>);
+
 /// The triangles at the edge, or why the split does not apply.
-fn plan(map: &Map, h: Dart) -> Result<(u32, Option<[u32; 3]>, Option<[u32; 3]>), Refusal> {
+fn plan(map: &Map, h: Dart) -> Result<Sides, Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
@@ -348,7 +351,11 @@ impl EdgeSplitRecord {
             && (fc(map, vb) == NONE) == super::on_boundary(map, b);
         let fl_ok = !has_l || [h, h1, h2].contains(&self.old_fdart[0]);
         let fr_ok = !has_r || [t, t1, t2].contains(&self.old_fdart[1]);
+        // The apexes lose their spokes again: their records must not name them.
+        let spokes_free = (!has_l || map.vdart[org(map, g ^ 1) as usize] != g ^ 1)
+            && (!has_r || map.vdart[org(map, k ^ 1) as usize] != k ^ 1);
         vb_ok
+            && spokes_free
             && fl_ok
             && fr_ok
             && shape_l

@@ -18,6 +18,8 @@ pub struct FlipRecord {
     pub dart: Dart,
     /// Before the flip: `vdart[a]`, `vdart[b]`, `fdart[f0]`, `fdart[f1]`.
     old: [u32; 4],
+    /// After the flip: the ends `d`, `c` of the dart (tells a flipped edge from a restored one).
+    ends: [u32; 2],
 }
 
 /// Checks whether [`flip`] applies to the edge of `h`, without changing anything.
@@ -105,7 +107,11 @@ pub fn flip(map: &mut Map, h: Dart) -> Result<FlipRecord, Refusal> {
     if old[3] == t1 {
         map.fdart[f1 as usize] = t;
     }
-    Ok(FlipRecord { dart: Dart(h), old })
+    Ok(FlipRecord {
+        dart: Dart(h),
+        old,
+        ends: [d, c],
+    })
 }
 
 /// The six darts `[h, h1, h2, t, t1, t2]` of the two triangles, if the flip applies.
@@ -170,6 +176,10 @@ impl FlipRecord {
         if nx(map, t1) != h
             || nx(map, h1) != t
             || [h2, t1, t2, h1].iter().any(|&x| x >> 1 == h >> 1)
+            || [org(map, h), org(map, t)] != self.ends
+            // d and c lose h and t again: their records must not name them.
+            || map.vdart[org(map, h) as usize] == h
+            || map.vdart[org(map, t) as usize] == t
         {
             return Err(Refusal::StaleRecord);
         }

@@ -10,6 +10,17 @@
 //! A position slot that did not exist is created (positions follow vertex slots); the
 //! record's `undo` restores the topology and then the one position it overwrote, so the
 //! whole [`Mesh`] is equal (`==`) to the one before.
+//!
+//! ```
+//! use zipmesh::{gen, ops::tri};
+//! let mut mesh = gen::random_triangle(300, 0, 1, 2);
+//! let before = mesh.clone();
+//! let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
+//! let placed = tri::mesh::collapse(&mut mesh, h).unwrap();
+//! assert_eq!(mesh.map.num_vertices(), before.map.num_vertices() - 1);
+//! placed.undo(&mut mesh).unwrap();
+//! assert_eq!(mesh, before);
+//! ```
 
 use super::{CollapseRecord, EdgeSplitRecord, FlipRecord, Undo, VertexSplitRecord};
 use crate::map::{Dart, NONE};

@@ -6,6 +6,19 @@
 //! `undo` restores the map exactly (`==`, free lists included). [`mesh`] wraps each operator
 //! for a [`crate::Mesh`] and places new vertices.
 //!
+//! ```
+//! use zipmesh::{gen, ops::tri};
+//! let mut map = gen::random_triangle(500, 1, 0, 7).map;
+//! let before = map.clone();
+//! let h = map.darts().find(|&d| tri::can_flip(&map, d).is_ok()).unwrap();
+//! let flip = tri::flip(&mut map, h).unwrap();
+//! let split = tri::split_edge(&mut map, h).unwrap();
+//! assert!(map.check().is_ok());
+//! split.undo(&mut map).unwrap(); // records are undone in reverse order
+//! flip.undo(&mut map).unwrap();
+//! assert_eq!(map, before);
+//! ```
+//!
 //! # Conventions
 //! Faces run counter-clockwise seen from the front; `rotate_cw(d) = next(twin(d))`. Valence is
 //! the number of darts leaving a vertex. A *proper triangle* is a face of degree 3 with three
@@ -152,6 +165,54 @@ pub(crate) fn joined(map: &Map, d: u32, target: u32) -> bool {
         }
     }
     false
+}
+
+/// How many neighbours [`gather`] keeps on the stack; longer walks fall back to walking the
+/// neighbours' own rotations. (Unit tests pass a smaller limit to test the fallback.)
+pub(crate) const SMALL: usize = 16;
+
+/// The ends of a run of darts around one vertex, kept on the stack for membership tests.
+pub(crate) struct Ends {
+    ids: [u32; SMALL],
+    len: usize,
+}
+
+impl Ends {
+    #[inline]
+    pub(crate) fn contains(&self, v: u32) -> bool {
+        self.ids[..self.len].contains(&v)
+    }
+
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+}
+
+/// The destinations of the darts clockwise from `start` through `end` (the whole rotation if
+/// `end` is not met), or `None` if there are more than `limit` (at most [`SMALL`]). One walk
+/// of the rotation and no other memory: cheaper than walking each candidate's rotation.
+#[inline]
+pub(crate) fn gather(map: &Map, start: u32, end: u32, limit: usize) -> Option<Ends> {
+    let mut e = Ends {
+        ids: [NONE; SMALL],
+        len: 0,
+    };
+    let mut x = start;
+    loop {
+        if e.len >= limit.min(SMALL) {
+            return None;
+        }
+        e.ids[e.len] = org(map, x ^ 1);
+        e.len += 1;
+        if x == end {
+            return Some(e);
+        }
+        x = rot(map, x);
+        if x == start {
+            return Some(e);
+        }
+    }
 }
 
 /// The dart before `d` around its face or boundary loop (see [`Map::prev`]).
