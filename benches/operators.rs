@@ -1,0 +1,80 @@
+//! Criterion benches of the operators on the 1000 x 1000 torus (quads, and triangulated):
+//! each iteration applies one operator at the next of 4,096 random darts (fixed seed) and
+//! undoes it, so the mesh stays the same; refused attempts count as iterations.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use zipmesh::ops::{quad, tri};
+use zipmesh::rng::Rng;
+use zipmesh::{Dart, Map};
+
+fn torus(n: usize, triangles: bool) -> Map {
+    let id = |i: usize, j: usize| ((j % n) * n + (i % n)) as u32;
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if triangles {
+                faces.push(vec![q[0], q[1], q[2]]);
+                faces.push(vec![q[0], q[2], q[3]]);
+            } else {
+                faces.push(q.to_vec());
+            }
+        }
+    }
+    Map::from_polygons(n * n, &faces).expect("valid torus")
+}
+
+fn darts(m: &Map) -> Vec<Dart> {
+    let mut rng = Rng::new(99);
+    (0..4096)
+        .map(|_| Dart::new(rng.below(m.dart_slots()) as u32))
+        .collect()
+}
+
+fn operators(c: &mut Criterion) {
+    let mut g = c.benchmark_group("operators (apply + undo, torus 1000)");
+    g.sample_size(20);
+    let mut m = torus(1000, true);
+    let ds = darts(&m);
+    let mut i = 0;
+    let mut next = || {
+        i = (i + 1) % ds.len();
+        ds[i]
+    };
+    g.bench_function("tri flip", |b| {
+        b.iter(|| tri::flip(&mut m, next()).map(|r| r.undo(&mut m)))
+    });
+    g.bench_function("tri collapse", |b| {
+        b.iter(|| tri::collapse(&mut m, next()).map(|r| r.undo(&mut m)))
+    });
+    g.bench_function("tri edge split", |b| {
+        b.iter(|| tri::split_edge(&mut m, next()).map(|r| r.undo(&mut m)))
+    });
+    g.bench_function("tri vertex split", |b| {
+        b.iter(|| {
+            let d = next();
+            let d2 = (0..3).fold(d, |x, _| m.rotate_cw(x));
+            tri::split_vertex(&mut m, d, d2).map(|r| r.undo(&mut m))
+        })
+    });
+    let mut q = torus(1000, false);
+    g.bench_function("quad collapse", |b| {
+        b.iter(|| quad::quad_collapse(&mut q, next()).map(|r| r.undo(&mut q)))
+    });
+    g.bench_function("quad vertex split", |b| {
+        b.iter(|| {
+            let d = next();
+            let d2 = q.rotate_cw(q.rotate_cw(d));
+            quad::vertex_split(&mut q, d, d2).map(|r| r.undo(&mut q))
+        })
+    });
+    g.bench_function("quad edge rotation", |b| {
+        b.iter(|| {
+            quad::rotate_edge(&mut q, next(), quad::Rotation::Clockwise).map(|r| r.undo(&mut q))
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, operators);
+criterion_main!(benches);
