@@ -40,6 +40,7 @@ pub mod io;
 pub mod map;
 pub mod mesh;
 pub mod ops;
+pub mod qzip;
 pub mod rng;
 
 pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
