@@ -8,20 +8,16 @@ use zipmesh::rng::Rng;
 use zipmesh::{Dart, Map};
 
 fn torus(n: usize, triangles: bool) -> Map {
-    let id = |i: usize, j: usize| ((j % n) * n + (i % n)) as u32;
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
-            if triangles {
-                faces.push(vec![q[0], q[1], q[2]]);
-                faces.push(vec![q[0], q[2], q[3]]);
-            } else {
-                faces.push(q.to_vec());
-            }
-        }
+    let quads = zipmesh::gen::torus_quads(n, n);
+    if triangles {
+        let tris: Vec<[u32; 3]> = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        Map::from_polygons(n * n, &tris).expect("valid torus")
+    } else {
+        Map::from_polygons(n * n, &quads).expect("valid torus")
     }
-    Map::from_polygons(n * n, &faces).expect("valid torus")
 }
 
 fn darts(m: &Map) -> Vec<Dart> {

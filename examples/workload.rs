@@ -17,17 +17,6 @@ use zipmesh::ops::{quad, tri};
 use zipmesh::rng::Rng;
 use zipmesh::{Dart, Face, Map, Vert};
 
-fn torus_quads(nx: usize, ny: usize) -> Vec<[u32; 4]> {
-    let id = |i: usize, j: usize| ((j % ny) * nx + (i % nx)) as u32;
-    let mut faces = Vec::with_capacity(nx * ny);
-    for j in 0..ny {
-        for i in 0..nx {
-            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    faces
-}
-
 fn triangulate(quads: &[[u32; 4]]) -> Vec<[u32; 3]> {
     quads
         .iter()
@@ -98,9 +87,9 @@ fn report(
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1000);
+    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1000).max(3);
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
-    let quads = torus_quads(n, n);
+    let quads = zipmesh::gen::torus_quads(n, n);
     let tris = triangulate(&quads);
     let nv = n * n;
 
@@ -195,7 +184,7 @@ fn main() {
         );
     }
     for side in [32usize, 100, 316] {
-        let q = torus_quads(side, side);
+        let q = zipmesh::gen::torus_quads(side, side);
         let regular = Map::from_polygons(side * side, &q).expect("valid torus");
         let faces = q.len();
         report(

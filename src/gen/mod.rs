@@ -49,8 +49,18 @@ pub fn torus_grid(nx: usize, ny: usize) -> Mesh {
     build(torus_positions(nx, ny), &torus_quads(nx, ny))
 }
 
-/// The quads of the `nx` x `ny` torus grid, vertex `(i, j)` numbered `j * nx + i`.
-pub(crate) fn torus_quads(nx: usize, ny: usize) -> Vec<[u32; 4]> {
+/// The quads of the `nx` x `ny` torus grid as vertex index lists (counter-clockwise),
+/// vertex `(i, j)` numbered `j * nx + i`, quad `(i, j)` at position `j * nx + i`: the polygon
+/// list behind [`torus_grid`], for callers that build maps themselves (benchmarks, tests).
+/// `nx` and `ny` are clamped to at least 3.
+///
+/// ```
+/// let quads = zipmesh::gen::torus_quads(4, 3);
+/// assert_eq!(quads.len(), 12);
+/// assert!(zipmesh::Map::from_polygons(12, &quads).is_ok());
+/// ```
+pub fn torus_quads(nx: usize, ny: usize) -> Vec<[u32; 4]> {
+    let (nx, ny) = (nx.max(3), ny.max(3));
     let id = |i: usize, j: usize| ((j % ny) * nx + (i % nx)) as u32;
     let mut faces = Vec::with_capacity(nx * ny);
     for j in 0..ny {

@@ -18,7 +18,7 @@ pub(crate) use handle::NONE;
 pub use handle::{Dart, Face, Vert};
 pub use raw::RawError;
 pub use store::Compaction;
-pub use walk::{FaceDarts, VertexDarts};
+pub use walk::{FaceDarts, Orbit, VertexDarts};
 
 use alloc::vec::Vec;
 

@@ -208,52 +208,31 @@ impl Map {
     }
 }
 
-/// Iterator over a face or boundary cycle; see [`Map::face_cycle`].
+/// Iterator over one orbit of darts: a face or boundary cycle (`next`) when `AROUND_VERTEX` is
+/// false, the outgoing darts of a vertex clockwise (`rotate_cw`) when it is true. Stops after
+/// returning to its start, at a dead dart, or after as many steps as there are dart slots.
 ///
 /// ```
-/// use zipmesh::{gen, Face};
-/// let m = gen::grid(1, 1).map;
-/// assert_eq!(m.face_darts(Face::new(0)).count(), 4);
-/// ```
-#[derive(Clone, Debug)]
-pub struct FaceDarts<'a> {
-    map: &'a Map,
-    start: Dart,
-    cur: u32,
-    left: usize,
-}
-
-impl Iterator for FaceDarts<'_> {
-    type Item = Dart;
-    #[inline]
-    fn next(&mut self) -> Option<Dart> {
-        if self.cur == NONE || self.left == 0 {
-            return None;
-        }
-        self.left -= 1;
-        let d = Dart(self.cur);
-        let n = self.map.next(d);
-        self.cur = if n == self.start { NONE } else { n.0 };
-        Some(d)
-    }
-}
-
-/// Iterator over the outgoing darts of a vertex, clockwise; see [`Map::vertex_darts`].
-///
-/// ```
-/// use zipmesh::{gen, Vert};
+/// use zipmesh::{gen, Face, Vert};
 /// let m = gen::torus_grid(3, 3).map;
+/// assert_eq!(m.face_darts(Face::new(0)).count(), 4);
 /// assert_eq!(m.vertex_darts(Vert::new(0)).count(), 4);
 /// ```
 #[derive(Clone, Debug)]
-pub struct VertexDarts<'a> {
+pub struct Orbit<'a, const AROUND_VERTEX: bool> {
     map: &'a Map,
     start: Dart,
     cur: u32,
     left: usize,
 }
 
-impl Iterator for VertexDarts<'_> {
+/// Iterator over a face or boundary cycle; see [`Map::face_cycle`].
+pub type FaceDarts<'a> = Orbit<'a, false>;
+
+/// Iterator over the outgoing darts of a vertex, clockwise; see [`Map::vertex_darts`].
+pub type VertexDarts<'a> = Orbit<'a, true>;
+
+impl<const AROUND_VERTEX: bool> Iterator for Orbit<'_, AROUND_VERTEX> {
     type Item = Dart;
     #[inline]
     fn next(&mut self) -> Option<Dart> {
@@ -262,7 +241,11 @@ impl Iterator for VertexDarts<'_> {
         }
         self.left -= 1;
         let d = Dart(self.cur);
-        let n = self.map.rotate_cw(d);
+        let n = if AROUND_VERTEX {
+            self.map.rotate_cw(d)
+        } else {
+            self.map.next(d)
+        };
         self.cur = if n == self.start { NONE } else { n.0 };
         Some(d)
     }
