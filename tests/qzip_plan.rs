@@ -643,3 +643,32 @@ fn weights_steer_the_path() {
     let p = sketch(&map, Vert::new(0), Vert::new(4), &SketchOptions::default()).unwrap();
     assert_eq!(p.len(), 4);
 }
+
+#[test]
+fn valence_2_is_refused_with_the_vertex() {
+    let mut map = gen::torus_grid(8, 8).map;
+    let r = zipmesh::ops::quad::insert_doublet(&mut map, Dart::new(0)).unwrap();
+    let w = r.vertex();
+    assert_eq!(map.valence(w), 2);
+    let ns: Vec<Vert> = map.vertex_darts(w).map(|d| map.dest(d)).collect();
+    let path = given(&map, &[ns[0], w, ns[1]]);
+    for t in Tag::CCW {
+        assert_eq!(
+            plan(&map, &path, t),
+            Err(PlanError::Valence {
+                index: 1,
+                vertex: w,
+                valence: 2
+            })
+        );
+    }
+    // A path that only passes beside it is fine.
+    let far = sketch(
+        &map,
+        Vert::new(36),
+        Vert::new(40),
+        &SketchOptions::default(),
+    )
+    .unwrap();
+    assert!(plan(&map, &far, Tag::LS).is_ok());
+}
