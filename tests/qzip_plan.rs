@@ -672,3 +672,60 @@ fn valence_2_is_refused_with_the_vertex() {
     .unwrap();
     assert!(plan(&map, &far, Tag::LS).is_ok());
 }
+
+/// A self-avoiding walk on the `n` x `n` torus grid from (0, 0): each step turns by a random
+/// quarter (never back); the walk stops before revisiting a vertex. Returns lattice points.
+fn lattice_walk(n: u32, seed: u64, max_len: usize) -> Vec<(u32, u32)> {
+    let mut rng = zipmesh::rng::Rng::new(seed);
+    let dirs: [(i64, i64); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    let mut dir = rng.below(4) as usize;
+    let mut pts = vec![(0u32, 0u32)];
+    let mut seen = HashSet::from([(0u32, 0u32)]);
+    for _ in 0..max_len {
+        // 0 = straight, 1 = left, 3 = right.
+        dir = (dir + [0, 0, 1, 3][rng.below(4) as usize]) % 4;
+        let (x, y) = pts[pts.len() - 1];
+        let nx = (x as i64 + dirs[dir].0).rem_euclid(n as i64) as u32;
+        let ny = (y as i64 + dirs[dir].1).rem_euclid(n as i64) as u32;
+        if !seen.insert((nx, ny)) {
+            break;
+        }
+        pts.push((nx, ny));
+    }
+    pts
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// On a regular torus grid the plan's turns are the lattice walk's geometric turns (the
+    /// sign of the cross product of consecutive steps), and carrying the terminal tag rotated
+    /// by pi back along the reversed path gives the initial tag rotated by pi.
+    #[test]
+    fn lattice_turns_and_reversal(seed in any::<u64>(), t in 0usize..4) {
+        let n = 16u32;
+        let map = gen::torus_grid(n as usize, n as usize).map;
+        let pts = lattice_walk(n, seed, 12);
+        prop_assume!(pts.len() >= 3);
+        let vs: Vec<Vert> = pts.iter().map(|&(x, y)| tv(n, x, y)).collect();
+        let path = given(&map, &vs);
+        let initial = Tag::CCW[t];
+        let p = plan(&map, &path, initial).unwrap();
+        let step = |a: (u32, u32), b: (u32, u32)| {
+            let w = |d: i64| if d > 1 { d - n as i64 } else if d < -1 { d + n as i64 } else { d };
+            (w(b.0 as i64 - a.0 as i64), w(b.1 as i64 - a.1 as i64))
+        };
+        let mut tag = initial;
+        for i in 1..pts.len() - 1 {
+            let (a, b) = (step(pts[i - 1], pts[i]), step(pts[i], pts[i + 1]));
+            let cross = a.0 * b.1 - a.1 * b.0;
+            let want = match cross.signum() { 1 => Turn::Left, -1 => Turn::Right, _ => Turn::Straight };
+            prop_assert_eq!(p.steps()[i].turn, Some(want));
+            tag = tag.after(want);
+            prop_assert_eq!(p.steps()[i].tag, tag);
+        }
+        let back: Vec<Vert> = vs.iter().rev().copied().collect();
+        let r = plan(&map, &given(&map, &back), p.terminal().rotate_pi()).unwrap();
+        prop_assert_eq!(r.terminal(), initial.rotate_pi());
+    }
+}
