@@ -678,12 +678,12 @@ fn valence_2_is_refused_with_the_vertex() {
 fn lattice_walk(n: u32, seed: u64, max_len: usize) -> Vec<(u32, u32)> {
     let mut rng = zipmesh::rng::Rng::new(seed);
     let dirs: [(i64, i64); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
-    let mut dir = rng.below(4) as usize;
+    let mut dir = rng.below(4);
     let mut pts = vec![(0u32, 0u32)];
     let mut seen = HashSet::from([(0u32, 0u32)]);
     for _ in 0..max_len {
         // 0 = straight, 1 = left, 3 = right.
-        dir = (dir + [0, 0, 1, 3][rng.below(4) as usize]) % 4;
+        dir = (dir + [0, 0, 1, 3][rng.below(4)]) % 4;
         let (x, y) = pts[pts.len() - 1];
         let nx = (x as i64 + dirs[dir].0).rem_euclid(n as i64) as u32;
         let ny = (y as i64 + dirs[dir].1).rem_euclid(n as i64) as u32;
