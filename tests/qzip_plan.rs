@@ -729,3 +729,65 @@ proptest! {
         prop_assert_eq!(r.terminal(), initial.rotate_pi());
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Arbitrary handles, forbidden lists and weights never panic; every answer is a valid path
+    /// or a typed error, and a plan along random walks on mixed meshes (boundaries, triangles,
+    /// irregular vertices) is either refused with a reason or has tags that follow its turns.
+    #[test]
+    fn no_panics_on_arbitrary_input(
+        seed in any::<u64>(),
+        a in 0u32..2000, b in 0u32..2000,
+        fe in proptest::collection::vec(any::<u32>(), 0..40),
+        ff in proptest::collection::vec(0u32..2000, 0..10),
+        w in proptest::collection::vec(prop_oneof![Just(f64::NAN), Just(-1.0), 0.0..10.0f64], 0..20),
+        mixed in any::<bool>(),
+    ) {
+        let map = if mixed { gen::random_mixed(300, 1, 2, seed).map } else { gen::random_quad(300, 0, 3, seed).map };
+        let (from, to) = (Vert::new(a % (map.vertex_slots() as u32 + 5)), Vert::new(b % (map.vertex_slots() as u32 + 5)));
+        let mut weights = vec![1.0; map.dart_slots() / 2];
+        for (i, &x) in w.iter().enumerate() {
+            let k = (seed as usize).wrapping_add(i * 7919) % weights.len().max(1);
+            if let Some(slot) = weights.get_mut(k) { *slot = x; }
+        }
+        for opts in [
+            SketchOptions { forbidden_edges: fe.clone(), forbidden_faces: ff.iter().map(|&f| Face::new(f)).collect(), ..Default::default() },
+            SketchOptions { weights: Some(weights.clone()), avoid_boundary: true, ..Default::default() },
+        ] {
+            if let Ok(p) = sketch(&map, from, to, &opts) {
+                check_path(&map, &p, from, to, &HashSet::new());
+            }
+        }
+        // A random walk, made simple by cutting it at its first repeat.
+        let mut rng = zipmesh::rng::Rng::new(seed);
+        let verts: Vec<Vert> = map.vertices().collect();
+        prop_assume!(!verts.is_empty());
+        let mut walk = vec![verts[rng.below(verts.len())]];
+        for _ in 0..20 {
+            let darts: Vec<Dart> = map.vertex_darts(walk[walk.len() - 1]).collect();
+            let next = map.dest(darts[rng.below(darts.len())]);
+            if walk.contains(&next) { break; }
+            walk.push(next);
+        }
+        prop_assume!(walk.len() >= 2);
+        let path = given(&map, &walk);
+        for t in Tag::CCW {
+            match plan(&map, &path, t) {
+                Ok(p) => {
+                    prop_assert_eq!(p.steps().len(), walk.len());
+                    for (i, s) in p.steps().iter().enumerate() {
+                        prop_assert_eq!(s.vertex, walk[i]);
+                        if i > 0 {
+                            let turn = s.turn.unwrap_or(Turn::Straight);
+                            prop_assert_eq!(s.tag, p.steps()[i - 1].tag.after(turn));
+                        }
+                    }
+                    prop_assert!(!p.to_string().is_empty());
+                }
+                Err(e) => prop_assert!(!e.to_string().is_empty()),
+            }
+        }
+    }
+}
