@@ -643,3 +643,151 @@ fn weights_steer_the_path() {
     let p = sketch(&map, Vert::new(0), Vert::new(4), &SketchOptions::default()).unwrap();
     assert_eq!(p.len(), 4);
 }
+
+#[test]
+fn valence_2_is_refused_with_the_vertex() {
+    let mut map = gen::torus_grid(8, 8).map;
+    let r = zipmesh::ops::quad::insert_doublet(&mut map, Dart::new(0)).unwrap();
+    let w = r.vertex();
+    assert_eq!(map.valence(w), 2);
+    let ns: Vec<Vert> = map.vertex_darts(w).map(|d| map.dest(d)).collect();
+    let path = given(&map, &[ns[0], w, ns[1]]);
+    for t in Tag::CCW {
+        assert_eq!(
+            plan(&map, &path, t),
+            Err(PlanError::Valence {
+                index: 1,
+                vertex: w,
+                valence: 2
+            })
+        );
+    }
+    // A path that only passes beside it is fine.
+    let far = sketch(
+        &map,
+        Vert::new(36),
+        Vert::new(40),
+        &SketchOptions::default(),
+    )
+    .unwrap();
+    assert!(plan(&map, &far, Tag::LS).is_ok());
+}
+
+/// A self-avoiding walk on the `n` x `n` torus grid from (0, 0): each step turns by a random
+/// quarter (never back); the walk stops before revisiting a vertex. Returns lattice points.
+fn lattice_walk(n: u32, seed: u64, max_len: usize) -> Vec<(u32, u32)> {
+    let mut rng = zipmesh::rng::Rng::new(seed);
+    let dirs: [(i64, i64); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    let mut dir = rng.below(4);
+    let mut pts = vec![(0u32, 0u32)];
+    let mut seen = HashSet::from([(0u32, 0u32)]);
+    for _ in 0..max_len {
+        // 0 = straight, 1 = left, 3 = right.
+        dir = (dir + [0, 0, 1, 3][rng.below(4)]) % 4;
+        let (x, y) = pts[pts.len() - 1];
+        let nx = (x as i64 + dirs[dir].0).rem_euclid(n as i64) as u32;
+        let ny = (y as i64 + dirs[dir].1).rem_euclid(n as i64) as u32;
+        if !seen.insert((nx, ny)) {
+            break;
+        }
+        pts.push((nx, ny));
+    }
+    pts
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// On a regular torus grid the plan's turns are the lattice walk's geometric turns (the
+    /// sign of the cross product of consecutive steps), and carrying the terminal tag rotated
+    /// by pi back along the reversed path gives the initial tag rotated by pi.
+    #[test]
+    fn lattice_turns_and_reversal(seed in any::<u64>(), t in 0usize..4) {
+        let n = 16u32;
+        let map = gen::torus_grid(n as usize, n as usize).map;
+        let pts = lattice_walk(n, seed, 12);
+        prop_assume!(pts.len() >= 3);
+        let vs: Vec<Vert> = pts.iter().map(|&(x, y)| tv(n, x, y)).collect();
+        let path = given(&map, &vs);
+        let initial = Tag::CCW[t];
+        let p = plan(&map, &path, initial).unwrap();
+        let step = |a: (u32, u32), b: (u32, u32)| {
+            let w = |d: i64| if d > 1 { d - n as i64 } else if d < -1 { d + n as i64 } else { d };
+            (w(b.0 as i64 - a.0 as i64), w(b.1 as i64 - a.1 as i64))
+        };
+        let mut tag = initial;
+        for i in 1..pts.len() - 1 {
+            let (a, b) = (step(pts[i - 1], pts[i]), step(pts[i], pts[i + 1]));
+            let cross = a.0 * b.1 - a.1 * b.0;
+            let want = match cross.signum() { 1 => Turn::Left, -1 => Turn::Right, _ => Turn::Straight };
+            prop_assert_eq!(p.steps()[i].turn, Some(want));
+            tag = tag.after(want);
+            prop_assert_eq!(p.steps()[i].tag, tag);
+        }
+        let back: Vec<Vert> = vs.iter().rev().copied().collect();
+        let r = plan(&map, &given(&map, &back), p.terminal().rotate_pi()).unwrap();
+        prop_assert_eq!(r.terminal(), initial.rotate_pi());
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Arbitrary handles, forbidden lists and weights never panic; every answer is a valid path
+    /// or a typed error, and a plan along random walks on mixed meshes (boundaries, triangles,
+    /// irregular vertices) is either refused with a reason or has tags that follow its turns.
+    #[test]
+    fn no_panics_on_arbitrary_input(
+        seed in any::<u64>(),
+        a in 0u32..2000, b in 0u32..2000,
+        fe in proptest::collection::vec(any::<u32>(), 0..40),
+        ff in proptest::collection::vec(0u32..2000, 0..10),
+        w in proptest::collection::vec(prop_oneof![Just(f64::NAN), Just(-1.0), 0.0..10.0f64], 0..20),
+        mixed in any::<bool>(),
+    ) {
+        let map = if mixed { gen::random_mixed(300, 1, 2, seed).map } else { gen::random_quad(300, 0, 3, seed).map };
+        let (from, to) = (Vert::new(a % (map.vertex_slots() as u32 + 5)), Vert::new(b % (map.vertex_slots() as u32 + 5)));
+        let mut weights = vec![1.0; map.dart_slots() / 2];
+        for (i, &x) in w.iter().enumerate() {
+            let k = (seed as usize).wrapping_add(i * 7919) % weights.len().max(1);
+            if let Some(slot) = weights.get_mut(k) { *slot = x; }
+        }
+        for opts in [
+            SketchOptions { forbidden_edges: fe.clone(), forbidden_faces: ff.iter().map(|&f| Face::new(f)).collect(), ..Default::default() },
+            SketchOptions { weights: Some(weights.clone()), avoid_boundary: true, ..Default::default() },
+        ] {
+            if let Ok(p) = sketch(&map, from, to, &opts) {
+                check_path(&map, &p, from, to, &HashSet::new());
+            }
+        }
+        // A random walk, made simple by cutting it at its first repeat.
+        let mut rng = zipmesh::rng::Rng::new(seed);
+        let verts: Vec<Vert> = map.vertices().collect();
+        prop_assume!(!verts.is_empty());
+        let mut walk = vec![verts[rng.below(verts.len())]];
+        for _ in 0..20 {
+            let darts: Vec<Dart> = map.vertex_darts(walk[walk.len() - 1]).collect();
+            let next = map.dest(darts[rng.below(darts.len())]);
+            if walk.contains(&next) { break; }
+            walk.push(next);
+        }
+        prop_assume!(walk.len() >= 2);
+        let path = given(&map, &walk);
+        for t in Tag::CCW {
+            match plan(&map, &path, t) {
+                Ok(p) => {
+                    prop_assert_eq!(p.steps().len(), walk.len());
+                    for (i, s) in p.steps().iter().enumerate() {
+                        prop_assert_eq!(s.vertex, walk[i]);
+                        if i > 0 {
+                            let turn = s.turn.unwrap_or(Turn::Straight);
+                            prop_assert_eq!(s.tag, p.steps()[i - 1].tag.after(turn));
+                        }
+                    }
+                    prop_assert!(!p.to_string().is_empty());
+                }
+                Err(e) => prop_assert!(!e.to_string().is_empty()),
+            }
+        }
+    }
+}

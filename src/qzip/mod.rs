@@ -3,9 +3,9 @@
 //!
 //! The edit runs in four stages; this module implements the first two so far:
 //!
-//! 1. [`sketch`]: a simple edge path between two vertices ([`Path`]), shortest by default,
+//! 1. [`sketch`](mod@sketch): a simple edge path between two vertices ([`Path`]), shortest by default,
 //!    or a caller-given path, validated.
-//! 2. [`compass`]: the compass tags ([`Tag`]) parallel-transported along the path into a
+//! 2. [`compass`](mod@compass): the compass tags ([`Tag`]) parallel-transported along the path into a
 //!    printable [`Plan`].
 //! 3. Preparation (end-point adjustments): not yet implemented.
 //! 4. Execution (the serial collapses and splits): not yet implemented.

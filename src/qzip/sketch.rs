@@ -56,7 +56,8 @@ pub struct SketchOptions {
     /// Faces whose edges no path may use (protected regions).
     pub forbidden_faces: Vec<Face>,
     /// Per-edge weights indexed by edge index (length at least `map.dart_slots() / 2`), each
-    /// finite and non-negative; `None` means unit weights and breadth-first search.
+    /// finite and non-negative; `None` means unit weights and breadth-first search. Path
+    /// lengths whose sum overflows to infinity count as unreachable.
     pub weights: Option<Vec<f64>>,
 }
 
