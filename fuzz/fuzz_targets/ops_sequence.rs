@@ -5,9 +5,9 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::quad::{self, QuadRecord, Rotation};
-use zipmesh::ops::tri::{self, Undo};
+use zipmesh::ops::quad::{self, Rotation};
 use zipmesh::ops::Refusal;
+use zipmesh::ops::{tri, Undo};
 use zipmesh::{gen, Dart, Map};
 
 /// The mesh the bytes ask for: small, so that sequences run into every refusal rule.
@@ -41,10 +41,7 @@ fn mesh(pick: u8, a: u8, b: u8, seed: u64) -> (Map, bool) {
     }
 }
 
-enum Record {
-    Quad(QuadRecord),
-    Tri(Box<dyn Undo>),
-}
+type Record = Box<dyn Undo>;
 
 /// Applies operator `op` at dart `d` (`e` picks the second dart of a split), checking the
 /// refusal contract; returns the record when it applied.
@@ -55,22 +52,22 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
         match op % 6 {
             0 => (
                 quad::can_quad_collapse(map, d),
-                quad::quad_collapse(map, d).map(|r| Record::Quad(r.into())),
+                quad::quad_collapse(map, d).map(|r| Box::new(r) as Record),
             ),
             1 => {
                 let s = second(map);
                 (
                     quad::can_vertex_split(map, d, s),
-                    quad::vertex_split(map, d, s).map(|r| Record::Quad(r.into())),
+                    quad::vertex_split(map, d, s).map(|r| Box::new(r) as Record),
                 )
             }
             2 => (
                 quad::can_remove_valence2(map, d),
-                quad::remove_valence2(map, d).map(|r| Record::Quad(r.into())),
+                quad::remove_valence2(map, d).map(|r| Box::new(r) as Record),
             ),
             3 => (
                 quad::can_insert_doublet(map, d),
-                quad::insert_doublet(map, d).map(|r| Record::Quad(r.into())),
+                quad::insert_doublet(map, d).map(|r| Box::new(r) as Record),
             ),
             4 => {
                 let dir = if e & 1 == 0 {
@@ -80,14 +77,14 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
                 };
                 (
                     quad::can_rotate_edge(map, d, dir),
-                    quad::rotate_edge(map, d, dir).map(|r| Record::Quad(r.into())),
+                    quad::rotate_edge(map, d, dir).map(|r| Box::new(r) as Record),
                 )
             }
             _ => {
                 let v = map.origin(d);
                 (
                     quad::can_split_high_valence(map, v, d),
-                    quad::split_high_valence(map, v, d).map(|r| Record::Quad(r.into())),
+                    quad::split_high_valence(map, v, d).map(|r| Box::new(r) as Record),
                 )
             }
         }
@@ -95,21 +92,21 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
         match op % 4 {
             0 => (
                 tri::can_flip(map, d),
-                tri::flip(map, d).map(|r| Record::Tri(Box::new(r))),
+                tri::flip(map, d).map(|r| Box::new(r) as Record),
             ),
             1 => (
                 tri::can_collapse(map, d),
-                tri::collapse(map, d).map(|r| Record::Tri(Box::new(r))),
+                tri::collapse(map, d).map(|r| Box::new(r) as Record),
             ),
             2 => (
                 tri::can_split_edge(map, d),
-                tri::split_edge(map, d).map(|r| Record::Tri(Box::new(r))),
+                tri::split_edge(map, d).map(|r| Box::new(r) as Record),
             ),
             _ => {
                 let s = second(map);
                 (
                     tri::can_split_vertex(map, d, s),
-                    tri::split_vertex(map, d, s).map(|r| Record::Tri(Box::new(r))),
+                    tri::split_vertex(map, d, s).map(|r| Box::new(r) as Record),
                 )
             }
         }
@@ -148,11 +145,7 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     while let Some(r) = records.pop() {
-        let undone = match r {
-            Record::Quad(r) => r.undo(&mut map),
-            Record::Tri(r) => r.undo(&mut map),
-        };
-        assert_eq!(undone, Ok(()));
+        assert_eq!(r.undo(&mut map), Ok(()));
         assert_eq!(map.check(), Ok(()));
     }
     assert!(

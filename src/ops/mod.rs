@@ -90,3 +90,28 @@ impl fmt::Display for Refusal {
 
 #[cfg(feature = "std")]
 impl std::error::Error for Refusal {}
+
+/// A record that restores the map it was made on: implemented by every operator's record,
+/// quad and triangle alike, so that one undo stack can hold them all (`Vec<Box<dyn Undo>>`).
+///
+/// ```
+/// use zipmesh::ops::{quad, tri, Undo};
+/// use zipmesh::{gen, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let before = map.clone();
+/// let mut stack: Vec<Box<dyn Undo>> = Vec::new();
+/// stack.push(Box::new(quad::quad_collapse(&mut map, Dart::new(0)).unwrap()));
+/// stack.push(Box::new(quad::insert_doublet(&mut map, Dart::new(40)).unwrap()));
+/// while let Some(r) = stack.pop() {
+///     r.undo(&mut map).unwrap();
+/// }
+/// assert_eq!(map, before);
+/// let mut tet = zipmesh::Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap();
+/// let r = tri::split_edge(&mut tet, Dart::new(0)).unwrap();
+/// Undo::undo(&r, &mut tet).unwrap();
+/// assert_eq!(tet.num_vertices(), 4);
+/// ```
+pub trait Undo {
+    /// Restores the map as it was before the operation (see the record's own `undo`).
+    fn undo(&self, map: &mut crate::map::Map) -> Result<(), Refusal>;
+}

@@ -296,7 +296,7 @@ impl QuadCollapse {
     /// assert_eq!(map, before);
     /// assert_eq!(r.undo(&mut map), Err(Refusal::StaleRecord));
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let [h0, h1, h2, h3] = self.h;
         let [a, b, c, d] = self.v;
         if !map.is_live_dart(h0)
@@ -606,7 +606,7 @@ impl VertexSplit {
     /// r.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let [h0, ..] = self.h;
         let plan = match plan_collapse(map, h0) {
             Ok(p) if p.h == self.h && p.v == self.v && map.face(h0) == Some(self.slots.face) => p,

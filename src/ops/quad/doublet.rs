@@ -206,7 +206,7 @@ impl Valence2Removal {
     /// assert_eq!(map, before);
     /// assert_eq!(rem.undo(&mut map), Err(Refusal::StaleRecord));
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let [x, x1, x2, _] = self.qx;
         let [y, y1, y2, _] = self.qy;
         let merged = [x1, x2, y1, y2];
@@ -405,7 +405,7 @@ impl DoubletInsertion {
     /// r.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let [x, y] = self.slots.edges;
         let [x1, x2, y1, y2] = self.q;
         let plan = match plan_removal(map, x) {

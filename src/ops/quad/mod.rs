@@ -102,7 +102,7 @@ impl QuadRecord {
     /// r.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         match self {
             QuadRecord::Collapse(r) => r.undo(map),
             QuadRecord::Split(r) => r.undo(map),
@@ -351,3 +351,14 @@ impl Slots {
         }
     }
 }
+
+macro_rules! impl_undo {
+    ($($t:ty),*) => {
+        $(impl super::Undo for $t {
+            fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+                <$t>::undo(self, map)
+            }
+        })*
+    };
+}
+impl_undo!(QuadCollapse, VertexSplit, Valence2Removal, DoubletInsertion, EdgeRotation, QuadRecord);

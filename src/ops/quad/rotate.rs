@@ -242,7 +242,7 @@ impl EdgeRotation {
     /// r.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
-    pub fn undo(self, map: &mut Map) -> Result<(), Refusal> {
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let back = self.dir.reverse();
         let p = plan_rotation(map, self.h, back).map_err(|_| Refusal::StaleRecord)?;
         // The reverse rotation's new ends must be the old ends.

@@ -66,21 +66,7 @@ pub use collapse::{CollapseRecord, VertexSplitRecord};
 pub use edge_split::{can_split_edge, split_edge, EdgeSplitRecord};
 pub use flip::{can_flip, flip, FlipRecord};
 
-/// A record that can restore the map it was made on; implemented by every triangle record.
-///
-/// ```
-/// use zipmesh::ops::tri::{self, Undo};
-/// use zipmesh::{Dart, Map};
-/// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap();
-/// let before = map.clone();
-/// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
-/// Undo::undo(&rec, &mut map).unwrap();
-/// assert_eq!(map, before);
-/// ```
-pub trait Undo {
-    /// Restores the map as it was before the operation (see the record's own `undo`).
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal>;
-}
+pub use super::Undo;
 
 /// Minimum valence of a vertex after an operation: 3 inside, 2 on the boundary.
 #[inline]
