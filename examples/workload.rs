@@ -87,7 +87,11 @@ fn report(
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1000).max(3);
+    let n: usize = args
+        .get(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000)
+        .max(3);
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     let quads = zipmesh::gen::torus_quads(n, n);
     let tris = triangulate(&quads);

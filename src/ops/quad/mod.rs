@@ -361,4 +361,11 @@ macro_rules! impl_undo {
         })*
     };
 }
-impl_undo!(QuadCollapse, VertexSplit, Valence2Removal, DoubletInsertion, EdgeRotation, QuadRecord);
+impl_undo!(
+    QuadCollapse,
+    VertexSplit,
+    Valence2Removal,
+    DoubletInsertion,
+    EdgeRotation,
+    QuadRecord
+);
