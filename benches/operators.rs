@@ -69,6 +69,31 @@ fn operators(c: &mut Criterion) {
             quad::rotate_edge(&mut q, next(), quad::Rotation::Clockwise).map(|r| r.undo(&mut q))
         })
     });
+    // The strip collapse of Q-zip along a grid row, then the restoring splits, on a warm
+    // mesh (the workload example measures the same chains on a fresh copy).
+    for k in [7usize, 100] {
+        let (n, row) = (1000usize, 500usize);
+        g.bench_function(
+            format!("quad chain of {k} collapses + restoring splits"),
+            |b| {
+                b.iter(|| {
+                    let mut records = Vec::with_capacity(k);
+                    for i in 0..k {
+                        let f = zipmesh::Face::new((row * n + 10 + i) as u32);
+                        let corner = zipmesh::Vert::new((row * n + 10 + i) as u32);
+                        let d = q
+                            .face_darts(f)
+                            .find(|&d| q.origin(d) == corner)
+                            .expect("corner");
+                        records.push(quad::quad_collapse(&mut q, d).expect("chain collapse"));
+                    }
+                    for r in records.iter().rev() {
+                        r.undo(&mut q).expect("restoring split");
+                    }
+                })
+            },
+        );
+    }
     g.finish();
 }
 
