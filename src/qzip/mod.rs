@@ -23,7 +23,9 @@
 //! ```
 
 pub mod compass;
+mod execute;
 pub mod sketch;
 
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
+pub use execute::{execute_collapse_chain, ZipError, ZipReport};
 pub use sketch::{sketch, validate_path, Path, SketchError, SketchOptions};
