@@ -100,7 +100,7 @@ impl ZipReport {
     /// Where the initial singularity (the v5) went: the first merged vertex, which keeps the
     /// handle of the path's second vertex.
     ///
-    /// See the [module example](self).
+    /// See the example on [`execute_collapse_chain`].
     pub fn moved_from(&self) -> Vert {
         self.from
     }
@@ -108,7 +108,7 @@ impl ZipReport {
     /// Where the terminal singularity (the v3) went: the last collapsed quad's corner next to
     /// the path's end.
     ///
-    /// See the [module example](self).
+    /// See the example on [`execute_collapse_chain`].
     pub fn moved_to(&self) -> Vert {
         self.to
     }
@@ -124,7 +124,7 @@ impl ZipReport {
     /// the result is `==` the map before. On a refusal the records already undone stay undone
     /// and the error is returned.
     ///
-    /// See the [module example](self).
+    /// See the example on [`execute_collapse_chain`].
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         for r in self.records.iter().rev() {
             r.undo(map)?;
