@@ -429,16 +429,7 @@ fn check_deltas(before: &Map, after: &Map, op: Op, e: &Expect) {
 
 /// Loops plus surplus parallel edges: operators neither create nor remove any.
 fn defects(m: &Map) -> usize {
-    let mut pairs: Vec<(Vert, Vert)> = m
-        .darts()
-        .filter(|d| d.index() % 2 == 0)
-        .map(|d| (m.origin(d).min(m.dest(d)), m.origin(d).max(m.dest(d))))
-        .collect();
-    let loops = pairs.iter().filter(|(a, b)| a == b).count();
-    let n = pairs.len();
-    pairs.sort();
-    pairs.dedup();
-    loops + n - pairs.len()
+    zipmesh::invariants::non_simple_edges(m)
 }
 
 /// The inverse operator, as an ordinary operator on the result, is allowed and gives back

@@ -152,3 +152,31 @@ pub(crate) fn component_of_darts(map: &Map) -> Vec<u32> {
         })
         .collect()
 }
+
+/// The number of edges that keep the map from being a simple graph: every loop, plus every
+/// edge beyond the first between the same two vertices. Zero for a simple mesh; operators
+/// that neither create nor remove loops and multi-edges keep it unchanged.
+///
+/// ```
+/// use zipmesh::{gen, invariants::non_simple_edges, Map};
+/// assert_eq!(non_simple_edges(&gen::torus_grid(4, 4).map), 0);
+/// // Two triangles glued into a sphere: still one edge per pair of vertices.
+/// let m = Map::from_polygons(3, &[[0u32, 1, 2], [2, 1, 0]]).unwrap();
+/// assert_eq!(non_simple_edges(&m), 0);
+/// let loop_map = Map::from_permutation(&[0, 1], &[false, false]).unwrap(); // one loop
+/// assert_eq!(non_simple_edges(&loop_map), 1);
+/// ```
+pub fn non_simple_edges(map: &Map) -> usize {
+    let mut pairs: Vec<(u32, u32)> = (0..map.next.len() / 2)
+        .filter(|&e| map.next[2 * e] != NONE)
+        .map(|e| {
+            let (a, b) = (map.vert[2 * e], map.vert[2 * e + 1]);
+            (a.min(b), a.max(b))
+        })
+        .collect();
+    let loops = pairs.iter().filter(|(a, b)| a == b).count();
+    let n = pairs.len();
+    pairs.sort_unstable();
+    pairs.dedup();
+    loops + n - pairs.len()
+}

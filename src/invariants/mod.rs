@@ -8,6 +8,6 @@ mod counts;
 mod gauss_bonnet;
 mod valence;
 
-pub use counts::{euler_characteristic, Counts};
+pub use counts::{euler_characteristic, non_simple_edges, Counts};
 pub use gauss_bonnet::{gauss_bonnet, GaussBonnet};
 pub use valence::{irregular_vertices, is_irregular, regular_valence, Histograms, MeshKind};
