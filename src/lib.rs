@@ -21,7 +21,8 @@
 //!
 //! ## Features
 //! * `std` (default): mesh files ([`io`]), `std::error::Error` for the error types.
-//! * `cli`: the `zipmesh` command-line tool.
+//! * `campaign`: [`campaign`], property campaigns over generated or given meshes (rayon).
+//! * `cli`: the `zipmesh` command-line tool (includes `campaign`).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
 #![no_std]
 #![forbid(unsafe_code)]
@@ -33,6 +34,8 @@ extern crate std;
 
 #[cfg(feature = "arbitrary")]
 pub mod arbitrary;
+#[cfg(feature = "campaign")]
+pub mod campaign;
 pub mod gen;
 pub mod invariants;
 #[cfg(feature = "std")]

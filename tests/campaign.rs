@@ -1,0 +1,262 @@
+//! The campaign library: built-in properties pass, a deliberately broken operator is caught
+//! and shrunk, and reports do not depend on the number of jobs or on sharding.
+#![cfg(feature = "campaign")]
+
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+use zipmesh::campaign::{self, Case, Config, Outcome, Property, Shard};
+use zipmesh::ops::quad;
+use zipmesh::{io, Map, Vert};
+
+/// A deliberately broken operator (test only): a quad collapse whose undo is silently
+/// skipped when the merged vertex reaches valence 7 or more, a bug of the kind an
+/// optimisation ("nothing to restore for big fans") could introduce.
+fn broken_collapse_roundtrip(map: &mut Map, d: zipmesh::Dart) -> bool {
+    match quad::quad_collapse(map, d) {
+        Ok(rec) => {
+            if map.valence(rec_merged(map, d)) < 7 {
+                rec.undo(map).is_ok()
+            } else {
+                true // the bug: claims success without undoing
+            }
+        }
+        Err(_) => false,
+    }
+}
+
+/// The merged vertex of a collapse at `d` keeps `d`'s origin handle.
+fn rec_merged(map: &Map, d: zipmesh::Dart) -> Vert {
+    map.origin(d)
+}
+
+/// The broken operator as a property: collapse + "undo" must give the map back.
+fn broken_property() -> Property {
+    Property::new(
+        "broken-collapse-undo",
+        "a collapse and its (broken) undo restore the map",
+        |case: &Case| {
+            let before = &case.mesh.map;
+            let mut map = before.clone();
+            let mut checks = 0;
+            for d in case.sites(16) {
+                if quad::can_quad_collapse(&map, d).is_err() {
+                    continue;
+                }
+                broken_collapse_roundtrip(&mut map, d);
+                if map != *before {
+                    return Outcome::fail("collapse then undo differs", Some(before.origin(d)));
+                }
+                checks += 1;
+            }
+            Outcome::Pass { checks }
+        },
+    )
+}
+
+fn out_dir(name: &str) -> std::path::PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("campaign-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn builtin_properties_pass_on_a_small_campaign() {
+    let config = Config {
+        cases: 40,
+        max_faces: 600,
+        seed: 11,
+        ..Config::default()
+    };
+    let report = campaign::run(&config, &campaign::builtin());
+    assert!(report.passed(), "{}", report.table(true));
+    assert_eq!(report.run, 40);
+    for row in &report.rows {
+        assert_eq!(row.cases + row.skipped, 40, "{}", row.property);
+        assert_eq!(row.passed, row.cases, "{}", row.property);
+    }
+    // Every operator property applied somewhere: skips are not the whole story.
+    assert!(report.rows.iter().all(|r| r.cases > 0 && r.checks > 0));
+}
+
+#[test]
+fn broken_operator_is_caught_and_shrunk_to_a_small_replayable_mesh() {
+    let dir = out_dir("broken");
+    let config = Config {
+        cases: 30,
+        max_faces: 800,
+        seed: 3,
+        out_dir: Some(dir.clone()),
+        ..Config::default()
+    };
+    let broken = broken_property();
+    let report = campaign::run(&config, std::slice::from_ref(&broken));
+    assert!(!report.passed());
+    let row = &report.rows[0];
+    assert!(row.failed > 0);
+    assert_eq!(row.passed + row.failed, row.cases);
+    let failure = &report.failures[0];
+    let shrunk = failure
+        .shrunk
+        .as_ref()
+        .expect("shrinking finds a failing sub-mesh");
+    let faces = shrunk.mesh.map.num_faces();
+    eprintln!("shrunk to {faces} of {} faces", failure.original_faces);
+    assert!(
+        faces * 4 <= failure.original_faces,
+        "shrunk to {faces} of {} faces",
+        failure.original_faces
+    );
+    // Still fails, exactly as the replay builds it...
+    assert!(broken.check(&shrunk.case(config.seed)).is_fail());
+    // ...and from the OBJ file written atomically to the output directory.
+    let path = failure.path.as_ref().expect("counterexample written");
+    assert!(path.starts_with(&dir));
+    let (mesh, _) = io::read_mesh(path).unwrap();
+    assert_eq!(mesh.map, shrunk.mesh.map);
+    let mut replay = Case::from_mesh(mesh, config.seed, 0, "file");
+    replay.focus = shrunk.focus;
+    assert!(broken.check(&replay).is_fail());
+    assert!(failure.replay.contains(path.to_str().unwrap()));
+    assert!(failure.replay.contains("--property broken-collapse-undo"));
+    // The working operator passes on the same cases.
+    let good = campaign::select(&campaign::builtin(), &["quad-collapse".into()]).unwrap();
+    let config = Config {
+        out_dir: None,
+        ..config
+    };
+    assert!(campaign::run(&config, &good).passed());
+}
+
+#[test]
+fn report_is_identical_for_one_and_two_jobs() {
+    let mut properties = campaign::builtin();
+    properties.push(broken_property());
+    let base = Config {
+        cases: 24,
+        max_faces: 500,
+        seed: 99,
+        ..Config::default()
+    };
+    let one = campaign::run(
+        &Config {
+            jobs: Some(1),
+            ..base.clone()
+        },
+        &properties,
+    );
+    let two = campaign::run(
+        &Config {
+            jobs: Some(2),
+            ..base
+        },
+        &properties,
+    );
+    assert_eq!(one.table(false), two.table(false));
+    assert_eq!(one.to_json(false), two.to_json(false));
+    assert_eq!(one.failures.len(), 1);
+    let (a, b) = (&one.failures[0], &two.failures[0]);
+    assert_eq!(a.case, b.case);
+    let (sa, sb) = (a.shrunk.as_ref().unwrap(), b.shrunk.as_ref().unwrap());
+    assert_eq!(sa.mesh.map, sb.mesh.map);
+}
+
+#[test]
+fn shards_partition_the_cases() {
+    let seen: Arc<Mutex<Vec<(u64, usize)>>> = Arc::default();
+    let record = {
+        let seen = Arc::clone(&seen);
+        Property::new("record", "records the case", move |case: &Case| {
+            seen.lock()
+                .unwrap()
+                .push((case.index, case.mesh.map.num_faces()));
+            Outcome::Pass { checks: 1 }
+        })
+    };
+    let mut properties = campaign::kernel();
+    properties.push(record);
+    let base = Config {
+        cases: 21,
+        max_faces: 300,
+        seed: 5,
+        ..Config::default()
+    };
+    let full = campaign::run(&base, &properties);
+    let full_seen: BTreeSet<(u64, usize)> = seen.lock().unwrap().drain(..).collect();
+    let mut parts = Vec::new();
+    let mut union = BTreeSet::new();
+    for index in 0..2 {
+        let shard = Shard { index, count: 2 };
+        let r = campaign::run(
+            &Config {
+                shard,
+                ..base.clone()
+            },
+            &properties,
+        );
+        let got: Vec<(u64, usize)> = seen.lock().unwrap().drain(..).collect();
+        assert!(got.iter().all(|&(i, _)| i % 2 == index));
+        for x in got {
+            assert!(union.insert(x), "case {x:?} in two shards");
+        }
+        parts.push(r);
+    }
+    assert_eq!(union, full_seen);
+    assert_eq!(full_seen.len(), 21);
+    assert_eq!(parts[0].planned + parts[1].planned, full.planned);
+    for (k, row) in full.rows.iter().enumerate() {
+        let (a, b) = (&parts[0].rows[k], &parts[1].rows[k]);
+        assert_eq!(a.cases + b.cases, row.cases);
+        assert_eq!(a.passed + b.passed, row.passed);
+        assert_eq!(a.checks + b.checks, row.checks);
+    }
+}
+
+#[test]
+fn a_panicking_property_is_a_failure_not_a_crash() {
+    let p = Property::new("panics", "", |case: &Case| {
+        if case.index == 2 {
+            panic!("boom in user code");
+        }
+        Outcome::Pass { checks: 1 }
+    });
+    let config = Config {
+        cases: 4,
+        max_faces: 100,
+        shrink: false,
+        ..Config::default()
+    };
+    let r = campaign::run(&config, &[p]);
+    assert_eq!((r.rows[0].passed, r.rows[0].failed), (3, 1));
+    assert_eq!(r.failures[0].case, 2);
+    assert!(r.failures[0].message.contains("boom in user code"));
+    assert!(r.failures[0].replay.contains("--case 2"));
+}
+
+#[test]
+fn a_zero_time_limit_runs_nothing_and_says_so() {
+    let config = Config {
+        cases: 10,
+        time_limit: Some(Duration::ZERO),
+        ..Config::default()
+    };
+    let r = campaign::run(&config, &campaign::kernel());
+    assert!(r.timed_out);
+    assert_eq!((r.planned, r.run), (10, 0));
+    assert!(r.rows.iter().all(|row| row.cases == 0));
+}
+
+#[test]
+fn generated_cases_depend_only_on_seed_and_index() {
+    for i in [0u64, 1, 17, 1000] {
+        let a = Case::generate(8, i, 700);
+        let b = Case::generate(8, i, 700);
+        assert_eq!(a.mesh.map, b.mesh.map);
+        assert_eq!(a.origin, b.origin);
+    }
+    // Different seeds give different case sequences.
+    let differ =
+        (0..10).any(|i| Case::generate(1, i, 700).mesh.map != Case::generate(2, i, 700).mesh.map);
+    assert!(differ);
+}
