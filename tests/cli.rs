@@ -329,3 +329,154 @@ fn usage_errors_exit_2() {
     }
     assert_eq!(zipmesh(&["--help"]).status.code(), Some(0));
 }
+
+// ---------------------------------------------------------------------------------------
+// `zipmesh check`
+
+fn check_json(args: &[&str]) -> Value {
+    let mut all = vec!["check", "--json"];
+    all.extend_from_slice(args);
+    let out = zipmesh(&all);
+    assert_eq!(out.status.code(), Some(0), "{all:?}: {}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("check --json prints one JSON object")
+}
+
+/// The property rows without their (non-deterministic) times.
+fn rows_without_time(v: &Value) -> Vec<Value> {
+    v["properties"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let mut r = r.clone();
+            r.as_object_mut().unwrap().remove("seconds");
+            r
+        })
+        .collect()
+}
+
+#[test]
+fn check_json_passes_every_builtin_property() {
+    let v = check_json(&["--cases", "12", "--max-faces", "400", "--seed", "4"]);
+    assert_eq!(v["run"], 12);
+    assert_eq!(v["passed"], true);
+    assert!(v["failures"].as_array().unwrap().is_empty());
+    let rows = v["properties"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    for expected in [
+        "validity",
+        "euler",
+        "gauss-bonnet",
+        "canonical-relabel",
+        "quad-collapse",
+        "tri-flip",
+    ] {
+        assert!(
+            names.contains(&expected),
+            "{expected} missing from {names:?}"
+        );
+    }
+    for r in rows {
+        assert_eq!(r["passed"], r["cases"], "{r}");
+        assert_eq!(r["failed"], 0, "{r}");
+        let total = r["cases"].as_u64().unwrap() + r["skipped"].as_u64().unwrap();
+        assert_eq!(total, 12, "{r}");
+    }
+}
+
+#[test]
+fn check_table_is_the_same_for_one_and_two_jobs_and_shards_partition_it() {
+    let args = ["--cases", "10", "--max-faces", "300", "--seed", "21"];
+    let one = check_json(&[&args[..], &["--jobs", "1"]].concat());
+    let two = check_json(&[&args[..], &["--jobs", "2"]].concat());
+    assert_eq!(rows_without_time(&one), rows_without_time(&two));
+    let a = check_json(&[&args[..], &["--shard", "0/2"]].concat());
+    let b = check_json(&[&args[..], &["--shard", "1/2"]].concat());
+    assert_eq!(a["run"].as_u64().unwrap() + b["run"].as_u64().unwrap(), 10);
+    for (k, row) in rows_without_time(&one).iter().enumerate() {
+        for key in ["cases", "passed", "skipped", "checks"] {
+            let sum = a["properties"][k][key].as_u64().unwrap()
+                + b["properties"][k][key].as_u64().unwrap();
+            assert_eq!(sum, row[key].as_u64().unwrap(), "{key} of {}", row["name"]);
+        }
+    }
+}
+
+#[test]
+fn check_selects_properties_and_replays_one_case() {
+    let v = check_json(&[
+        "--cases",
+        "5",
+        "--property",
+        "euler",
+        "--property",
+        "validity",
+    ]);
+    let names: Vec<&str> = v["properties"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["euler", "validity"]);
+    let v = check_json(&["--case", "3", "--seed", "8", "--property", "tri-flip"]);
+    assert_eq!(
+        (v["planned"].as_u64(), v["run"].as_u64()),
+        (Some(1), Some(1))
+    );
+    let out = zipmesh(&["check", "--list"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(stdout(&out).contains("gauss-bonnet"));
+}
+
+#[test]
+fn check_files_runs_the_properties_on_each_mesh() {
+    let files = [
+        shared("quad/osd_catmark_torus.obj"),
+        shared("tri/torus.obj"),
+    ];
+    let v = check_json(&[s(&files[0]), s(&files[1]), "--max-distance", "6"]);
+    assert_eq!(v["planned"], 2);
+    assert_eq!(v["passed"], true);
+    let rows = v["properties"].as_array().unwrap();
+    let row = |name: &str| rows.iter().find(|r| r["name"] == name).unwrap().clone();
+    // One quad mesh and one triangle mesh: each operator family applies to one of them.
+    assert_eq!(row("validity")["cases"], 2);
+    assert_eq!(row("quad-collapse")["cases"], 1);
+    assert_eq!(row("tri-collapse")["cases"], 1);
+    // The text form ends with the verdict.
+    let out = zipmesh(&["check", s(&files[0])]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        stdout(&out).contains("all properties hold"),
+        "{}",
+        stdout(&out)
+    );
+}
+
+#[test]
+fn check_usage_and_input_errors_exit_2() {
+    let missing = temp_dir("check-missing").join("absent.obj");
+    for args in [
+        vec!["check", "--property", "nope"],
+        vec!["check", "--shard", "2/2"],
+        vec!["check", "--shard", "one/two"],
+        vec!["check", "--jobs", "0"],
+        vec!["check", "--time-limit", "-1"],
+        vec!["check", "--cases", "many"],
+        vec!["check", "--frobnicate"],
+        vec!["check", "--case", "1", "x.obj"],
+        vec!["check", s(&missing)],
+    ] {
+        let out = zipmesh(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(!stderr(&out).is_empty(), "{args:?}");
+        assert!(!stderr(&out).contains("panicked"), "{args:?}");
+    }
+    let out = zipmesh(&["check", "--property", "nope"]);
+    let err = stderr(&out);
+    assert!(
+        err.contains("nope") && err.contains("validity") && err.contains("tri-edge-split"),
+        "{err}"
+    );
+}

@@ -140,7 +140,7 @@ impl FromStr for Shard {
 ///
 /// ```
 /// let c = zipmesh::campaign::Config::default();
-/// assert_eq!((c.seed, c.cases, c.max_faces), (0, 300, 1000));
+/// assert_eq!((c.seed, c.cases, c.max_faces), (0, 2000, 1000));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
@@ -167,7 +167,7 @@ impl Default for Config {
     fn default() -> Config {
         Config {
             seed: 0,
-            cases: 300,
+            cases: 2000,
             max_faces: 1000,
             shard: Shard::ALL,
             jobs: None,
@@ -249,7 +249,8 @@ pub fn run_with_progress(
 }
 
 /// Runs `properties` over the given cases (for example meshes read from files); the shard
-/// selects by position in `cases`. `config.cases` is not used.
+/// selects by position in `cases`. `config.cases` is not used; `config.max_faces` only
+/// appears in the replay command of a generated case.
 ///
 /// ```
 /// use zipmesh::campaign::{self, Case, Config};
@@ -272,13 +273,13 @@ pub fn run_cases(
         properties,
         progress,
         &|case, property| {
-            let seed = case.seed;
+            let (seed, max) = (case.seed, config.max_faces);
             match &case.origin {
                 Origin::Given(label) => {
                     format!("zipmesh check {label} --seed {seed} --property {property}")
                 }
                 Origin::Generated { .. } => format!(
-                    "zipmesh check --seed {seed} --case {} --property {property}",
+                    "zipmesh check --seed {seed} --max-faces {max} --case {} --property {property}",
                     case.index
                 ),
             }

@@ -1,8 +1,10 @@
 //! The `zipmesh` command-line tool: argument parsing and printing only; every number comes
 //! from the library.
 //!
-//! Exit codes: 0 success (for `iso`: isomorphic), 1 not isomorphic, 2 any error (bad file,
-//! bad usage).
+//! Exit codes: 0 success (for `iso`: isomorphic), 1 not isomorphic (for `check`: a property
+//! failed), 2 any error (bad file, bad usage).
+
+mod check;
 
 use clap::{Parser, Subcommand};
 use serde_json::{json, Map as JsonMap, Value};
@@ -22,7 +24,7 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
 #[command(
     name = "zipmesh",
     version,
-    about = "Counts, invariants and canonical hashes of quad, triangle and polygon meshes (OBJ, OFF)"
+    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -54,6 +56,9 @@ enum Command {
         #[arg(long)]
         mirror: bool,
     },
+    /// Property campaigns: check the kernel's and the operators' properties on generated
+    /// meshes (no arguments: the default campaign) or on the given files. Exit 1 on a failure.
+    Check(check::CheckArgs),
 }
 
 fn main() -> ExitCode {
@@ -80,6 +85,7 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
+        Command::Check(args) => return Ok(check::run(args)),
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

@@ -1,0 +1,209 @@
+//! `zipmesh check`: property campaigns on generated cases or on given mesh files.
+//!
+//! Exit codes: 0 every property held, 1 a property failed, 2 a usage or input error.
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Duration;
+use zipmesh::campaign::{self, Case, Config, Report, Shard};
+use zipmesh::{io, Vert};
+
+/// Arguments of `zipmesh check`.
+#[derive(Args)]
+pub struct CheckArgs {
+    /// Mesh files (.obj, .off) to check; without them, generated cases.
+    files: Vec<PathBuf>,
+    /// The campaign seed: the same seed and arguments give the same cases and table.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// How many generated cases (before sharding).
+    #[arg(long, default_value_t = Config::default().cases)]
+    cases: u64,
+    /// The face budget of a generated case.
+    #[arg(long, default_value_t = Config::default().max_faces)]
+    max_faces: usize,
+    /// Check only this property (repeatable); `--list` prints the names.
+    #[arg(long = "property", value_name = "NAME")]
+    properties: Vec<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    jobs: Option<u64>,
+    /// Print one JSON object instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Run only the cases whose position p has p % n == i.
+    #[arg(long, value_name = "i/n")]
+    shard: Option<Shard>,
+    /// Stop starting new cases after this many seconds.
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
+    /// Q-zip pairs: the largest distance between two irregular vertices to pair (used by
+    /// the Q-zip properties once they are registered; accepted now).
+    #[arg(long, default_value_t = 12)]
+    max_distance: usize,
+    /// Run only generated case number INDEX (what a replay line uses).
+    #[arg(long, value_name = "INDEX")]
+    case: Option<u64>,
+    /// Try edits at this vertex first (what a replay line on a counterexample uses).
+    #[arg(long, value_name = "VERTEX")]
+    focus: Option<u32>,
+    /// Directory for shrunk counterexamples (OBJ).
+    #[arg(long, default_value = ".")]
+    out: PathBuf,
+    /// Print the property names and what each asserts, then exit.
+    #[arg(long)]
+    list: bool,
+}
+
+/// Runs `zipmesh check`.
+pub fn run(args: CheckArgs) -> ExitCode {
+    match run_inner(args) {
+        Ok(code) => code,
+        Err(message) => {
+            eprintln!("zipmesh check: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
+    let all = campaign::builtin();
+    if args.list {
+        for p in &all {
+            println!("{:<24} {}", p.name(), p.about());
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    let properties = campaign::select(&all, &args.properties).map_err(|unknown| {
+        let names: Vec<&str> = all.iter().map(|p| p.name()).collect();
+        format!(
+            "unknown property {unknown:?}; valid names: {}",
+            names.join(", ")
+        )
+    })?;
+    let time_limit = match args.time_limit {
+        Some(t) if t.is_finite() && t >= 0.0 => Some(Duration::from_secs_f64(t.min(1e9))),
+        Some(t) => {
+            return Err(format!(
+                "--time-limit must be a number of seconds >= 0, got {t}"
+            ))
+        }
+        None => None,
+    };
+    if args.case.is_some() && !args.files.is_empty() {
+        return Err("--case selects a generated case; it cannot be used with files".into());
+    }
+    let config = Config {
+        seed: args.seed,
+        cases: args.cases,
+        max_faces: args.max_faces,
+        shard: args.shard.unwrap_or(Shard::ALL),
+        jobs: args.jobs.map(|j| j as usize),
+        time_limit,
+        shrink: true,
+        out_dir: Some(args.out.clone()),
+    };
+    let focus = args.focus.map(Vert::new);
+    let given: Option<Vec<Case>> = if !args.files.is_empty() {
+        let mut cases = Vec::with_capacity(args.files.len());
+        for path in &args.files {
+            let (mesh, _) = io::read_mesh(path).map_err(|e| e.to_string())?;
+            let mut case = Case::from_mesh(mesh, args.seed, 0, path.display().to_string());
+            case.focus = focus;
+            cases.push(case);
+        }
+        Some(cases)
+    } else {
+        args.case.map(|i| {
+            let mut case = Case::generate(args.seed, i, args.max_faces);
+            case.focus = focus;
+            vec![case]
+        })
+    };
+    let planned = match &given {
+        Some(cases) => (0..cases.len() as u64)
+            .filter(|&p| config.shard.contains(p))
+            .count(),
+        None => (0..config.cases)
+            .filter(|&p| config.shard.contains(p))
+            .count(),
+    };
+    let bar = if !args.json && std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(planned as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} cases, {elapsed} (eta {eta})")
+        {
+            bar.set_style(style);
+        }
+        Some(bar)
+    } else {
+        None
+    };
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let report = match &given {
+        Some(cases) => campaign::run_cases(&config, cases, &properties, &tick),
+        None => campaign::run_with_progress(&config, &properties, &tick),
+    };
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    if args.json {
+        println!("{}", report.to_json(true));
+    } else {
+        print_text(&report);
+    }
+    Ok(if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn print_text(report: &Report) {
+    print!("{}", report.table(true));
+    let scope = if report.shard == Shard::ALL {
+        String::new()
+    } else {
+        format!(" (shard {})", report.shard)
+    };
+    println!(
+        "{} of {} cases run{scope}, seed {}",
+        report.run, report.planned, report.seed
+    );
+    if report.timed_out {
+        println!(
+            "time limit reached: {} cases not run",
+            report.planned - report.run
+        );
+    }
+    for f in &report.failures {
+        println!();
+        println!(
+            "FAILED {} on case {}: {}",
+            f.property, f.case, f.description
+        );
+        println!("  {}", f.message);
+        match (&f.shrunk, &f.path) {
+            (Some(s), Some(path)) => println!(
+                "  counterexample: {} ({} faces, shrunk from {}): {}",
+                path.display(),
+                s.mesh.map.num_faces(),
+                f.original_faces,
+                s.message
+            ),
+            (Some(_), None) => println!("  (the shrunk counterexample could not be written)"),
+            _ => println!("  (no smaller failing mesh found)"),
+        }
+        println!("  replay: {}", f.replay);
+    }
+    if report.passed() && !report.timed_out {
+        println!("all properties hold");
+    }
+}
