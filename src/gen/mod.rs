@@ -141,6 +141,83 @@ pub fn cube(n: usize) -> Mesh {
     build(positions, &faces)
 }
 
+/// The regular icosahedron: 12 vertices of valence 5, 20 triangles (genus 0).
+///
+/// Its Catmull-Clark subdivisions are quad meshes with 12 isolated v5s (the icosahedron's
+/// vertices) and 20 isolated v3s (its face centres), `2^(levels - 1)` edges apart: the test
+/// bed for moving singularity pairs.
+///
+/// ```
+/// use zipmesh::gen::{catmull_clark, icosahedron};
+/// let ico = icosahedron();
+/// assert_eq!((ico.map.num_vertices(), ico.map.num_faces()), (12, 20));
+/// let q = catmull_clark(&catmull_clark(&ico));
+/// let valence = |k| q.map.vertices().filter(|&v| q.map.valence(v) == k).count();
+/// assert_eq!((valence(3), valence(5)), (20, 12));
+/// ```
+pub fn icosahedron() -> Mesh {
+    let t = (1.0 + libm::sqrt(5.0)) / 2.0;
+    let positions: Vec<DVec3> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .iter()
+    .map(|p| DVec3::from_array(*p))
+    .collect();
+    let faces: [[u32; 3]; 20] = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    build(positions, &faces)
+}
+
+/// The icosahedron after `levels` Catmull-Clark steps: 12 v5s (vertices 0 to 11, the
+/// icosahedron's vertices) and, for `levels >= 1`, 20 v3s (vertices 42 to 61, its face
+/// centres, face `f` at `42 + f`), `2^(levels - 1)` edges from their neighbours, the rest
+/// regular. With two levels, vertex 0 (v5) and vertex 42 (v3) are four edges apart.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// let m = gen::subdivided_icosahedron(2).map;
+/// assert_eq!((m.valence(Vert::new(0)), m.valence(Vert::new(42))), (5, 3));
+/// assert_eq!(m.num_faces(), 20 * 3 * 4);
+/// ```
+pub fn subdivided_icosahedron(levels: usize) -> Mesh {
+    let mut mesh = icosahedron();
+    for _ in 0..levels {
+        mesh = catmull_clark(&mesh);
+    }
+    mesh
+}
+
 /// Builds a generated mesh; generators only produce valid polygon lists.
 fn build<F: AsRef<[u32]>>(positions: Vec<DVec3>, faces: &[F]) -> Mesh {
     match Mesh::from_polygons(positions, faces) {

@@ -109,6 +109,19 @@ impl Tag {
         self.ccw().ccw()
     }
 
+    /// The compass turned by `k` quarter turns counter-clockwise (negative: clockwise).
+    ///
+    /// ```
+    /// use zipmesh::qzip::Tag;
+    /// assert_eq!(Tag::LS.turned(1), Tag::RC);
+    /// assert_eq!(Tag::LS.turned(-1), Tag::RS);
+    /// assert_eq!(Tag::LC.turned(6), Tag::LS);
+    /// ```
+    pub fn turned(self, k: i32) -> Tag {
+        let i = Tag::CCW.iter().position(|&t| t == self).unwrap_or(0) as i32;
+        Tag::CCW[(i + k).rem_euclid(4) as usize]
+    }
+
     /// The tag after a turn: straight keeps it, left is [`Tag::ccw`], right is [`Tag::cw`].
     ///
     /// ```

@@ -1,130 +1,165 @@
-//! Stage 4 of Q-zip (partial): executing a plan made only of collapses.
+//! Stage 4 of Q-zip, execution: the serial operations, the v2/v6 clean-up and the report.
 //!
-//! The simplest case of the paper's Sec. 2.6: a straight collapse chain that starts at a v5
-//! and ends at a v3 needs no end-point adjustment. [`execute_collapse_chain`] applies one quad
-//! collapse per path edge `P -> N`, on the side the tag names: for LC the quad on the right of
-//! the edge, for RC the quad on the left; in both cases `N` (which keeps its handle) is merged
-//! with that quad's corner next to `P`. The v5 moves to the first merged vertex and the v3 to
-//! the last quad's corner next to the path's end (see `docs/qzip.md`).
+//! [`execute`] walks a prepared [`Surgery`] from its first vertex. At each vertex `P` with
+//! next vertex `N` (see `docs/qzip.md`):
+//!
+//! * **no-op**: nothing; `P` becomes the guide of the next operation.
+//! * **LC / RC**: the quad on the right (LC) or left (RC) of the edge `P -> N` is collapsed,
+//!   merging `N` (which keeps its handle) with that quad's corner next to `P`; the quad's
+//!   corner next to `N` (the transient v3) becomes the guide.
+//! * **LS / RS**: `P` is split along its edges to the guide and to `N`; the copy on the left
+//!   of the path (LS) or on its right (RS) continues the path and becomes the guide.
+//!
+//! After the whole chain, vertices the chain made valence 2 are removed (two v3s come back)
+//! and vertices it made valence 6 are split into two regular ones (two v5s appear): the
+//! post-processing of Sec. 2.7, done once at the end because a v5 start with a collapse makes
+//! a transient v6 that the next operation resolves.
 //!
 //! ```
-//! use zipmesh::{gen, ops::quad, Vert};
-//! use zipmesh::qzip::{execute_collapse_chain, plan, validate_path, SketchOptions, Tag};
-//! // Split a regular vertex along two opposite edges: two v3 copies, two v5 ends.
-//! let mut map = gen::torus_grid(8, 8).map;
-//! let s1 = map.vertex_dart(Vert::new(27));
-//! let s2 = map.rotate_cw(map.rotate_cw(s1));
-//! quad::vertex_split(&mut map, s1, s2).unwrap();
+//! use zipmesh::{gen, Vert};
+//! use zipmesh::qzip::{zip, SketchOptions, Tag};
+//! let mut map = gen::subdivided_icosahedron(2).map;
+//! let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 //! let before = map.clone();
-//! let mut moved = 0;
-//! for v5 in before.vertices().filter(|&v| before.valence(v) == 5) {
-//!     for v3 in before.vertex_darts(v5).map(|d| before.dest(d)) {
-//!         if before.valence(v3) != 3 {
-//!             continue;
-//!         }
-//!         let path = validate_path(&before, v5, v3, &[v5, v3], &SketchOptions::default()).unwrap();
-//!         for tag in [Tag::LC, Tag::RC] {
-//!             // Either the pair moves by one edge, or a third singularity on the strip makes
-//!             // the executor refuse; both leave a map that undo or refusal restores exactly.
-//!             if let Ok(r) = execute_collapse_chain(&mut map, &plan(&before, &path, tag).unwrap()) {
-//!                 assert_eq!((map.valence(r.moved_from()), map.valence(r.moved_to())), (5, 3));
-//!                 r.undo(&mut map).unwrap();
-//!                 moved += 1;
-//!             }
-//!             assert_eq!(map, before);
-//!         }
-//!     }
-//! }
-//! assert!(moved > 0);
+//! let r = zip(&mut map, v3, v5, Tag::LS, &SketchOptions::default()).unwrap();
+//! assert_eq!(map.check(), Ok(()));
+//! assert_eq!((map.valence(r.moved_from()), map.valence(r.moved_to())), (3, 5));
+//! r.undo(&mut map).unwrap();
+//! assert_eq!(map, before);
 //! ```
 
 use alloc::vec::Vec;
 use core::fmt;
 
-use super::compass::{Plan, Tag};
-use crate::ops::quad::{quad_collapse, QuadCollapse};
+use super::compass::Tag;
+use super::prepare::{dart_between, EndRule, StartRule, Surgery};
+use crate::invariants::{regular_valence, MeshKind};
+use crate::ops::quad::{
+    quad_collapse, remove_valence2, split_high_valence, vertex_split, QuadRecord,
+};
 use crate::ops::Refusal;
-use crate::{Dart, Map, Vert};
+use crate::{Dart, Face, Map, Vert};
 
-/// What an executed collapse chain did, with the records for an exact undo.
+/// What an executed Q-zip did: the moved singularities, counts, footprint and scar, and the
+/// records for an exact undo.
 ///
 /// ```
-/// use zipmesh::{gen, ops::quad, Vert};
-/// use zipmesh::qzip::{execute_collapse_chain, plan, validate_path, SketchOptions, Tag};
-/// let mut map = gen::torus_grid(8, 8).map;
-/// let s1 = map.vertex_dart(Vert::new(27));
-/// let s2 = map.rotate_cw(map.rotate_cw(s1));
-/// quad::vertex_split(&mut map, s1, s2).unwrap();
-/// let mut reports = Vec::new();
-/// for v5 in map.vertices().filter(|&v| map.valence(v) == 5) {
-///     for v3 in map.vertex_darts(v5).map(|d| map.dest(d)).filter(|&v| map.valence(v) == 3) {
-///         let path = validate_path(&map, v5, v3, &[v5, v3], &SketchOptions::default()).unwrap();
-///         for tag in [Tag::LC, Tag::RC] {
-///             let mut copy = map.clone();
-///             if let Ok(r) = execute_collapse_chain(&mut copy, &plan(&map, &path, tag).unwrap()) {
-///                 assert_eq!(r.tag(), tag);
-///                 reports.push(r);
-///             }
-///         }
-///     }
-/// }
-/// assert!(!reports.is_empty());
-/// for r in &reports {
-///     assert_eq!(r.records().len(), r.collapses());
-///     assert_eq!(r.collapses(), 1);
-/// }
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{zip, SketchOptions, Tag};
+/// let mut map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let v0 = map.num_vertices();
+/// let r = zip(&mut map, v5, v3, Tag::LC, &SketchOptions::default()).unwrap();
+/// assert_eq!(map.num_vertices() as isize, v0 as isize + r.vertex_delta());
+/// assert_eq!(r.footprint_faces().len(), r.collapses());
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ZipReport {
-    tag: Tag,
-    from: Vert,
-    to: Vert,
-    records: Vec<QuadCollapse>,
+    surgery: Surgery,
+    records: Vec<QuadRecord>,
+    splits: usize,
+    collapses: usize,
+    v2_removals: usize,
+    v6_splits: usize,
+    moved_from: Vert,
+    moved_to: Vert,
+    footprint_faces: Vec<Face>,
+    footprint_edges: Vec<usize>,
+    scar_faces: Vec<Face>,
+    scar_edges: Vec<usize>,
 }
 
 impl ZipReport {
-    /// The number of quad collapses applied (the path's edge count).
+    /// The surgery that was executed (the adjusted path and its operations).
+    ///
+    /// See [`execute`] for an example.
+    pub fn surgery(&self) -> &Surgery {
+        &self.surgery
+    }
+
+    /// The number of vertex splits of the chain (clean-up splits not included).
+    ///
+    /// See [`ZipReport`] for an example.
+    pub fn splits(&self) -> usize {
+        self.splits
+    }
+
+    /// The number of quad collapses of the chain.
     ///
     /// See [`ZipReport`] for an example.
     pub fn collapses(&self) -> usize {
-        self.records.len()
+        self.collapses
     }
 
-    /// The collapse tag the chain ran with (LC or RC).
+    /// The change of the vertex count: splits minus collapses, plus the clean-up's valence-6
+    /// splits minus its valence-2 removals.
     ///
     /// See [`ZipReport`] for an example.
-    pub fn tag(&self) -> Tag {
-        self.tag
+    pub fn vertex_delta(&self) -> isize {
+        (self.splits + self.v6_splits) as isize - (self.collapses + self.v2_removals) as isize
     }
 
-    /// Where the initial singularity (the v5) went: the first merged vertex, which keeps the
-    /// handle of the path's second vertex.
+    /// The number of valence-2 removals and of valence-6 splits done by the clean-up.
     ///
-    /// See the example on [`execute_collapse_chain`].
+    /// See [`execute`] for an example.
+    pub fn cleanup_counts(&self) -> (usize, usize) {
+        (self.v2_removals, self.v6_splits)
+    }
+
+    /// Where the initial singularity went (a vertex of the edited map).
+    ///
+    /// See the module example.
     pub fn moved_from(&self) -> Vert {
-        self.from
+        self.moved_from
     }
 
-    /// Where the terminal singularity (the v3) went: the last collapsed quad's corner next to
-    /// the path's end.
+    /// Where the terminal singularity went (a vertex of the edited map).
     ///
-    /// See the example on [`execute_collapse_chain`].
+    /// See the module example.
     pub fn moved_to(&self) -> Vert {
-        self.to
+        self.moved_to
     }
 
-    /// The collapse records, in the order applied.
+    /// The footprint's faces: quads of the original map deleted by collapses (handles of the
+    /// original map; a handle may be reused by the scar).
     ///
     /// See [`ZipReport`] for an example.
-    pub fn records(&self) -> &[QuadCollapse] {
+    pub fn footprint_faces(&self) -> &[Face] {
+        &self.footprint_faces
+    }
+
+    /// The footprint's edges: edges of the original map split in two (edge indices, dart / 2).
+    ///
+    /// See [`execute`] for an example.
+    pub fn footprint_edges(&self) -> &[usize] {
+        &self.footprint_edges
+    }
+
+    /// The scar's faces: quads made by the chain's splits that are still there.
+    ///
+    /// See [`execute`] for an example.
+    pub fn scar_faces(&self) -> &[Face] {
+        &self.scar_faces
+    }
+
+    /// The scar's edges: edges into which collapses merged two edges, still there.
+    ///
+    /// See [`execute`] for an example.
+    pub fn scar_edges(&self) -> &[usize] {
+        &self.scar_edges
+    }
+
+    /// The operator records in the order applied (chain, then clean-up).
+    ///
+    /// See [`execute`] for an example.
+    pub fn records(&self) -> &[QuadRecord] {
         &self.records
     }
 
-    /// Undoes the whole chain (records in reverse order): with the map as the chain left it,
-    /// the result is `==` the map before. On a refusal the records already undone stay undone
-    /// and the error is returned.
+    /// Undoes the whole edit (records in reverse order): with the map as the edit left it,
+    /// the result is `==` the map before.
     ///
-    /// See the example on [`execute_collapse_chain`].
+    /// See the module example.
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         for r in self.records.iter().rev() {
             r.undo(map)?;
@@ -133,61 +168,56 @@ impl ZipReport {
     }
 }
 
-/// Why [`execute_collapse_chain`] refused; the map is unchanged in every case.
+/// Why [`execute`] refused; the map is unchanged in every case.
 ///
 /// ```
-/// use zipmesh::{qzip::{Tag, ZipError}, Vert};
-/// let e = ZipError::NotCollapse { index: 0, vertex: Vert::new(3), tag: Tag::LS };
-/// assert!(e.to_string().contains("LS"));
+/// use zipmesh::qzip::ZipError;
+/// use zipmesh::Vert;
+/// let e = ZipError::StalePlan { index: 3 };
+/// assert!(e.to_string().contains("3"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ZipError {
-    /// A plan step's tag is a split (or differs from the first tag): this executor only runs
-    /// chains whose every tag is the same collapse, i.e. straight collapse paths.
-    NotCollapse {
-        /// Position in the plan.
-        index: usize,
-        /// The vertex.
-        vertex: Vert,
-        /// Its tag.
-        tag: Tag,
-    },
-    /// An end is not the one this executor handles without end-point adjustment: the start
-    /// must be an interior v5 and the end an interior v3.
-    WrongEnd {
-        /// Position in the plan (0 or the last).
-        index: usize,
-        /// The vertex.
-        vertex: Vert,
-        /// Its valence.
-        valence: usize,
-        /// Whether it is on the boundary.
-        boundary: bool,
-    },
-    /// A vertex the chain's analysis needs regular is not: an interior path vertex, or a
-    /// corner of a quad to be collapsed off the path. The chain would then merge or touch a
-    /// third singularity and the pair would not simply move (Sec. 2.6 assumes them apart).
-    Irregular {
-        /// Position in the plan of the edge whose quad (or whose first vertex) it is.
-        index: usize,
-        /// The vertex.
-        vertex: Vert,
-        /// Its valence.
-        valence: usize,
-        /// Whether it is on the boundary.
-        boundary: bool,
-    },
-    /// The plan does not fit the map: a vertex is dead, or the edge from plan vertex `index`
-    /// to the next is missing or not unique (when the chain reaches it).
+    /// The surgery does not fit the map: at position `index` a vertex is dead or the edge to
+    /// the next vertex (or to the guide) is missing or not unique.
     StalePlan {
-        /// Position in the plan.
+        /// Position in the surgery.
         index: usize,
     },
-    /// A quad collapse was refused by the operator.
-    Refused {
-        /// Position in the plan of the edge's first vertex.
+    /// A collapse would delete a vertex the surgery still has to visit.
+    Lost {
+        /// Position of the collapse in the surgery.
         index: usize,
-        /// That vertex.
+        /// The vertex that would be deleted.
+        vertex: Vert,
+    },
+    /// An operation was refused by the operator (not realizable here).
+    Refused {
+        /// Position in the surgery.
+        index: usize,
+        /// The vertex.
+        vertex: Vert,
+        /// The operation.
+        tag: Tag,
+        /// The operator's reason.
+        refusal: Refusal,
+    },
+    /// The edit would change the irregular vertices other than by moving the pair (our
+    /// reading of the rules does not cover this configuration): a guard, checked on every
+    /// vertex the edit touched, so that grid preservation holds for every edit that is done.
+    NotGridPreserving {
+        /// Irregular vertices among the touched ones before.
+        before: usize,
+        /// And after.
+        after: usize,
+    },
+    /// The irregular vertices were kept, but the two moved singularities cannot be told
+    /// apart from others the edit touched (crowded configurations): refused rather than
+    /// reported wrongly.
+    Untracked,
+    /// A clean-up operation (valence-2 removal or valence-6 split) was refused.
+    Cleanup {
+        /// The vertex.
         vertex: Vert,
         /// The operator's reason.
         refusal: Refusal,
@@ -197,47 +227,39 @@ pub enum ZipError {
 impl fmt::Display for ZipError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::NotCollapse { index, vertex, tag } => write!(
-                f,
-                "plan vertex {} (position {index}) has tag {tag}; only chains of one collapse \
-                 tag (straight LC or RC paths) can be executed so far",
-                vertex.index()
-            ),
-            Self::WrongEnd {
-                index,
-                vertex,
-                valence,
-                boundary,
-            } => write!(
-                f,
-                "plan end {} (position {index}) has valence {valence}{}; a collapse chain \
-                 without end-point adjustment needs an interior v5 start and an interior v3 end",
-                vertex.index(),
-                if *boundary { " on the boundary" } else { "" }
-            ),
-            Self::Irregular {
-                index,
-                vertex,
-                valence,
-                boundary,
-            } => write!(
-                f,
-                "vertex {} (at the plan's edge {index}) has valence {valence}{}; a collapse \
-                 chain needs a regular interior path and regular strip corners",
-                vertex.index(),
-                if *boundary { " on the boundary" } else { "" }
-            ),
             Self::StalePlan { index } => write!(
                 f,
-                "the plan's edge {index} is missing or not unique in this map"
+                "the surgery does not fit this map at position {index} (a vertex is gone, or an \
+                 edge is missing or not unique)"
+            ),
+            Self::Lost { index, vertex } => write!(
+                f,
+                "the collapse at position {index} would delete vertex {}, which the surgery \
+                 still has to visit",
+                vertex.index()
             ),
             Self::Refused {
                 index,
                 vertex,
+                tag,
                 refusal,
             } => write!(
                 f,
-                "the collapse at plan vertex {} (position {index}) was refused: {refusal}",
+                "the {tag} operation at vertex {} (position {index}) is not realizable: {refusal}",
+                vertex.index()
+            ),
+            Self::NotGridPreserving { before, after } => write!(
+                f,
+                "the edit would not preserve the grid here ({before} irregular vertices in the \
+                 touched region before, a different set of {after} after); refused"
+            ),
+            Self::Untracked => f.write_str(
+                "the edit kept the irregular vertices but the moved pair cannot be told apart \
+                 from the other singularities it touched; refused",
+            ),
+            Self::Cleanup { vertex, refusal } => write!(
+                f,
+                "the clean-up at vertex {} was refused: {refusal}",
                 vertex.index()
             ),
         }
@@ -247,25 +269,8 @@ impl fmt::Display for ZipError {
 #[cfg(feature = "std")]
 impl std::error::Error for ZipError {}
 
-/// The unique dart from `p` to `n`; `None` if there is none or more than one.
-fn dart_between(map: &Map, p: Vert, n: Vert) -> Option<Dart> {
-    if !map.is_live_vertex(p) || !map.is_live_vertex(n) {
-        return None;
-    }
-    let mut found = None;
-    for d in map.vertex_darts(p) {
-        if map.dest(d) == n {
-            if found.is_some() {
-                return None;
-            }
-            found = Some(d);
-        }
-    }
-    found
-}
-
-/// The dart of the quad collapsed at edge `e` that leaves `N = dest(e)` (collapsing at it
-/// merges `N` into the corner next to `P`), and that quad's corner next to `N`.
+/// The dart of the quad collapsed at edge `e: P -> N` that leaves `N` (collapsing at it
+/// merges `N` with the corner next to `P`), and that quad's corner next to `N`.
 fn strip_quad(map: &Map, e: Dart, tag: Tag) -> (Dart, Vert) {
     if tag == Tag::LC {
         let d = e.twin();
@@ -276,42 +281,97 @@ fn strip_quad(map: &Map, e: Dart, tag: Tag) -> (Dart, Vert) {
     }
 }
 
-/// Before anything changes: every interior path vertex and both off-path corners of every
-/// strip quad are regular interior vertices (the chain's valence count assumes it).
-fn check_strip(map: &Map, plan: &Plan, tag: Tag) -> Result<(), ZipError> {
-    let steps = plan.steps();
-    let regular = |index: usize, vertex: Vert| {
-        let valence = map.valence(vertex);
-        let boundary = map.is_boundary_vertex(vertex);
-        if valence == 4 && !boundary {
-            Ok(())
-        } else {
-            Err(ZipError::Irregular {
-                index,
-                vertex,
-                valence,
-                boundary,
-            })
-        }
-    };
-    for index in 0..steps.len() - 1 {
-        let (p, n) = (steps[index].vertex, steps[index + 1].vertex);
-        if index > 0 {
-            regular(index, p)?;
-        }
-        let e = dart_between(map, p, n).ok_or(ZipError::StalePlan { index })?;
-        let (d, far_n) = strip_quad(map, e, tag);
-        // A missing or non-quad face is left to the operator, which refuses it by name.
-        if map.face(d).is_some_and(|f| map.degree(f) == 4) {
-            let far_p = map.origin(map.next(map.next(d)));
-            regular(index, far_p)?;
-            regular(index, far_n)?;
-        }
-    }
-    Ok(())
+/// Sorted (valence, on the boundary) of some irregular vertices.
+type Irregulars = Vec<(usize, bool)>;
+
+/// Vertices the chain touched, with what the clean-up needs to know about them.
+#[derive(Default)]
+struct Touched {
+    /// (vertex, valence before the surgery or `None` if made by it), in order of touch.
+    seen: Vec<(Vert, Option<usize>)>,
+    /// Whether each `seen` vertex was on the boundary when touched.
+    boundary: Vec<bool>,
 }
 
-fn undo_all(map: &mut Map, records: &[QuadCollapse]) {
+impl Touched {
+    fn touch(&mut self, map: &Map, v: Vert) {
+        self.seen.push((v, Some(map.valence(v))));
+        self.boundary.push(map.is_boundary_vertex(v));
+    }
+
+    fn born(&mut self, v: Vert) {
+        self.seen.push((v, None));
+        self.boundary.push(false);
+    }
+
+    /// Index into `seen` of each distinct vertex's first touch and whether the handle was
+    /// (re)born during the surgery, in order of first touch. Sorting keeps this
+    /// O(k log k) for k touches.
+    fn firsts(&self) -> Vec<(usize, bool)> {
+        let mut idx: Vec<usize> = (0..self.seen.len()).collect();
+        idx.sort_unstable_by_key(|&i| (self.seen[i].0, i));
+        let mut out: Vec<(usize, bool)> = Vec::new();
+        let mut k = 0;
+        while k < idx.len() {
+            let v = self.seen[idx[k]].0;
+            let first = idx[k];
+            let mut born = false;
+            while k < idx.len() && self.seen[idx[k]].0 == v {
+                born |= self.seen[idx[k]].1.is_none();
+                k += 1;
+            }
+            out.push((first, born));
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// Irregular valences (with the boundary flag) of the touched vertices before the
+    /// surgery and now, each sorted: equal when no singularity was made or lost.
+    fn irregular_before_after(&self, map: &Map) -> (Irregulars, Irregulars) {
+        let irregular = |k: usize, b: bool| k != regular_valence(MeshKind::Quad, b);
+        let mut before = Vec::new();
+        let mut after = Vec::new();
+        for (i, _) in self.firsts() {
+            let (v, k) = self.seen[i];
+            if let Some(k) = k {
+                if irregular(k, self.boundary[i]) {
+                    before.push((k, self.boundary[i]));
+                }
+            }
+            if map.is_live_vertex(v) {
+                let (k, b) = (map.valence(v), map.is_boundary_vertex(v));
+                if irregular(k, b) {
+                    after.push((k, b));
+                }
+            }
+        }
+        before.sort_unstable();
+        after.sort_unstable();
+        (before, after)
+    }
+
+    /// Vertices the surgery left at valence 2 or 6 that were not so before, in order of
+    /// first touch.
+    fn to_clean(&self, map: &Map) -> Vec<Vert> {
+        let mut out: Vec<Vert> = Vec::new();
+        for (i, born) in self.firsts() {
+            let v = self.seen[i].0;
+            if !map.is_live_vertex(v) || map.is_boundary_vertex(v) {
+                continue;
+            }
+            let k = map.valence(v);
+            // A handle freed and reused is a new vertex.
+            let before = if born { None } else { self.seen[i].1 };
+            if (k == 2 || k == 6) && before != Some(k) {
+                out.push(v);
+            }
+        }
+        out
+    }
+}
+
+fn undo_all(map: &mut Map, records: &[QuadRecord]) {
     // The records were made in order on this map, so undoing in reverse cannot be stale;
     // should it be, nothing better than stopping is possible, and the error is reported anyway.
     for r in records.iter().rev() {
@@ -321,100 +381,248 @@ fn undo_all(map: &mut Map, records: &[QuadCollapse]) {
     }
 }
 
-/// Executes a plan whose every tag is the same collapse (LC or RC) from an interior v5 to an
-/// interior v3: the case of Sec. 2.6 that needs no end-point adjustment.
+/// The dart of the valence-6 vertex `v` to split along (with its opposite): the first pair
+/// of opposite edges, in the order the surgery touched their far ends, whose far ends are
+/// both regular interior vertices (they become the two v5s).
+fn v6_first_dart(map: &Map, v: Vert, order: &[(Vert, Option<usize>)]) -> Dart {
+    let regular = |x: Vert| map.valence(x) == 4 && !map.is_boundary_vertex(x);
+    let good = |d: Dart| {
+        let o = map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
+        regular(map.dest(d)) && regular(map.dest(o))
+    };
+    for &(t, _) in order {
+        if let Some(d) = map.vertex_darts(v).find(|&d| map.dest(d) == t) {
+            if good(d) {
+                return d;
+            }
+        }
+    }
+    map.vertex_darts(v)
+        .find(|&d| good(d))
+        .unwrap_or_else(|| map.vertex_dart(v))
+}
+
+/// Executes a prepared surgery: the serial operations, then the v2/v6 clean-up.
 ///
-/// For each path edge `P -> N` (in order) it collapses the quad on the right of the edge
-/// (LC) or on its left (RC), merging `N` (which keeps its handle) with the quad's corner next
-/// to `P`. Along a straight chain the v5 start loses one edge, the first merged vertex is a
-/// transient v6 that the next collapse brings down to 5, every later merged vertex ends
-/// regular, and the v3 end is absorbed while the last quad's far corner becomes the v3: both
-/// singularities move by one edge to the chain's side. V drops by the path length, the
-/// irregular valences are unchanged.
-///
-/// Before anything changes it checks that every interior path vertex and both off-path
-/// corners of every quad to be collapsed are regular interior vertices
-/// ([`ZipError::Irregular`] otherwise): the valence count above assumes it, and a third
-/// singularity on the strip would be merged or moved too (the paper's Sec. 2.6 treats the
-/// pair as isolated). Paths through or along other singularities are later work.
-///
-/// All or nothing: on any refusal (see [`ZipError`]) every collapse already applied is undone
-/// and the map is left `==` to what it was.
+/// All or nothing: on any refusal every operation already applied is undone and the map is
+/// left `==` to what it was ([`ZipError`] says where and why).
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{execute_collapse_chain, plan, sketch, SketchOptions, Tag, ZipError};
-/// // On a regular torus there is no v5 to start from: refused, map unchanged.
-/// let mut map = gen::torus_grid(6, 6).map;
+/// use zipmesh::qzip::{execute, plan, prepare, sketch, SketchOptions, Tag};
+/// let mut map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 /// let before = map.clone();
-/// let path = sketch(&map, Vert::new(0), Vert::new(2), &SketchOptions::default()).unwrap();
-/// let p = plan(&map, &path, Tag::LC).unwrap();
-/// assert!(matches!(execute_collapse_chain(&mut map, &p), Err(ZipError::WrongEnd { index: 0, .. })));
-/// // A split tag is refused too.
-/// let p = plan(&map, &path, Tag::LS).unwrap();
-/// assert!(matches!(execute_collapse_chain(&mut map, &p), Err(ZipError::NotCollapse { index: 0, .. })));
+/// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+/// let s = prepare(&map, &plan(&map, &path, Tag::RS).unwrap()).unwrap();
+/// let r = execute(&mut map, &s).unwrap();
+/// assert_eq!(r.surgery(), &s);
+/// assert_eq!(r.splits() + r.collapses(), s.operations());
+/// assert_eq!(r.records().len(), s.operations() + r.cleanup_counts().0 + r.cleanup_counts().1);
+/// assert!(r.footprint_edges().len() <= 2 * r.splits());
+/// assert_eq!(r.scar_faces().len() + r.scar_edges().len() > 0, true);
+/// r.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn execute_collapse_chain(map: &mut Map, plan: &Plan) -> Result<ZipReport, ZipError> {
-    let steps = plan.steps();
-    if steps.len() < 2 {
-        return Err(ZipError::StalePlan { index: 0 });
-    }
-    let tag = steps[0].tag;
-    for (index, s) in steps.iter().enumerate() {
-        if s.tag.is_split() || s.tag != tag {
-            return Err(ZipError::NotCollapse {
-                index,
-                vertex: s.vertex,
-                tag: s.tag,
-            });
-        }
-        if !map.is_live_vertex(s.vertex) {
-            return Err(ZipError::StalePlan { index });
-        }
-    }
-    let last = steps.len() - 1;
-    for (index, want) in [(0, 5), (last, 3)] {
-        let vertex = steps[index].vertex;
-        let valence = map.valence(vertex);
-        let boundary = map.is_boundary_vertex(vertex);
-        if boundary || valence != want {
-            return Err(ZipError::WrongEnd {
-                index,
-                vertex,
-                valence,
-                boundary,
-            });
-        }
-    }
-    check_strip(map, plan, tag)?;
-    let mut records: Vec<QuadCollapse> = Vec::with_capacity(last);
-    let mut to = steps[last].vertex;
-    for index in 0..last {
-        let (p, n) = (steps[index].vertex, steps[index + 1].vertex);
-        let Some(e) = dart_between(map, p, n) else {
+pub fn execute(map: &mut Map, surgery: &Surgery) -> Result<ZipReport, ZipError> {
+    let steps = surgery.steps();
+    let mut records: Vec<QuadRecord> = Vec::with_capacity(steps.len() + 2);
+    match run(map, surgery, &mut records) {
+        Ok(r) => Ok(r),
+        Err(e) => {
             undo_all(map, &records);
-            return Err(ZipError::StalePlan { index });
-        };
-        // The dart of the collapsed quad leaving N, and that quad's corner next to N.
-        let (d, far) = strip_quad(map, e, tag);
-        match quad_collapse(map, d) {
-            Ok(r) => records.push(r),
-            Err(refusal) => {
-                undo_all(map, &records);
-                return Err(ZipError::Refused {
-                    index,
-                    vertex: p,
-                    refusal,
-                });
-            }
+            Err(e)
         }
-        to = far;
     }
+}
+
+fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipReport, ZipError> {
+    let steps = s.steps();
+    let m = steps.len() - 1;
+    let original_faces = map.face_slots();
+    let original_edges = map.dart_slots() / 2;
+    let mut touched = Touched::default();
+    let (mut splits, mut collapses) = (0, 0);
+    let mut guide: Option<Vert> = None;
+    // Where the pair went: the vertices of the first and of the last operation, the one the
+    // start/end rule predicts first; the first of them left with the singularity's valence
+    // wins (at a turn right after a start the defect can land on the other copy).
+    let (val_from, val_to) = (map.valence(s.from()), map.valence(s.to()));
+    let mut from_cands: Vec<Vert> = Vec::new();
+    let mut to_cands: Vec<Vert> = Vec::new();
+    let mut footprint_faces = Vec::new();
+    let mut footprint_edges = Vec::new();
+    let mut scar_faces: Vec<Face> = Vec::new();
+    let mut scar_edges: Vec<usize> = Vec::new();
+    let mut born_faces: Vec<Face> = Vec::new();
+    // `cur` is the handle of the vertex at position `index`: a merge can fold the path onto
+    // itself, and then the position jumps ahead while the handle stays the merged vertex.
+    let mut index = 0;
+    let mut cur = steps[0].vertex;
+    while index < m {
+        let (p, n) = (cur, steps[index + 1].vertex);
+        let Some(tag) = steps[index].op else {
+            guide = Some(p);
+            index += 1;
+            cur = steps[index].vertex;
+            continue;
+        };
+        let e = dart_between(map, p, n).ok_or(ZipError::StalePlan { index })?;
+        let refused = |refusal| ZipError::Refused {
+            index,
+            vertex: p,
+            tag,
+            refusal,
+        };
+        if tag.is_split() {
+            let g = guide.ok_or(ZipError::StalePlan { index })?;
+            let sg = dart_between(map, p, g).ok_or(ZipError::StalePlan { index })?;
+            for x in [p, g, n] {
+                touched.touch(map, x);
+            }
+            let r = vertex_split(map, sg, e).map_err(refused)?;
+            splits += 1;
+            let (left, right) = (r.kept(), r.created());
+            touched.born(right);
+            let (cont, other) = if tag == Tag::LS {
+                (left, right)
+            } else {
+                (right, left)
+            };
+            if from_cands.is_empty() {
+                from_cands = match s.start_rule() {
+                    StartRule::V5Split => alloc::vec![steps[0].vertex, other, cont],
+                    _ => alloc::vec![other, cont, g],
+                };
+            }
+            to_cands = alloc::vec![cont, other, n];
+            guide = Some(cont);
+            born_faces.push(r.face());
+            scar_faces.push(r.face());
+            for d in [sg, e] {
+                if d.index() / 2 < original_edges {
+                    footprint_edges.push(d.index() / 2);
+                }
+            }
+            records.push(r.into());
+            index += 1;
+            cur = steps[index].vertex;
+        } else {
+            let (d, far) = strip_quad(map, e, tag);
+            let removed = map.origin(map.next(map.next(d)));
+            // Merging `n` with a later path vertex folds the path: n -> x -> removed comes
+            // back to the merged vertex, and that pair of edges cancels (like a fold of the
+            // preparation, with the compass unchanged). Anything else would lose the vertex.
+            let mut next = index + 1;
+            if let Some(j) = steps[index + 2..].iter().position(|x| x.vertex == removed) {
+                if j != 1 {
+                    return Err(ZipError::Lost {
+                        index,
+                        vertex: removed,
+                    });
+                }
+                next = index + 3;
+            }
+            for x in [p, n, far, removed] {
+                touched.touch(map, x);
+            }
+            let r = quad_collapse(map, d).map_err(refused)?;
+            collapses += 1;
+            if from_cands.is_empty() {
+                from_cands = match s.start_rule() {
+                    StartRule::V5Collapse => alloc::vec![n, p, far],
+                    _ => alloc::vec![p, n, far],
+                };
+            }
+            to_cands = alloc::vec![far, n, p];
+            guide = Some(far);
+            let f = r.face();
+            if let Some(k) = born_faces.iter().rposition(|&b| b == f) {
+                born_faces.swap_remove(k);
+                scar_faces.retain(|&x| x != f);
+            } else if f.index() < original_faces {
+                footprint_faces.push(f);
+            }
+            scar_edges.extend(r.merged_edges().map(|d| d.index() / 2));
+            records.push(r.into());
+            index = next;
+            cur = n;
+        }
+    }
+    if matches!(s.end_rule(), EndRule::V5Collapse | EndRule::V5Split) {
+        to_cands.insert(0, cur);
+    }
+    let (mut v2_removals, mut v6_splits) = (0, 0);
+    for v in touched.to_clean(map) {
+        for d in map.vertex_darts(v) {
+            touched
+                .seen
+                .push((map.dest(d), Some(map.valence(map.dest(d)))));
+            touched.boundary.push(map.is_boundary_vertex(map.dest(d)));
+        }
+        if map.valence(v) == 2 {
+            let r = remove_valence2(map, map.vertex_dart(v))
+                .map_err(|refusal| ZipError::Cleanup { vertex: v, refusal })?;
+            v2_removals += 1;
+            records.push(r.into());
+        } else {
+            let first = v6_first_dart(map, v, &touched.seen);
+            let r = split_high_valence(map, v, first)
+                .map_err(|refusal| ZipError::Cleanup { vertex: v, refusal })?;
+            v6_splits += 1;
+            records.push(r.into());
+        }
+    }
+    let (before, after) = touched.irregular_before_after(map);
+    if before != after {
+        return Err(ZipError::NotGridPreserving {
+            before: before.len(),
+            after: after.len(),
+        });
+    }
+    // A vertex that carries valence k because of this edit: born here, or changed to k.
+    let firsts = touched.firsts();
+    let changed_to = |v: Vert, k: usize| {
+        map.is_live_vertex(v)
+            && map.valence(v) == k
+            && firsts
+                .iter()
+                .any(|&(i, born)| touched.seen[i].0 == v && (born || touched.seen[i].1 != Some(k)))
+    };
+    let pick = |cands: &[Vert], k: usize, forward: bool| {
+        let mut order: Vec<Vert> = firsts.iter().map(|&(i, _)| touched.seen[i].0).collect();
+        if !forward {
+            order.reverse();
+        }
+        cands
+            .iter()
+            .chain(order.iter())
+            .copied()
+            .find(|&v| changed_to(v, k))
+    };
+    let (Some(moved_from), Some(moved_to)) = (
+        pick(&from_cands, val_from, true),
+        pick(&to_cands, val_to, false),
+    ) else {
+        return Err(ZipError::Untracked);
+    };
+    if moved_from == moved_to {
+        return Err(ZipError::Untracked);
+    }
+    scar_edges.retain(|&e| map.is_live_dart(Dart::new(2 * e as u32)));
+    scar_faces.retain(|&f| map.is_live_face(f));
     Ok(ZipReport {
-        tag,
-        from: steps[1].vertex,
-        to,
-        records,
+        surgery: s.clone(),
+        records: core::mem::take(records),
+        splits,
+        collapses,
+        v2_removals,
+        v6_splits,
+        moved_from,
+        moved_to,
+        footprint_faces,
+        footprint_edges,
+        scar_faces,
+        scar_edges,
     })
 }

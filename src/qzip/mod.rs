@@ -1,17 +1,18 @@
 //! Q-zip (Sec. 2 and 3.1 of the Q-zip paper): moving a pair of singularities of a quad mesh
 //! along a surgery path.
 //!
-//! The edit runs in four stages; the first two are implemented, the fourth in part:
+//! The edit runs in four stages, each a public step whose result can be inspected:
 //!
-//! 1. [`sketch`](mod@sketch): a simple edge path between two vertices ([`Path`]), shortest by default,
-//!    or a caller-given path, validated.
-//! 2. [`compass`](mod@compass): the compass tags ([`Tag`]) parallel-transported along the path into a
-//!    printable [`Plan`].
-//! 3. Preparation (end-point adjustments): not yet implemented.
-//! 4. Execution (the serial collapses and splits): so far only straight collapse chains
-//!    from a v5 to a v3 through a regular strip ([`execute_collapse_chain`]); split chains,
-//!    turns, the v2/v6 clean-up and reversal are not yet implemented.
+//! 1. [`sketch`](mod@sketch): a simple edge path between two vertices ([`Path`]), shortest by
+//!    default, or a caller-given path, validated.
+//! 2. [`compass`](mod@compass): the compass tags ([`Tag`]) parallel-transported along the path
+//!    into a printable [`Plan`].
+//! 3. [`prepare`](mod@prepare): the end-point adjustments of Sec. 2.6 and the cancellation of
+//!    folded edges, giving a printable [`Surgery`].
+//! 4. [`execute`](mod@execute): the serial collapses and splits, the v2/v6 clean-up, and a
+//!    [`ZipReport`] (moved singularities, footprint, scar, exact undo).
 //!
+//! [`zip`] runs the four stages; [`moves`] tries the four initial operations.
 //! See `docs/qzip.md` for the reading of the paper behind each rule.
 //!
 //! ```
@@ -25,9 +26,13 @@
 //! ```
 
 pub mod compass;
-mod execute;
+pub mod execute;
+pub mod prepare;
 pub mod sketch;
+mod zip;
 
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
-pub use execute::{execute_collapse_chain, ZipError, ZipReport};
+pub use execute::{execute, ZipError, ZipReport};
+pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use sketch::{sketch, validate_path, Path, SketchError, SketchOptions};
+pub use zip::{find_reverse, moves, start_turn, zip, zip_along, Move, QzipError, ReverseRun};

@@ -1,0 +1,510 @@
+//! Stage 3 of Q-zip, preparation: the end-point adjustments of Sec. 2.6.
+//!
+//! [`prepare`] turns a [`Plan`] (one compass tag per path vertex) into a [`Surgery`]: the
+//! vertex list the execution walks, and for each vertex but the last either an operation
+//! (the compass hand along its outgoing edge) or a no-op. The adjustments are restricted to
+//! the one-rings of the two singularities, and every one of them is plain compass transport
+//! along a path that is either rerouted around one quad of the singularity's one-ring or
+//! extended by one guide edge (see `docs/qzip.md` for the diagrams):
+//!
+//! | end | tag | adjustment |
+//! | --- | --- | --- |
+//! | start v3 | split | the first operation becomes a no-op |
+//! | start v5 | collapse | none |
+//! | start v3 | LC (RC) | start at the v3's neighbour on the left (right) of the first edge, go round that quad: LC (RC) there, RC (LC) at the turn |
+//! | start v5 | LS (RS) | prepend the guide edge from the second neighbour counter-clockwise (clockwise) of the first edge; no-op there |
+//! | end v3 | any | none |
+//! | end v5 | LC (RC) | replace the last edge by the two sides of the quad on its left (right): RS (LS) at the turn, LC (RC) on the last edge |
+//! | end v5 | LS (RS) | append the guide edge to the second neighbour counter-clockwise (clockwise) of the incoming edge |
+//!
+//! Then edges crossed twice in opposite directions (`a -> b -> a`) cancel in pairs, keeping
+//! the compass unchanged: the surviving vertex takes the hand of the edge that leaves the fold.
+//!
+//! ```
+//! use zipmesh::{gen, Vert};
+//! use zipmesh::qzip::{plan, prepare, validate_path, SketchOptions, StartRule, Tag};
+//! let map = gen::subdivided_icosahedron(2).map;
+//! let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+//! let path = zipmesh::qzip::sketch(&map, v3, v5, &SketchOptions::default()).unwrap();
+//! let s = prepare(&map, &plan(&map, &path, Tag::LS).unwrap()).unwrap();
+//! assert_eq!(s.start_rule(), StartRule::V3Split);
+//! assert_eq!(s.steps()[0].op, None); // the v3 start with a split is a no-op
+//! ```
+
+use alloc::vec::Vec;
+use core::fmt;
+
+use super::compass::{Plan, Tag};
+use crate::{Dart, Map, Vert};
+
+/// How the start of the path was adjusted (Sec. 2.6).
+///
+/// ```
+/// use zipmesh::qzip::StartRule;
+/// assert_eq!(StartRule::V5Split.to_string(), "v5 start with a split: guide edge prepended");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StartRule {
+    /// A v3 start with a split: the first operation is a no-op.
+    V3Split,
+    /// A v5 start with a collapse: no adjustment.
+    V5Collapse,
+    /// A v3 start with a collapse: rerouted round one quad of the one-ring.
+    V3Collapse,
+    /// A v5 start with a split: a guide edge is prepended, with a no-op.
+    V5Split,
+}
+
+impl fmt::Display for StartRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::V3Split => "v3 start with a split: first operation is a no-op",
+            Self::V5Collapse => "v5 start with a collapse: no adjustment",
+            Self::V3Collapse => "v3 start with a collapse: rerouted round one quad",
+            Self::V5Split => "v5 start with a split: guide edge prepended",
+        })
+    }
+}
+
+/// How the end of the path was adjusted (Sec. 2.6).
+///
+/// ```
+/// use zipmesh::qzip::EndRule;
+/// assert_eq!(EndRule::V3.to_string(), "v3 end: no adjustment");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EndRule {
+    /// A v3 end: no adjustment.
+    V3,
+    /// A v5 end reached with a collapse: the last edge is rerouted round one quad.
+    V5Collapse,
+    /// A v5 end reached with a split: a guide edge is appended.
+    V5Split,
+}
+
+impl fmt::Display for EndRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::V3 => "v3 end: no adjustment",
+            Self::V5Collapse => "v5 end with a collapse: last edge rerouted round one quad",
+            Self::V5Split => "v5 end with a split: guide edge appended",
+        })
+    }
+}
+
+/// One vertex of a [`Surgery`].
+///
+/// ```
+/// use zipmesh::qzip::{SurgeryStep, Tag};
+/// use zipmesh::Vert;
+/// let s = SurgeryStep { vertex: Vert::new(4), hand: Tag::LC, op: Some(Tag::LC) };
+/// assert!(s.op.is_some());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SurgeryStep {
+    /// The path vertex.
+    pub vertex: Vert,
+    /// The compass hand along the outgoing edge (at the last vertex: the hand the compass
+    /// arrives with).
+    pub hand: Tag,
+    /// The operation run here: `Some(hand)`, or `None` for a no-op and at the last vertex.
+    pub op: Option<Tag>,
+}
+
+/// A prepared surgery: the adjusted path and its operations, ready for execution.
+///
+/// Its `Display` prints one line per vertex.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{plan, prepare, sketch, EndRule, SketchOptions, Tag};
+/// let map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let path = sketch(&map, v3, v5, &SketchOptions::default()).unwrap();
+/// let s = prepare(&map, &plan(&map, &path, Tag::RS).unwrap()).unwrap();
+/// assert_eq!(s.end_rule(), EndRule::V5Split);
+/// assert_eq!(s.steps().len(), path.vertices().len() + 1);
+/// assert!(s.to_string().contains("no-op"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Surgery {
+    steps: Vec<SurgeryStep>,
+    from: Vert,
+    to: Vert,
+    initial: Tag,
+    start: StartRule,
+    end: EndRule,
+    folds: usize,
+}
+
+impl Surgery {
+    /// The adjusted path with its operations, from the first vertex to the last.
+    ///
+    /// See [`Surgery`] for an example.
+    pub fn steps(&self) -> &[SurgeryStep] {
+        &self.steps
+    }
+
+    /// The initial singularity (the planned path's first vertex).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, prepare, sketch, SketchOptions, Tag};
+    /// let map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+    /// let s = prepare(&map, &plan(&map, &path, Tag::LS).unwrap()).unwrap();
+    /// assert_eq!((s.from(), s.to()), (v5, v3));
+    /// assert_ne!(s.steps()[0].vertex, v5); // the guide vertex comes first
+    /// ```
+    pub fn from(&self) -> Vert {
+        self.from
+    }
+
+    /// The terminal singularity (the planned path's last vertex).
+    ///
+    /// See [`Surgery::from`] for an example.
+    pub fn to(&self) -> Vert {
+        self.to
+    }
+
+    /// The initial operation chosen by the caller.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, prepare, sketch, SketchOptions, Tag};
+    /// let map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+    /// assert_eq!(prepare(&map, &plan(&map, &path, Tag::RC).unwrap()).unwrap().initial(), Tag::RC);
+    /// ```
+    pub fn initial(&self) -> Tag {
+        self.initial
+    }
+
+    /// Which start adjustment was made.
+    ///
+    /// See the module example.
+    pub fn start_rule(&self) -> StartRule {
+        self.start
+    }
+
+    /// Which end adjustment was made.
+    ///
+    /// See [`Surgery`] for an example.
+    pub fn end_rule(&self) -> EndRule {
+        self.end
+    }
+
+    /// How many pairs of folded edges were cancelled.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, prepare, sketch, SketchOptions, Tag};
+    /// let map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+    /// assert!(prepare(&map, &plan(&map, &path, Tag::LC).unwrap()).unwrap().folds() <= 2);
+    /// ```
+    pub fn folds(&self) -> usize {
+        self.folds
+    }
+
+    /// The number of operations (steps that are not no-ops).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, prepare, sketch, SketchOptions, Tag};
+    /// let map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+    /// let s = prepare(&map, &plan(&map, &path, Tag::LC).unwrap()).unwrap();
+    /// assert_eq!(s.operations(), s.steps().iter().filter(|x| x.op.is_some()).count());
+    /// ```
+    pub fn operations(&self) -> usize {
+        self.steps.iter().filter(|s| s.op.is_some()).count()
+    }
+}
+
+impl fmt::Display for Surgery {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "{}; {}", self.start, self.end)?;
+        let last = self.steps.len() - 1;
+        for (i, s) in self.steps.iter().enumerate() {
+            match s.op {
+                Some(t) => writeln!(f, "vertex {}: {t}", s.vertex.index())?,
+                None if i == last => writeln!(f, "vertex {}: end", s.vertex.index())?,
+                None => writeln!(f, "vertex {}: no-op", s.vertex.index())?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Why [`prepare`] refused; nothing is changed in any case.
+///
+/// ```
+/// use zipmesh::qzip::PrepareError;
+/// use zipmesh::Vert;
+/// let e = PrepareError::End { index: 0, vertex: Vert::new(2), valence: 4, boundary: false };
+/// assert!(e.to_string().contains("valence 4"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PrepareError {
+    /// An end is not an interior v3 or v5 (Sec. 2.6 covers those only).
+    End {
+        /// 0 for the start, the last position for the end.
+        index: usize,
+        /// The vertex.
+        vertex: Vert,
+        /// Its valence.
+        valence: usize,
+        /// Whether it is on the boundary.
+        boundary: bool,
+    },
+    /// The quad an adjustment goes round is missing (boundary) or not a quad.
+    NoQuad {
+        /// The singularity whose one-ring it is in.
+        vertex: Vert,
+    },
+    /// The adjusted path visits a vertex twice (other than a cancelled fold).
+    NotSimple {
+        /// The repeated vertex.
+        vertex: Vert,
+    },
+    /// No operation is left: for example a one-edge path between two v3s with a split,
+    /// whose only operation is the start's no-op.
+    Empty,
+    /// The plan does not fit the map (made for another map, or the map changed).
+    StalePlan,
+}
+
+impl fmt::Display for PrepareError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::End {
+                index,
+                vertex,
+                valence,
+                boundary,
+            } => write!(
+                f,
+                "path end {} (position {index}) has valence {valence}{}; the end-point \
+                 adjustments of Sec. 2.6 need an interior v3 or v5",
+                vertex.index(),
+                if *boundary { " on the boundary" } else { "" }
+            ),
+            Self::NoQuad { vertex } => write!(
+                f,
+                "the end-point adjustment at vertex {} needs a quad of its one-ring that is \
+                 missing (boundary) or not a quad",
+                vertex.index()
+            ),
+            Self::NotSimple { vertex } => write!(
+                f,
+                "the adjusted path visits vertex {} twice",
+                vertex.index()
+            ),
+            Self::Empty => f.write_str("no operation is left after the end-point adjustments"),
+            Self::StalePlan => f.write_str("the plan does not fit this map"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for PrepareError {}
+
+/// The unique dart from `p` to `n`, if there is exactly one.
+pub(crate) fn dart_between(map: &Map, p: Vert, n: Vert) -> Option<Dart> {
+    if !map.is_live_vertex(p) || !map.is_live_vertex(n) {
+        return None;
+    }
+    let mut found = None;
+    for d in map.vertex_darts(p) {
+        if map.dest(d) == n {
+            if found.is_some() {
+                return None;
+            }
+            found = Some(d);
+        }
+    }
+    found
+}
+
+/// The two corners of the quad on the `left` (or right) of `d: a -> b` other than `a` and
+/// `b`: `(corner next to a, corner next to b)`.
+fn side_quad(map: &Map, d: Dart, left: bool) -> Option<(Vert, Vert)> {
+    let e = if left { d } else { d.twin() };
+    let f = map.face(e)?;
+    if map.degree(f) != 4 {
+        return None;
+    }
+    let (near_origin, near_dest) = (map.origin(map.prev(e)), map.dest(map.next(e)));
+    Some(if left {
+        (near_origin, near_dest)
+    } else {
+        (near_dest, near_origin)
+    })
+}
+
+fn end_error(map: &Map, index: usize, vertex: Vert) -> PrepareError {
+    PrepareError::End {
+        index,
+        vertex,
+        valence: map.valence(vertex),
+        boundary: map.is_boundary_vertex(vertex),
+    }
+}
+
+/// Valence 3 or 5 of an interior end, or the refusal.
+fn end_valence(map: &Map, index: usize, v: Vert) -> Result<usize, PrepareError> {
+    match map.valence(v) {
+        k @ (3 | 5) if !map.is_boundary_vertex(v) => Ok(k),
+        _ => Err(end_error(map, index, v)),
+    }
+}
+
+/// Applies the end-point adjustments of Sec. 2.6 to a plan, then cancels folded edges.
+///
+/// Both ends must be interior v3s or v5s ([`PrepareError::End`] otherwise: boundary ends and
+/// other valences are outside Sec. 2.6). The adjustments are listed in the
+/// [module documentation](self); each reads only the one-ring of its singularity. Reads the map,
+/// never changes it.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{plan, prepare, sketch, EndRule, SketchOptions, StartRule, Tag};
+/// let map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+/// let s = prepare(&map, &plan(&map, &path, Tag::LC).unwrap()).unwrap();
+/// assert_eq!((s.start_rule(), s.end_rule()), (StartRule::V5Collapse, EndRule::V3));
+/// ```
+pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
+    let steps = plan.steps();
+    if steps.len() < 2 {
+        return Err(PrepareError::StalePlan);
+    }
+    let mut v: Vec<Vert> = steps.iter().map(|s| s.vertex).collect();
+    // hand[i]: the compass hand along edge i; noop[i]: whether vertex i does nothing.
+    let mut hand: Vec<Tag> = steps[..steps.len() - 1].iter().map(|s| s.tag).collect();
+    let mut noop: Vec<bool> = alloc::vec![false; hand.len()];
+    let initial = plan.initial();
+    let (from, to) = (v[0], v[v.len() - 1]);
+    let edge = |a: Vert, b: Vert| dart_between(map, a, b).ok_or(PrepareError::StalePlan);
+
+    let start = match (end_valence(map, 0, from)?, initial.is_split()) {
+        (3, true) => {
+            noop[0] = true;
+            StartRule::V3Split
+        }
+        (3, false) => {
+            let left = initial == Tag::LC;
+            let (x, xn) = side_quad(map, edge(v[0], v[1])?, left)
+                .ok_or(PrepareError::NoQuad { vertex: from })?;
+            v[0] = xn;
+            v.insert(0, x);
+            let turn = if left { initial.cw() } else { initial.ccw() };
+            hand[0] = turn;
+            hand.insert(0, initial);
+            noop.insert(0, false);
+            StartRule::V3Collapse
+        }
+        (_, false) => StartRule::V5Collapse,
+        (_, true) => {
+            let d = edge(v[0], v[1])?;
+            let g = if initial == Tag::LS {
+                map.rotate_ccw(map.rotate_ccw(d))
+            } else {
+                map.rotate_cw(map.rotate_cw(d))
+            };
+            v.insert(0, map.dest(g));
+            hand.insert(0, initial);
+            noop.insert(0, true);
+            StartRule::V5Split
+        }
+    };
+
+    let last = steps.len() - 1;
+    let m = v.len() - 1;
+    let arriving = hand[m - 1];
+    let end = if end_valence(map, last, to)? == 3 {
+        EndRule::V3
+    } else if arriving.is_split() {
+        let d = edge(v[m], v[m - 1])?;
+        let g = if arriving == Tag::LS {
+            map.rotate_ccw(map.rotate_ccw(d))
+        } else {
+            map.rotate_cw(map.rotate_cw(d))
+        };
+        v.push(map.dest(g));
+        hand.push(arriving);
+        noop.push(false);
+        EndRule::V5Split
+    } else {
+        let left = arriving == Tag::LC;
+        let (f, fl) = side_quad(map, edge(v[m - 1], v[m])?, left)
+            .ok_or(PrepareError::NoQuad { vertex: to })?;
+        v[m] = f;
+        v.push(fl);
+        hand[m - 1] = if left { arriving.ccw() } else { arriving.cw() };
+        hand.push(arriving);
+        noop.push(false);
+        EndRule::V5Collapse
+    };
+
+    // Cancel folds a -> b -> a: vertex a takes the hand of the edge leaving the fold.
+    let mut folds = 0;
+    let mut i = 0;
+    while i + 2 < v.len() {
+        if v[i] == v[i + 2] {
+            // noop is per outgoing edge: if the fold ends the path, vertex i becomes last.
+            if i + 2 == v.len() - 1 {
+                noop.drain(i..i + 2);
+            } else {
+                noop.drain(i + 1..i + 3);
+            }
+            v.drain(i + 1..i + 3);
+            hand.drain(i..i + 2);
+            folds += 1;
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
+    }
+    for (i, &a) in v.iter().enumerate() {
+        if v[..i].contains(&a) {
+            return Err(PrepareError::NotSimple { vertex: a });
+        }
+    }
+    let mut out: Vec<SurgeryStep> = v
+        .iter()
+        .enumerate()
+        .map(|(i, &vertex)| {
+            let h = hand.get(i).copied().unwrap_or(arriving);
+            let op = (i < hand.len() && !noop[i]).then_some(h);
+            SurgeryStep {
+                vertex,
+                hand: h,
+                op,
+            }
+        })
+        .collect();
+    if let Some(l) = out.last_mut() {
+        l.hand = hand.last().copied().unwrap_or(arriving);
+        l.op = None;
+    }
+    let s = Surgery {
+        steps: out,
+        from,
+        to,
+        initial,
+        start,
+        end,
+        folds,
+    };
+    if s.operations() == 0 {
+        return Err(PrepareError::Empty);
+    }
+    Ok(s)
+}

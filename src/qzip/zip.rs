@@ -1,0 +1,282 @@
+//! The four stages in one call, and the four movements of a pair.
+
+use core::fmt;
+
+use super::compass::{plan, PlanError, Tag};
+use super::execute::{execute, ZipError, ZipReport};
+use super::prepare::{prepare, PrepareError};
+use super::sketch::{sketch, Path, SketchError, SketchOptions};
+use crate::invariants::canonical::CanonicalCode;
+use crate::{Dart, Map, Vert};
+
+/// Why a Q-zip was refused, by stage; the map is unchanged in every case.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{zip, QzipError, SketchOptions, Tag};
+/// let mut map = gen::torus_grid(6, 6).map;
+/// // A regular torus has no singularity to move.
+/// let e = zip(&mut map, Vert::new(0), Vert::new(2), Tag::LC, &SketchOptions::default());
+/// assert!(matches!(e, Err(QzipError::Prepare(_))));
+/// assert!(e.unwrap_err().to_string().contains("valence 4"));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum QzipError {
+    /// Stage 1: no path.
+    Sketch(SketchError),
+    /// Stage 2: the compass cannot be carried along the path.
+    Plan(PlanError),
+    /// Stage 3: the ends cannot be adjusted.
+    Prepare(PrepareError),
+    /// Stage 4: an operation is not realizable.
+    Execute(ZipError),
+}
+
+impl fmt::Display for QzipError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Sketch(e) => write!(f, "sketching: {e}"),
+            Self::Plan(e) => write!(f, "planning: {e}"),
+            Self::Prepare(e) => write!(f, "preparation: {e}"),
+            Self::Execute(e) => write!(f, "execution: {e}"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for QzipError {}
+
+/// Runs stages 2 to 4 along a given path with the initial operation `initial`.
+///
+/// All or nothing: on an error the map is unchanged.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{sketch, zip_along, SketchOptions, Tag};
+/// let mut map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let path = sketch(&map, v3, v5, &SketchOptions::default()).unwrap();
+/// let r = zip_along(&mut map, &path, Tag::RS).unwrap();
+/// assert_eq!(map.valence(r.moved_to()), 5);
+/// ```
+pub fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {
+    let p = plan(map, path, initial).map_err(QzipError::Plan)?;
+    let s = prepare(map, &p).map_err(QzipError::Prepare)?;
+    execute(map, &s).map_err(QzipError::Execute)
+}
+
+/// Runs the four stages: the path from `from` to `to` sketched with `opts`, then
+/// [`zip_along`] it with the initial operation `initial`.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{zip, SketchOptions, Tag};
+/// let mut map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let r = zip(&mut map, v3, v5, Tag::LC, &SketchOptions::default()).unwrap();
+/// assert_eq!(map.valence(r.moved_from()), 3);
+/// ```
+pub fn zip(
+    map: &mut Map,
+    from: Vert,
+    to: Vert,
+    initial: Tag,
+    opts: &SketchOptions,
+) -> Result<ZipReport, QzipError> {
+    let path = sketch(map, from, to, opts).map_err(QzipError::Sketch)?;
+    zip_along(map, &path, initial)
+}
+
+/// One of the four movements of a pair: the initial operation and its outcome (the edited
+/// copy of the map and the report, or the refusal).
+///
+/// See [`moves`] for an example.
+#[derive(Clone, Debug)]
+pub struct Move {
+    /// The initial operation.
+    pub tag: Tag,
+    /// The edited copy and the report, or why this movement is not realizable.
+    pub outcome: Result<(Map, ZipReport), QzipError>,
+}
+
+/// The four movements of the pair at the ends of `path`: each initial operation in compass
+/// order (LS, RC, LC, RS), run on a copy of the map.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{moves, sketch, SketchOptions};
+/// let mut map = gen::subdivided_icosahedron(2).map;
+/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+/// let path = sketch(&map, v3, v5, &SketchOptions::default()).unwrap();
+/// let all = moves(&map, &path);
+/// assert_eq!(all.len(), 4);
+/// assert!(all.iter().any(|m| m.outcome.is_ok()));
+/// ```
+pub fn moves(map: &Map, path: &Path) -> [Move; 4] {
+    Tag::CCW.map(|tag| {
+        let mut copy = map.clone();
+        let outcome = zip_along(&mut copy, path, tag).map(|r| (copy, r));
+        Move { tag, outcome }
+    })
+}
+
+/// A Q-zip run that undoes another: a path from the moved terminal singularity to the moved
+/// initial one, and the initial operation to run along it.
+///
+/// See [`find_reverse`] for an example.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ReverseRun {
+    /// The reverse path, in the edited map.
+    pub path: Path,
+    /// The initial operation of the reverse run.
+    pub tag: Tag,
+}
+
+/// Finds the Q-zip that reverses an edit (Sec. 2.8): along a path from the moved terminal
+/// singularity back to the moved initial one, the initial operation whose result is
+/// isomorphic to `original`. The path is the image of the surgery path: the shortest path
+/// that keeps to the vertices of the edit's scar and surviving path (Dijkstra with a high
+/// weight elsewhere), then, if no run along it restores the original, the plain shortest
+/// path. The compass rotated by pi (the surgery's last hand, rotated) is tried first, then
+/// the other three; `None` if no run restores the original.
+///
+/// `edited` is the map after the edit that `report` describes, `original` the map before.
+///
+/// ```
+/// use zipmesh::{gen, is_isomorphic};
+/// use zipmesh::qzip::{find_reverse, zip_along, sketch, SketchOptions, Tag};
+/// let original = gen::cube(4).map;
+/// let (a, b) = (zipmesh::Vert::new(0), zipmesh::Vert::new(4));
+/// let path = sketch(&original, a, b, &SketchOptions::default()).unwrap();
+/// let mut edited = original.clone();
+/// let r = zip_along(&mut edited, &path, Tag::LS).unwrap();
+/// let back = find_reverse(&edited, &r, &original).unwrap();
+/// let mut m = edited.clone();
+/// zip_along(&mut m, &back.path, back.tag).unwrap();
+/// assert!(is_isomorphic(&m, &original));
+/// ```
+pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<ReverseRun> {
+    let target = CanonicalCode::of(original);
+    let first = report
+        .surgery()
+        .steps()
+        .last()
+        .map(|s| s.hand.rotate_pi())
+        .unwrap_or(Tag::LS);
+    let order = [first, first.ccw(), first.ccw().ccw(), first.cw()];
+    let try_path = |path: Path| {
+        order.into_iter().find_map(|tag| {
+            let mut m = edited.clone();
+            zip_along(&mut m, &path, tag).ok()?;
+            (CanonicalCode::of(&m) == target).then(|| ReverseRun {
+                path: path.clone(),
+                tag,
+            })
+        })
+    };
+    let (from, to) = (report.moved_to(), report.moved_from());
+    // The image of the surgery path: keep to the edit's scar (its new quads and merged
+    // edges) and the surviving path vertices, so that the reverse path passes every other
+    // singularity on the same side as the forward one.
+    let mut near = alloc::vec![false; edited.vertex_slots()];
+    let mut mark = |v: Vert| {
+        if let Some(x) = near.get_mut(v.index()) {
+            *x = true;
+        }
+    };
+    for s in report.surgery().steps() {
+        if edited.is_live_vertex(s.vertex) {
+            mark(s.vertex);
+        }
+    }
+    for &f in report.scar_faces() {
+        for d in edited.face_darts(f) {
+            mark(edited.origin(d));
+        }
+    }
+    for &e in report.scar_edges() {
+        let d = Dart::new(2 * e as u32);
+        mark(edited.origin(d));
+        mark(edited.dest(d));
+    }
+    mark(from);
+    mark(to);
+    let weights: alloc::vec::Vec<f64> = (0..edited.dart_slots() / 2)
+        .map(|e| {
+            let d = Dart::new(2 * e as u32);
+            let inside = |v: Vert| near.get(v.index()).copied().unwrap_or(false);
+            if edited.is_live_dart(d) && inside(edited.origin(d)) && inside(edited.dest(d)) {
+                1.0
+            } else {
+                1000.0
+            }
+        })
+        .collect();
+    let image = SketchOptions {
+        weights: Some(weights),
+        ..SketchOptions::default()
+    };
+    sketch(edited, from, to, &image)
+        .ok()
+        .and_then(try_path)
+        .or_else(|| {
+            sketch(edited, from, to, &SketchOptions::default())
+                .ok()
+                .and_then(try_path)
+        })
+}
+
+/// The turn, in quarter turns counter-clockwise, from the first edge of `a` to the first
+/// edge of `b` around their common start: the number of quads between them on the side with
+/// fewer quads (positive counter-clockwise, negative clockwise).
+///
+/// Homotopy invariance (Sec. 3.1) compares movements, not labels: when two homotopic paths
+/// leave the start along different edges, the movement with initial operation `t` along `a`
+/// is the one with `t.turned(k)` along `b`, where `k` counts the quads the homotopy sweeps
+/// at the start (a quad corner is a quarter turn whatever the valence). `None` if the starts
+/// differ or a face between the two edges is missing (boundary) or not a quad.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{start_turn, validate_path, SketchOptions};
+/// let map = gen::torus_grid(6, 6).map;
+/// let v = |i: u32, j: u32| Vert::new(6 * j + i);
+/// let o = SketchOptions::default();
+/// let east = validate_path(&map, v(0, 0), v(1, 1), &[v(0, 0), v(1, 0), v(1, 1)], &o).unwrap();
+/// let north = validate_path(&map, v(0, 0), v(1, 1), &[v(0, 0), v(0, 1), v(1, 1)], &o).unwrap();
+/// assert_eq!(start_turn(&map, &east, &north), Some(1));
+/// assert_eq!(start_turn(&map, &north, &east), Some(-1));
+/// ```
+pub fn start_turn(map: &Map, a: &Path, b: &Path) -> Option<i32> {
+    let (&da, &db) = (a.darts().first()?, b.darts().first()?);
+    if a.start() != b.start() || !map.is_live_dart(da) || !map.is_live_dart(db) {
+        return None;
+    }
+    let quad = |d: Dart| map.face(d).is_some_and(|f| map.degree(f) == 4);
+    let mut ccw = 0;
+    let mut x = da;
+    while x != db {
+        if !quad(x) || ccw > map.valence(a.start()) {
+            ccw = usize::MAX;
+            break;
+        }
+        x = map.rotate_ccw(x);
+        ccw += 1;
+    }
+    let mut cw = 0;
+    let mut x = da;
+    while x != db {
+        let y = map.rotate_cw(x);
+        if !quad(y) || cw > map.valence(a.start()) {
+            cw = usize::MAX;
+            break;
+        }
+        x = y;
+        cw += 1;
+    }
+    match (ccw, cw) {
+        (usize::MAX, usize::MAX) => None,
+        (c, w) if c <= w => Some(c as i32),
+        (_, w) => Some(-(w as i32)),
+    }
+}

@@ -1,0 +1,89 @@
+//! Fixtures and checks shared by the Q-zip tests.
+#![allow(dead_code)]
+
+use zipmesh::invariants::Counts;
+use zipmesh::ops::quad;
+use zipmesh::qzip::{zip_along, Path, QzipError, Tag, ZipReport};
+use zipmesh::{gen, Map, Mesh, Vert};
+
+/// Catmull-Clark of an icosahedron, `levels` times: 12 v5s and 20 v3s, isolated
+/// (2^(levels-1) edges apart), everything else regular.
+pub fn ico_cc(levels: usize) -> Map {
+    let mut mesh: Mesh = gen::icosahedron();
+    for _ in 0..levels {
+        mesh = gen::catmull_clark(&mesh);
+    }
+    mesh.map
+}
+
+/// A regular torus with vertex splits along opposite edges at the given vertices (each makes
+/// two v3s and two v5s, a crowded cluster).
+pub fn torus_with_splits(n: usize, at: &[u32]) -> Map {
+    let mut map = gen::torus_grid(n, n).map;
+    for &a in at {
+        let s1 = map.vertex_dart(Vert::new(a));
+        let s2 = map.rotate_cw(map.rotate_cw(s1));
+        quad::vertex_split(&mut map, s1, s2).expect("split of a regular vertex");
+    }
+    map
+}
+
+/// The irregular vertices (interior valence != 4, boundary valence != 3).
+pub fn singular(map: &Map) -> Vec<Vert> {
+    map.vertices()
+        .filter(|&v| map.valence(v) != if map.is_boundary_vertex(v) { 3 } else { 4 })
+        .collect()
+}
+
+/// The sorted multiset of (valence, boundary) of the irregular vertices.
+pub fn irregular_multiset(map: &Map) -> Vec<(usize, bool)> {
+    let mut v: Vec<(usize, bool)> = singular(map)
+        .into_iter()
+        .map(|v| (map.valence(v), map.is_boundary_vertex(v)))
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+/// Runs a Q-zip on `map` and checks everything Q-zip promises: on success a valid pure-quad
+/// map with the same Euler characteristic, boundary loops and irregular valences, `V`
+/// changed by the report's delta, the two moved vertices carrying the pair's valences, the
+/// old ends regular unless they are the moved ones, and an exact undo; on refusal the map
+/// untouched. Leaves `map` as it was and returns the edited copy with the report.
+pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), QzipError> {
+    let mut m = map.clone();
+    let r = match zip_along(&mut m, path, tag) {
+        Ok(r) => r,
+        Err(e) => {
+            assert_eq!(&m, map, "a refusal changed the map: {e}");
+            return Err(e);
+        }
+    };
+    let (a, b) = (path.start(), path.end());
+    assert_eq!(m.check(), Ok(()));
+    assert!(m.faces().all(|f| m.degree(f) == 4), "not pure quad");
+    let (c, c0) = (Counts::of(&m), Counts::of(map));
+    assert_eq!(c.euler_characteristic, c0.euler_characteristic);
+    assert_eq!(c.boundary_loops, c0.boundary_loops);
+    assert_eq!(
+        irregular_multiset(&m),
+        irregular_multiset(map),
+        "{}",
+        r.surgery()
+    );
+    assert_eq!(
+        m.num_vertices() as isize,
+        map.num_vertices() as isize + r.vertex_delta()
+    );
+    assert_eq!(
+        (m.valence(r.moved_from()), m.valence(r.moved_to())),
+        (map.valence(a), map.valence(b)),
+        "{}",
+        r.surgery()
+    );
+    assert_ne!(r.moved_from(), r.moved_to());
+    let mut u = m.clone();
+    r.undo(&mut u).expect("undo");
+    assert_eq!(&u, map);
+    Ok((m, r))
+}

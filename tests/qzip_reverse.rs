@@ -1,0 +1,93 @@
+//! Q-zip reversal (Sec. 2.8): a run from the moved terminal singularity back to the moved
+//! initial one restores the original map up to isomorphism.
+
+mod common;
+
+use common::{check_zip, ico_cc, singular};
+use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::qzip::{find_reverse, sketch, zip_along, SketchOptions, Tag};
+use zipmesh::{gen, Map};
+
+#[derive(Default, Debug)]
+struct Tally {
+    forward: usize,
+    reversed: usize,
+    /// Reverse runs whose tag is the compass rotated by pi (the surgery's last hand).
+    pi_of_last_hand: usize,
+}
+
+fn sweep(map: &Map, max_len: usize) -> Tally {
+    let mut t = Tally::default();
+    let sing = singular(map);
+    let code = CanonicalCode::of(map);
+    for &a in &sing {
+        for &b in &sing {
+            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
+                continue;
+            };
+            if a == b || path.len() > max_len {
+                continue;
+            }
+            for tag in Tag::CCW {
+                let Ok((edited, r)) = check_zip(map, &path, tag) else {
+                    continue;
+                };
+                t.forward += 1;
+                let Some(back) = find_reverse(&edited, &r, map) else {
+                    eprintln!(
+                        "no reverse: {}{} len {} {tag}\n{}",
+                        map.valence(a),
+                        map.valence(b),
+                        path.len(),
+                        r.surgery()
+                    );
+                    continue;
+                };
+                // Re-run it independently: the original comes back, and exactly one of the
+                // four initial operations along that path does it.
+                let mut m = edited.clone();
+                zip_along(&mut m, &back.path, back.tag).unwrap();
+                assert_eq!(CanonicalCode::of(&m), code);
+                let restoring = Tag::CCW
+                    .iter()
+                    .filter(|&&u| {
+                        let mut m = edited.clone();
+                        zip_along(&mut m, &back.path, u).is_ok() && CanonicalCode::of(&m) == code
+                    })
+                    .count();
+                assert_eq!(restoring, 1);
+                t.reversed += 1;
+                let last = r.surgery().steps().last().unwrap().hand;
+                t.pi_of_last_hand += usize::from(back.tag == last.rotate_pi());
+            }
+        }
+    }
+    t
+}
+
+/// Adjacent corners of the subdivided cube (6 edges apart): every movement is reversed.
+#[test]
+fn cube_moves_reverse() {
+    let t = sweep(&gen::cube(6).map, 6);
+    assert_eq!(t.reversed, t.forward);
+    assert_eq!(t.forward, 12 * 2 * 4);
+    eprintln!("{t:?}");
+}
+
+/// All corner pairs, up to 18 edges apart: paths that wind past other corners are not
+/// always reversed by our reverse path (documented in docs/qzip.md); most are.
+#[test]
+fn cube_long_moves_mostly_reverse() {
+    let t = sweep(&gen::cube(6).map, 100);
+    assert_eq!(t.forward, 8 * 7 * 4);
+    assert!(t.reversed * 100 >= t.forward * 95, "{t:?}");
+    eprintln!("{t:?}");
+}
+
+#[test]
+fn icosahedron_moves_reverse() {
+    let t = sweep(&ico_cc(2), 6);
+    assert_eq!(t.reversed, t.forward);
+    assert!(t.forward >= 900, "{t:?}");
+    eprintln!("{t:?}");
+}

@@ -1,0 +1,242 @@
+//! Q-zip stages 3 and 4 (`prepare`, `execute`, `zip`): grid preservation, exact undo, the
+//! four movements, and refusals that leave the map untouched.
+
+mod common;
+
+use common::{check_zip, ico_cc, singular, torus_with_splits};
+use proptest::prelude::*;
+use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::qzip::{
+    moves, plan, prepare, sketch, validate_path, zip, EndRule, PrepareError, QzipError,
+    SketchOptions, StartRule, Tag,
+};
+use zipmesh::{gen, Map, Vert};
+
+#[derive(Default, Debug)]
+struct Tally {
+    ok: usize,
+    refused: usize,
+    starts: [usize; 4],
+    ends: [usize; 3],
+}
+
+/// Every ordered pair of singularities within `max_len` edges, every initial operation.
+fn sweep(map: &Map, max_len: usize) -> Tally {
+    let mut t = Tally::default();
+    let sing = singular(map);
+    for &a in &sing {
+        for &b in &sing {
+            if a == b {
+                continue;
+            }
+            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
+                continue;
+            };
+            if path.len() > max_len {
+                continue;
+            }
+            for tag in Tag::CCW {
+                match check_zip(map, &path, tag) {
+                    Ok((_, r)) => {
+                        t.ok += 1;
+                        t.starts[r.surgery().start_rule() as usize] += 1;
+                        t.ends[r.surgery().end_rule() as usize] += 1;
+                    }
+                    Err(_) => t.refused += 1,
+                }
+            }
+        }
+    }
+    t
+}
+
+/// The subdivided cube: eight isolated v3s, every 3-3 movement along every shortest path.
+#[test]
+fn cube_pairs_all_move() {
+    let t = sweep(&gen::cube(6).map, 100);
+    assert_eq!(t.refused, 0, "{t:?}");
+    assert_eq!(t.ok, 8 * 7 * 4);
+}
+
+/// The twice-subdivided icosahedron: 12 isolated v5s and 20 isolated v3s; every pair
+/// within 8 edges and every initial operation moves, through every start and end rule.
+#[test]
+fn icosahedron_pairs_all_move() {
+    let t = sweep(&ico_cc(2), 8);
+    assert_eq!(t.refused, 0, "{t:?}");
+    assert!(t.ok >= 2000, "{t:?}");
+    assert!(t.starts.iter().all(|&n| n > 100), "{t:?}");
+    assert!(t.ends.iter().all(|&n| n > 100), "{t:?}");
+}
+
+/// Crowded clusters (two vertex splits on a torus): each movement keeps the grid or is
+/// refused untouched (`check_zip` asserts both), and some do move.
+#[test]
+fn crowded_clusters_keep_the_grid_or_refuse() {
+    let t = sweep(&torus_with_splits(16, &[3 * 16 + 3, 9 * 16 + 10]), 100);
+    assert!(t.ok >= 50, "{t:?}");
+    assert!(t.refused > 0, "{t:?}");
+}
+
+/// On a pair inside a regular region the four movements give four different maps.
+#[test]
+fn four_movements_differ() {
+    let map = ico_cc(2);
+    let sing = singular(&map);
+    let mut pairs = 0;
+    for &a in &sing {
+        for &b in &sing {
+            let Ok(path) = sketch(&map, a, b, &SketchOptions::default()) else {
+                continue;
+            };
+            if a == b || path.len() > 4 {
+                continue;
+            }
+            let mut hashes: Vec<u128> = moves(&map, &path)
+                .iter()
+                .map(|m| canonical_hash(&m.outcome.as_ref().expect("realizable").0))
+                .collect();
+            hashes.sort_unstable();
+            hashes.dedup();
+            assert_eq!(hashes.len(), 4);
+            pairs += 1;
+        }
+    }
+    assert!(pairs >= 100, "{pairs}");
+}
+
+/// The start and end rules of Sec. 2.6 as printed by the preparation.
+#[test]
+fn end_point_rules_by_valence_and_tag() {
+    let map = ico_cc(2);
+    let v3 = map.vertices().find(|&v| map.valence(v) == 3).unwrap();
+    let v5 = map.vertices().find(|&v| map.valence(v) == 5).unwrap();
+    let opts = SketchOptions::default();
+    let p35 = sketch(&map, v3, v5, &opts).unwrap();
+    let p53 = sketch(&map, v5, v3, &opts).unwrap();
+    for tag in Tag::CCW {
+        let s = prepare(&map, &plan(&map, &p35, tag).unwrap()).unwrap();
+        let want = if tag.is_split() {
+            StartRule::V3Split
+        } else {
+            StartRule::V3Collapse
+        };
+        assert_eq!(s.start_rule(), want);
+        assert_ne!(s.end_rule(), EndRule::V3);
+        if tag.is_split() {
+            assert_eq!(s.steps()[0].op, None);
+        } else {
+            // Rerouted: the first vertex is a neighbour of the v3, not the v3.
+            let first = s.steps()[0].vertex;
+            assert_ne!(first, v3);
+            assert!(map.vertex_darts(v3).any(|d| map.dest(d) == first));
+        }
+        let s = prepare(&map, &plan(&map, &p53, tag).unwrap()).unwrap();
+        assert_eq!(s.end_rule(), EndRule::V3);
+        if tag.is_split() {
+            assert_eq!(s.start_rule(), StartRule::V5Split);
+            assert_eq!(s.steps()[0].op, None);
+            assert_eq!(s.steps()[1].vertex, v5);
+        } else {
+            assert_eq!(s.start_rule(), StartRule::V5Collapse);
+            assert_eq!(s.steps()[0].vertex, v5);
+        }
+    }
+}
+
+/// Refusals by stage, each naming its reason, with the map untouched.
+#[test]
+fn refusals_leave_the_map_untouched() {
+    let opts = SketchOptions::default();
+    // A regular end.
+    let mut map = gen::torus_grid(8, 8).map;
+    let before = map.clone();
+    let e = zip(&mut map, Vert::new(0), Vert::new(3), Tag::LC, &opts).unwrap_err();
+    assert!(
+        matches!(e, QzipError::Prepare(PrepareError::End { valence: 4, .. })),
+        "{e}"
+    );
+    assert_eq!(map, before);
+    // A boundary end (grid corners have valence 2).
+    let mut map = gen::grid(6, 6).map;
+    let before = map.clone();
+    let e = zip(&mut map, Vert::new(0), Vert::new(6), Tag::LS, &opts).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            QzipError::Prepare(PrepareError::End { boundary: true, .. })
+        ),
+        "{e}"
+    );
+    assert_eq!(map, before);
+    // A one-edge path between two v3s (a cube's corners) with a split: nothing left to do.
+    let map = gen::cube(1).map;
+    let a = Vert::new(0);
+    let b = map.dest(map.vertex_dart(a));
+    let path = validate_path(&map, a, b, &[a, b], &opts).unwrap();
+    let e = prepare(&map, &plan(&map, &path, Tag::LS).unwrap()).unwrap_err();
+    assert_eq!(e, PrepareError::Empty);
+    // A valence-6 vertex inside the path is refused by the plan, by name.
+    let mut map = ico_cc(2);
+    let v = map.vertices().find(|&v| map.valence(v) == 4).unwrap();
+    let d = map.vertex_dart(v);
+    zipmesh::ops::quad::quad_collapse(&mut map, d).unwrap();
+    assert_eq!(map.valence(v), 6);
+    let before = map.clone();
+    let (x, y) = (
+        map.dest(map.vertex_dart(v)),
+        map.dest(map.rotate_cw(map.vertex_dart(v))),
+    );
+    let path = validate_path(&map, x, y, &[x, v, y], &opts).unwrap();
+    let e = zipmesh::qzip::zip_along(&mut map, &path, Tag::LC).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            QzipError::Plan(zipmesh::qzip::PlanError::Valence { valence: 6, .. })
+        ),
+        "{e}"
+    );
+    assert_eq!(map, before);
+}
+
+fn arb_tag() -> impl Strategy<Value = Tag> {
+    (0usize..4).prop_map(|i| Tag::CCW[i])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Random cluster placements on a torus, random pair and initial operation: the grid is
+    /// kept, or the map is untouched (`check_zip`).
+    #[test]
+    fn random_clusters(x1 in 0u32..14, y1 in 0u32..14, x2 in 0u32..14, y2 in 0u32..14,
+                       i in 0usize..64, j in 0usize..64, tag in arb_tag()) {
+        let (a1, a2) = (y1 * 14 + x1, y2 * 14 + x2);
+        prop_assume!(a1 != a2);
+        let map = torus_with_splits(14, &[a1]);
+        let mut map2 = map.clone();
+        // The second split may hit a vertex the first made irregular: skip then.
+        let s1 = map2.vertex_dart(Vert::new(a2));
+        let s2 = map2.rotate_cw(map2.rotate_cw(s1));
+        prop_assume!(map2.valence(Vert::new(a2)) == 4);
+        prop_assume!(zipmesh::ops::quad::vertex_split(&mut map2, s1, s2).is_ok());
+        let sing = singular(&map2);
+        let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
+        prop_assume!(a != b);
+        if let Ok(path) = sketch(&map2, a, b, &SketchOptions::default()) {
+            let _ = check_zip(&map2, &path, tag);
+        }
+    }
+
+    /// Random pairs on the icosahedron subdivided twice or three times: always realizable.
+    #[test]
+    fn random_icosahedron_pairs(levels in 2usize..4, i in 0usize..32, j in 0usize..32,
+                                tag in arb_tag()) {
+        let map = ico_cc(levels);
+        let sing = singular(&map);
+        let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
+        prop_assume!(a != b);
+        let path = sketch(&map, a, b, &SketchOptions::default()).unwrap();
+        prop_assume!(path.len() <= 8);
+        prop_assert!(check_zip(&map, &path, tag).is_ok());
+    }
+}
