@@ -458,3 +458,8 @@ fn write_counterexample(dir: &PathBuf, property: &str, case: &Case, s: &Shrunk) 
     crate::io::write_mesh(&path, &s.mesh).ok()?;
     Some(path)
 }
+
+/// The examples of `docs/campaign.md`, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/campaign.md")]
+struct CampaignDocDoctests;
