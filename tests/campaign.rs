@@ -260,3 +260,47 @@ fn generated_cases_depend_only_on_seed_and_index() {
         (0..10).any(|i| Case::generate(1, i, 700).mesh.map != Case::generate(2, i, 700).mesh.map);
     assert!(differ);
 }
+
+mod generated {
+    use super::*;
+    use proptest::prelude::*;
+    use zipmesh::campaign::{Kind, Origin};
+    use zipmesh::invariants::Counts;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Every generated case is valid, has the face kind and topology it was asked for,
+        /// and regular cases respect the face budget.
+        #[test]
+        fn generated_cases_keep_their_contract(seed in any::<u64>(), index in 0u64..1_000_000, max in 6usize..1500) {
+            let case = Case::generate(seed, index, max);
+            let map = &case.mesh.map;
+            prop_assert_eq!(map.check(), Ok(()));
+            let Origin::Generated { shape, kind, genus, holes, .. } = case.origin.clone() else {
+                return Err(TestCaseError::fail("a generated case says it was given"));
+            };
+            let c = Counts::of(map);
+            prop_assert_eq!((c.genus, c.boundary_loops, c.components), (genus as i64, holes, 1));
+            let degrees: Vec<usize> = map.faces().map(|f| map.degree(f)).collect();
+            match kind {
+                Kind::Quad => prop_assert!(degrees.iter().all(|&d| d == 4)),
+                Kind::Triangle => prop_assert!(degrees.iter().all(|&d| d == 3)),
+                Kind::Mixed => prop_assert!(degrees.contains(&3) && degrees.contains(&4)),
+            }
+            if shape != "random" {
+                // The smallest regular case is a cube: 6 quads, 12 triangles.
+                prop_assert!(degrees.len() <= max.max(12), "{} faces for budget {max}", degrees.len());
+            }
+        }
+
+        /// Shards i/n for every i partition the positions, for any n.
+        #[test]
+        fn shards_partition_positions(n in 1u64..9, positions in 0u64..200) {
+            for p in 0..positions {
+                let owners = (0..n).filter(|&i| Shard { index: i, count: n }.contains(p)).count();
+                prop_assert_eq!(owners, 1);
+            }
+        }
+    }
+}

@@ -424,6 +424,21 @@ fn check_selects_properties_and_replays_one_case() {
         (v["planned"].as_u64(), v["run"].as_u64()),
         (Some(1), Some(1))
     );
+    // A zero time limit runs nothing, says so, and is not a failure.
+    let v = check_json(&["--cases", "5", "--time-limit", "0"]);
+    assert_eq!(
+        (v["run"].as_u64(), v["timed_out"].as_bool()),
+        (Some(0), Some(true))
+    );
+    // Not a terminal: no progress bar, nothing on stderr.
+    let out = zipmesh(&["check", "--cases", "3", "--max-faces", "100"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains("3 of 3 cases run"),
+        "{}",
+        stdout(&out)
+    );
     let out = zipmesh(&["check", "--list"]);
     assert_eq!(out.status.code(), Some(0));
     assert!(stdout(&out).contains("gauss-bonnet"));

@@ -349,6 +349,12 @@ fn regular(kind: Kind, max_faces: usize, rng: &mut Rng) -> (Mesh, Origin) {
         0 => {
             let nx = rng.range(1, isqrt(budget).max(1) * 2).min(budget);
             let ny = rng.range(1, (budget / nx).max(1));
+            // A mixed mesh needs two quads: one to split, one to keep.
+            let nx = if kind == Kind::Mixed && nx * ny < 2 {
+                2
+            } else {
+                nx
+            };
             (gen::grid(nx, ny), "grid", 0, 1)
         }
         1 => {
@@ -385,14 +391,18 @@ fn isqrt(n: usize) -> usize {
     r
 }
 
-/// Splits each quad along a random diagonal with probability `num / den` (at least one
-/// quad when `num > 0`, so that a mixed mesh has a triangle).
+/// Splits each quad along a random diagonal with probability `num / den`. At least one quad
+/// is split, and when `num < den` at least one other is kept, so that a mixed mesh of two
+/// quads or more has both triangles and quads.
 fn split_quads(mesh: &Mesh, rng: &mut Rng, num: usize, den: usize) -> Mesh {
     let polys = mesh.polygons();
-    let forced = rng.below(polys.len().max(1));
+    let n = polys.len().max(1);
+    let forced = rng.below(n);
+    let kept = (num < den && n >= 2).then(|| (forced + 1 + rng.below(n - 1)) % n);
     let mut out: Vec<Vec<u32>> = Vec::with_capacity(2 * polys.len());
     for (i, p) in polys.iter().enumerate() {
-        if p.len() == 4 && (i == forced || rng.chance(num, den)) {
+        let split = i == forced || (Some(i) != kept && rng.chance(num, den));
+        if p.len() == 4 && split {
             let r = rng.below(2);
             let q = [p[r], p[r + 1], p[r + 2], p[(r + 3) % 4]];
             out.push(alloc::vec![q[0], q[1], q[2]]);

@@ -75,7 +75,14 @@ impl Outcome {
     }
 }
 
-/// The check function of a [`Property`].
+/// The check function of a [`Property`]: any thread-safe closure from a case to an outcome.
+///
+/// ```
+/// use std::sync::Arc;
+/// use zipmesh::campaign::{CheckFn, Outcome};
+/// let f: Arc<CheckFn> = Arc::new(|case| Outcome::Pass { checks: case.mesh.map.num_faces() as u64 });
+/// assert!(f(&zipmesh::campaign::Case::generate(0, 0, 100)).is_pass());
+/// ```
 pub type CheckFn = dyn Fn(&Case) -> Outcome + Send + Sync;
 
 /// A named property checked on every case of a campaign: the built-in ones come from

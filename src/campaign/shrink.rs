@@ -10,6 +10,15 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 /// How many times the property is re-run while shrinking, at most.
+///
+/// ```
+/// use zipmesh::campaign::{shrink, Case, Outcome, Property, SHRINK_BUDGET};
+/// let always = Property::new("always-fails", "", |_| Outcome::fail("no", None));
+/// let case = Case::generate(0, 1, 1000);
+/// let s = shrink(&always, &case, always.check(&case)).unwrap();
+/// assert!(s.evaluations <= SHRINK_BUDGET);
+/// assert_eq!(s.mesh.map.num_faces(), 1); // any single face still "fails"
+/// ```
 pub const SHRINK_BUDGET: usize = 600;
 
 /// A shrunk counterexample: a mesh on which the property still fails.
