@@ -304,3 +304,20 @@ mod generated {
         }
     }
 }
+
+#[test]
+fn replay_of_an_unshrunk_given_case_names_the_file_seed_and_focus() {
+    let mut case = Case::from_mesh(zipmesh::gen::cube(2), 12, 0, "meshes/cube.obj");
+    case.focus = Some(Vert::new(3));
+    let p = Property::new("no-cubes", "", |_: &Case| Outcome::fail("a cube", None));
+    let config = Config {
+        shrink: false,
+        ..Config::default()
+    };
+    let r = campaign::run_cases(&config, &[case], &[p], &|| {});
+    assert_eq!(r.failures.len(), 1);
+    assert_eq!(
+        r.failures[0].replay,
+        "zipmesh check meshes/cube.obj --seed 12 --property no-cubes --focus 3"
+    );
+}

@@ -241,8 +241,9 @@ pub fn run_with_progress(
         progress,
         &|case, property| {
             format!(
-                "zipmesh check --seed {seed} --max-faces {max} --case {} --property {property}",
-                case.index
+                "zipmesh check --seed {seed} --max-faces {max} --case {} --property {property}{}",
+                case.index,
+                focus_flag(case)
             )
         },
     )
@@ -274,17 +275,25 @@ pub fn run_cases(
         progress,
         &|case, property| {
             let (seed, max) = (case.seed, config.max_faces);
+            let focus = focus_flag(case);
             match &case.origin {
                 Origin::Given(label) => {
-                    format!("zipmesh check {label} --seed {seed} --property {property}")
+                    format!("zipmesh check {label} --seed {seed} --property {property}{focus}")
                 }
                 Origin::Generated { .. } => format!(
-                    "zipmesh check --seed {seed} --max-faces {max} --case {} --property {property}",
+                    "zipmesh check --seed {seed} --max-faces {max} --case {} --property {property}{focus}",
                     case.index
                 ),
             }
         },
     )
+}
+
+/// ` --focus V` when the case has a focus, else nothing.
+fn focus_flag(case: &Case) -> String {
+    case.focus
+        .map(|v| format!(" --focus {}", v.index()))
+        .unwrap_or_default()
 }
 
 /// Checks a property, turning a panic in it into a failure (user properties may panic).
