@@ -120,6 +120,20 @@ fn broken_operator_is_caught_and_shrunk_to_a_small_replayable_mesh() {
     assert!(broken.check(&replay).is_fail());
     assert!(failure.replay.contains(path.to_str().unwrap()));
     assert!(failure.replay.contains("--property broken-collapse-undo"));
+    #[cfg(feature = "cli")]
+    {
+        // The JSON form parses and carries the same failure.
+        let v: serde_json::Value = serde_json::from_str(&report.to_json(true)).unwrap();
+        assert_eq!(v["passed"], false);
+        let f = &v["failures"][0];
+        assert_eq!(f["property"], "broken-collapse-undo");
+        assert_eq!(f["case"], failure.case);
+        assert_eq!(f["shrunk_faces"], faces);
+        assert_eq!(f["original_faces"], failure.original_faces);
+        assert_eq!(f["counterexample"], path.to_str().unwrap());
+        assert_eq!(f["replay"], failure.replay.as_str());
+        assert_eq!(v["properties"][0]["failed"], row.failed);
+    }
     // The working operator passes on the same cases.
     let good = campaign::select(&campaign::builtin(), &["quad-collapse".into()]).unwrap();
     let config = Config {
