@@ -6,8 +6,13 @@ use super::compass::{plan, PlanError, Tag};
 use super::execute::{execute, ZipError, ZipReport};
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{sketch, Path, SketchError, SketchOptions};
+use alloc::vec::Vec;
+use glam::DVec3;
+
 use crate::invariants::canonical::CanonicalCode;
-use crate::{Dart, Map, Vert};
+use crate::ops::quad::QuadRecord;
+use crate::ops::Refusal;
+use crate::{Dart, Map, Mesh, Vert};
 
 /// Why a Q-zip was refused, by stage; the map is unchanged in every case.
 ///
@@ -279,4 +284,90 @@ pub fn start_turn(map: &Map, a: &Path, b: &Path) -> Option<i32> {
         (c, w) if c <= w => Some(c as i32),
         (_, w) => Some(-(w as i32)),
     }
+}
+
+/// A Q-zip on a [`Mesh`]: the report, and the positions it overwrote (for the undo).
+///
+/// See [`mesh_zip_along`] for an example.
+#[derive(Clone, Debug)]
+pub struct MeshZip {
+    report: ZipReport,
+    overwritten: Vec<(Vert, DVec3)>,
+    old_len: usize,
+}
+
+impl MeshZip {
+    /// The connectivity report.
+    ///
+    /// See [`mesh_zip_along`] for an example.
+    pub fn report(&self) -> &ZipReport {
+        &self.report
+    }
+
+    /// Undoes the edit: connectivity `==` and positions exactly as before.
+    ///
+    /// See [`mesh_zip_along`] for an example.
+    pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
+        self.report.undo(&mut mesh.map)?;
+        for &(v, p) in self.overwritten.iter().rev() {
+            if let Some(x) = mesh.positions.get_mut(v.index()) {
+                *x = p;
+            }
+        }
+        mesh.positions.truncate(self.old_len);
+        Ok(())
+    }
+}
+
+/// [`zip_along`] on a mesh: each vertex a split creates is placed at the mean of its
+/// neighbours (in the order created, so a copy next to an earlier copy uses its new place);
+/// merged vertices keep the position of the vertex that keeps the handle.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{mesh_zip_along, sketch, SketchOptions, Tag};
+/// let mut mesh = gen::subdivided_icosahedron(2);
+/// let before = mesh.clone();
+/// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
+/// let z = mesh_zip_along(&mut mesh, &path, Tag::LS).unwrap();
+/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// assert!(z.report().splits() > 0);
+/// z.undo(&mut mesh).unwrap();
+/// assert_eq!(mesh.map, before.map);
+/// assert_eq!(mesh.positions, before.positions);
+/// ```
+pub fn mesh_zip_along(mesh: &mut Mesh, path: &Path, initial: Tag) -> Result<MeshZip, QzipError> {
+    let report = zip_along(&mut mesh.map, path, initial)?;
+    let old_len = mesh.positions.len();
+    let mut overwritten = Vec::new();
+    if mesh.positions.len() < mesh.map.vertex_slots() {
+        mesh.positions.resize(mesh.map.vertex_slots(), DVec3::ZERO);
+    }
+    for r in report.records() {
+        if let QuadRecord::Split(s) = r {
+            let v = s.created();
+            let (mut sum, mut n) = (DVec3::ZERO, 0.0);
+            for d in mesh.map.vertex_darts(v) {
+                sum += mesh
+                    .positions
+                    .get(mesh.map.dest(d).index())
+                    .copied()
+                    .unwrap_or_default();
+                n += 1.0;
+            }
+            if let Some(x) = mesh.positions.get_mut(v.index()) {
+                if v.index() < old_len {
+                    overwritten.push((v, *x));
+                }
+                if n > 0.0 {
+                    *x = sum / n;
+                }
+            }
+        }
+    }
+    Ok(MeshZip {
+        report,
+        overwritten,
+        old_len,
+    })
 }
