@@ -114,3 +114,23 @@ fn small_meshes() {
         assert_eq!(t.moved, 0);
     }
 }
+
+/// With the preprocessing (valence-6+ vertices split), the pairs that ran through or ended
+/// at a valence-6 or 7 vertex of Spot and Blub move too.
+#[test]
+fn preprocessed_spot_and_blub() {
+    for name in ["spot_quadrangulated.obj", "blub_quadrangulated.obj"] {
+        let mut map = mesh(name);
+        let before = map.clone();
+        let p = zipmesh::qzip::preprocess(&mut map).expect("preprocessing");
+        assert!(map
+            .vertices()
+            .all(|v| map.is_boundary_vertex(v) || (3..=5).contains(&map.valence(v))));
+        let t = campaign(&map, 8);
+        eprintln!("{name} preprocessed: {t:?}");
+        assert!(!t.refused.contains_key("Plan Valence"), "{t:?}");
+        assert!(t.moved > 100, "{t:?}");
+        p.undo(&mut map).unwrap();
+        assert_eq!(map, before);
+    }
+}

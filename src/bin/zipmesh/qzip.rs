@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::io::{self, MeshFileError};
 use zipmesh::qzip::{
-    find_reverse, mesh_zip_along, moves, sketch, validate_path, Path, SketchOptions, Tag, ZipReport,
+    find_reverse, mesh_preprocess, mesh_zip_along, moves, sketch, validate_path, Path,
+    SketchOptions, Tag, ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
@@ -27,6 +28,10 @@ pub struct PairArgs {
     /// Print one JSON value instead of text.
     #[arg(long)]
     json: bool,
+    /// First split every interior vertex of valence 6 or more and remove every interior
+    /// valence-2 vertex (Sec. 2.6 covers v3 and v5 only); new vertices get new numbers.
+    #[arg(long)]
+    preprocess: bool,
 }
 
 /// `zipmesh moves`.
@@ -66,9 +71,13 @@ impl From<MeshFileError> for InputError {
 
 /// Reads the mesh and checks the pair and the path.
 fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
-    let (mesh, _) = io::read_mesh(&a.file)?;
-    let map = &mesh.map;
+    let (mut mesh, _) = io::read_mesh(&a.file)?;
     let name = a.file.display();
+    if a.preprocess {
+        mesh_preprocess(&mut mesh)
+            .map_err(|e| InputError(format!("{name}: the preprocessing was refused: {e}")))?;
+    }
+    let map = &mesh.map;
     if let Some(f) = map.faces().find(|&f| map.degree(f) != 4) {
         return Err(InputError(format!(
             "{name}: not a quad mesh (face {} has {} corners); Q-zip edits quad meshes",
