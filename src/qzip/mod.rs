@@ -35,4 +35,7 @@ pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Tur
 pub use execute::{execute, ZipError, ZipReport};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use sketch::{sketch, validate_path, Path, SketchError, SketchOptions};
-pub use zip::{find_reverse, moves, start_turn, zip, zip_along, Move, QzipError, ReverseRun};
+pub use zip::{
+    find_reverse, mesh_preprocess, mesh_zip_along, moves, preprocess, start_turn, zip, zip_along,
+    MeshZip, Move, Preprocessed, QzipError, ReverseRun,
+};

@@ -6,8 +6,13 @@ use super::compass::{plan, PlanError, Tag};
 use super::execute::{execute, ZipError, ZipReport};
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{sketch, Path, SketchError, SketchOptions};
+use alloc::vec::Vec;
+use glam::DVec3;
+
 use crate::invariants::canonical::CanonicalCode;
-use crate::{Dart, Map, Vert};
+use crate::ops::quad::{remove_valence2, split_high_valence, QuadRecord};
+use crate::ops::Refusal;
+use crate::{Dart, Map, Mesh, Vert};
 
 /// Why a Q-zip was refused, by stage; the map is unchanged in every case.
 ///
@@ -279,4 +284,199 @@ pub fn start_turn(map: &Map, a: &Path, b: &Path) -> Option<i32> {
         (c, w) if c <= w => Some(c as i32),
         (_, w) => Some(-(w as i32)),
     }
+}
+
+/// A Q-zip on a [`Mesh`]: the report, and the positions it overwrote (for the undo).
+///
+/// See [`mesh_zip_along`] for an example.
+#[derive(Clone, Debug)]
+pub struct MeshZip {
+    report: ZipReport,
+    overwritten: Vec<(Vert, DVec3)>,
+    old_len: usize,
+}
+
+impl MeshZip {
+    /// The connectivity report.
+    ///
+    /// See [`mesh_zip_along`] for an example.
+    pub fn report(&self) -> &ZipReport {
+        &self.report
+    }
+
+    /// Undoes the edit: connectivity `==` and positions exactly as before.
+    ///
+    /// See [`mesh_zip_along`] for an example.
+    pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
+        self.report.undo(&mut mesh.map)?;
+        for &(v, p) in self.overwritten.iter().rev() {
+            if let Some(x) = mesh.positions.get_mut(v.index()) {
+                *x = p;
+            }
+        }
+        mesh.positions.truncate(self.old_len);
+        Ok(())
+    }
+}
+
+/// Places each vertex created by a split in `records` at the mean of its neighbours, in
+/// order; returns the positions overwritten (of reused handles below `old_len`).
+fn place_created(mesh: &mut Mesh, records: &[QuadRecord], old_len: usize) -> Vec<(Vert, DVec3)> {
+    let mut overwritten = Vec::new();
+    if mesh.positions.len() < mesh.map.vertex_slots() {
+        mesh.positions.resize(mesh.map.vertex_slots(), DVec3::ZERO);
+    }
+    for r in records {
+        if let QuadRecord::Split(s) = r {
+            let v = s.created();
+            let (mut sum, mut n) = (DVec3::ZERO, 0.0);
+            for d in mesh.map.vertex_darts(v) {
+                let p = mesh.positions.get(mesh.map.dest(d).index());
+                sum += p.copied().unwrap_or_default();
+                n += 1.0;
+            }
+            if let Some(x) = mesh.positions.get_mut(v.index()) {
+                if v.index() < old_len {
+                    overwritten.push((v, *x));
+                }
+                if n > 0.0 {
+                    *x = sum / n;
+                }
+            }
+        }
+    }
+    overwritten
+}
+
+/// [`preprocess`] on a mesh: the vertices its splits create are placed at the mean of their
+/// neighbours.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad, Dart};
+/// use zipmesh::qzip::mesh_preprocess;
+/// let mut mesh = gen::torus_grid(8, 8);
+/// quad::quad_collapse(&mut mesh.map, Dart::new(0)).unwrap();
+/// mesh_preprocess(&mut mesh).unwrap();
+/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// ```
+pub fn mesh_preprocess(mesh: &mut Mesh) -> Result<Preprocessed, Refusal> {
+    let old_len = mesh.positions.len();
+    let p = preprocess(&mut mesh.map)?;
+    place_created(mesh, p.records(), old_len);
+    Ok(p)
+}
+
+/// [`zip_along`] on a mesh: each vertex a split creates is placed at the mean of its
+/// neighbours (in the order created, so a copy next to an earlier copy uses its new place);
+/// merged vertices keep the position of the vertex that keeps the handle.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{mesh_zip_along, sketch, SketchOptions, Tag};
+/// let mut mesh = gen::subdivided_icosahedron(2);
+/// let before = mesh.clone();
+/// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
+/// let z = mesh_zip_along(&mut mesh, &path, Tag::LS).unwrap();
+/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// assert!(z.report().splits() > 0);
+/// z.undo(&mut mesh).unwrap();
+/// assert_eq!(mesh.map, before.map);
+/// assert_eq!(mesh.positions, before.positions);
+/// ```
+pub fn mesh_zip_along(mesh: &mut Mesh, path: &Path, initial: Tag) -> Result<MeshZip, QzipError> {
+    let report = zip_along(&mut mesh.map, path, initial)?;
+    let old_len = mesh.positions.len();
+    let overwritten = place_created(mesh, report.records(), old_len);
+    Ok(MeshZip {
+        report,
+        overwritten,
+        old_len,
+    })
+}
+
+/// What [`preprocess`] did, with the records for an exact undo.
+///
+/// See [`preprocess`] for an example.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Preprocessed {
+    records: Vec<QuadRecord>,
+}
+
+impl Preprocessed {
+    /// The operations applied, in order (valence-6+ splits and valence-2 removals).
+    ///
+    /// See [`preprocess`] for an example.
+    pub fn records(&self) -> &[QuadRecord] {
+        &self.records
+    }
+
+    /// Undoes the preprocessing (the map comes back `==`).
+    ///
+    /// See [`preprocess`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        for r in self.records.iter().rev() {
+            r.undo(map)?;
+        }
+        Ok(())
+    }
+}
+
+/// The preprocessing Sec. 2.6 assumes: every interior vertex of valence 6 or more is split
+/// along a pair of opposite edges (a 6 becomes two regular vertices and two v5s at the far
+/// ends; a 7 a 4 and a 5), and every interior valence-2 vertex is removed (its two quads
+/// merge), until none is left. Pairs whose far ends have valence 4 or less are preferred so
+/// no new valence-6 vertex appears. All or nothing: on a refusal everything is undone.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad, Dart};
+/// use zipmesh::qzip::preprocess;
+/// let mut map = gen::torus_grid(8, 8).map;
+/// quad::quad_collapse(&mut map, Dart::new(0)).unwrap(); // makes a valence 6
+/// let before = map.clone();
+/// let p = preprocess(&mut map).unwrap();
+/// assert!(map.vertices().all(|v| (3..=5).contains(&map.valence(v))));
+/// assert_eq!(p.records().len(), 1);
+/// p.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// ```
+pub fn preprocess(map: &mut Map) -> Result<Preprocessed, Refusal> {
+    let mut out = Preprocessed::default();
+    // Each step lowers the sum of (valence - 5) over high vertices or removes a vertex, so
+    // this bound is never reached on a valid map; it keeps a corrupt one from looping.
+    let bound = 4 * map.dart_slots() + 16;
+    for _ in 0..bound {
+        let next = map
+            .vertices()
+            .find(|&v| !map.is_boundary_vertex(v) && (map.valence(v) >= 6 || map.valence(v) == 2));
+        let Some(v) = next else {
+            return Ok(out);
+        };
+        let step = if map.valence(v) == 2 {
+            remove_valence2(map, map.vertex_dart(v)).map(QuadRecord::from)
+        } else {
+            let k = map.valence(v);
+            let far = |d: Dart| {
+                let mut o = d;
+                for _ in 0..k / 2 {
+                    o = map.rotate_cw(o);
+                }
+                [map.dest(d), map.dest(o)]
+            };
+            let low = |x: Vert| map.valence(x) <= 4;
+            let first = map
+                .vertex_darts(v)
+                .find(|&d| far(d).iter().all(|&x| low(x)))
+                .unwrap_or_else(|| map.vertex_dart(v));
+            split_high_valence(map, v, first).map(QuadRecord::from)
+        };
+        match step {
+            Ok(r) => out.records.push(r),
+            Err(e) => {
+                let _ = out.undo(map);
+                return Err(e);
+            }
+        }
+    }
+    let _ = out.undo(map);
+    Err(Refusal::BadArguments)
 }

@@ -5,6 +5,7 @@
 //! failed), 2 any error (bad file, bad usage).
 
 mod check;
+mod qzip;
 
 use clap::{Parser, Subcommand};
 use serde_json::{json, Map as JsonMap, Value};
@@ -59,6 +60,12 @@ enum Command {
     /// Property campaigns: check the kernel's and the operators' properties on generated
     /// meshes (no arguments: the default campaign) or on the given files. Exit 1 on a failure.
     Check(check::CheckArgs),
+    /// The four movements of a pair of singularities of a quad mesh (Q-zip) and whether each
+    /// is realizable.
+    Moves(qzip::MovesArgs),
+    /// Move a pair of singularities of a quad mesh (Q-zip) and write the result; prints the
+    /// report and the command that undoes it.
+    Zip(qzip::ZipArgs),
 }
 
 fn main() -> ExitCode {
@@ -74,7 +81,12 @@ fn main() -> ExitCode {
             };
         }
     };
-    match run(cli.command) {
+    let result = match cli.command {
+        Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
+        Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
+        command => run(command).map_err(|e| e.to_string()),
+    };
+    match result {
         Ok(code) => code,
         Err(e) => {
             eprintln!("zipmesh: {e}");
@@ -86,6 +98,8 @@ fn main() -> ExitCode {
 fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
         Command::Check(args) => return Ok(check::run(args)),
+        // Dispatched in `main`: their errors are not file errors.
+        Command::Moves(_) | Command::Zip(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

@@ -1,0 +1,291 @@
+//! `zipmesh moves` and `zipmesh zip`: Q-zip from the command line.
+
+use clap::Args;
+use serde_json::{json, Value};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use zipmesh::io::{self, MeshFileError};
+use zipmesh::qzip::{
+    find_reverse, mesh_preprocess, mesh_zip_along, moves, sketch, validate_path, Path,
+    SketchOptions, Tag, ZipReport,
+};
+use zipmesh::{Compaction, Map, Mesh, Vert};
+
+/// Arguments shared by `moves` and `zip`.
+#[derive(Args)]
+pub struct PairArgs {
+    /// A quad mesh (.obj or .off).
+    file: PathBuf,
+    /// The initial singularity: a 0-based vertex number of the file.
+    #[arg(long)]
+    from: u32,
+    /// The terminal singularity: a 0-based vertex number of the file.
+    #[arg(long)]
+    to: u32,
+    /// The surgery path as comma-separated vertex numbers (default: a shortest path).
+    #[arg(long, value_delimiter = ',')]
+    path: Option<Vec<u32>>,
+    /// Print one JSON value instead of text.
+    #[arg(long)]
+    json: bool,
+    /// First split every interior vertex of valence 6 or more and remove every interior
+    /// valence-2 vertex (Sec. 2.6 covers v3 and v5 only); new vertices get new numbers.
+    #[arg(long)]
+    preprocess: bool,
+}
+
+/// `zipmesh moves`.
+#[derive(Args)]
+pub struct MovesArgs {
+    #[command(flatten)]
+    pair: PairArgs,
+}
+
+/// `zipmesh zip`.
+#[derive(Args)]
+pub struct ZipArgs {
+    #[command(flatten)]
+    pair: PairArgs,
+    /// The initial operation: LS, RS, LC or RC.
+    #[arg(long = "move")]
+    tag: Tag,
+    /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// An input problem: printed as `zipmesh: <message>`, exit 2.
+pub struct InputError(String);
+
+impl std::fmt::Display for InputError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl From<MeshFileError> for InputError {
+    fn from(e: MeshFileError) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+/// Reads the mesh and checks the pair and the path.
+fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
+    let (mut mesh, _) = io::read_mesh(&a.file)?;
+    let name = a.file.display();
+    if a.preprocess {
+        mesh_preprocess(&mut mesh)
+            .map_err(|e| InputError(format!("{name}: the preprocessing was refused: {e}")))?;
+    }
+    let map = &mesh.map;
+    if let Some(f) = map.faces().find(|&f| map.degree(f) != 4) {
+        return Err(InputError(format!(
+            "{name}: not a quad mesh (face {} has {} corners); Q-zip edits quad meshes",
+            f.index(),
+            map.degree(f)
+        )));
+    }
+    for (flag, v) in [("--from", a.from), ("--to", a.to)] {
+        let vert = Vert::new(v);
+        if !map.is_live_vertex(vert) {
+            return Err(InputError(format!(
+                "{name}: {flag} {v}: no such vertex (the file has {} vertex numbers, and \
+                 unreferenced ones do not count)",
+                map.vertex_slots()
+            )));
+        }
+        let regular = if map.is_boundary_vertex(vert) { 3 } else { 4 };
+        if map.valence(vert) == regular {
+            return Err(InputError(format!(
+                "{name}: {flag} {v} is not irregular (valence {}{}); Q-zip moves singularities",
+                map.valence(vert),
+                if map.is_boundary_vertex(vert) {
+                    " on the boundary"
+                } else {
+                    ""
+                }
+            )));
+        }
+    }
+    let (from, to) = (Vert::new(a.from), Vert::new(a.to));
+    let opts = SketchOptions::default();
+    let path = match &a.path {
+        Some(vs) => {
+            let vs: Vec<Vert> = vs.iter().map(|&v| Vert::new(v)).collect();
+            validate_path(map, from, to, &vs, &opts)
+        }
+        None => sketch(map, from, to, &opts),
+    }
+    .map_err(|e| InputError(format!("{name}: no surgery path: {e}")))?;
+    Ok((mesh, path))
+}
+
+fn numbers(vs: &[Vert]) -> Vec<u32> {
+    vs.iter().map(|v| v.index() as u32).collect()
+}
+
+/// A vertex of the edited map in the compacted numbering.
+fn renumber(c: &Compaction, v: Vert) -> Option<u32> {
+    c.vertices
+        .get(v.index())
+        .copied()
+        .flatten()
+        .map(|x| x.index() as u32)
+}
+
+fn surgery_path(r: &ZipReport) -> Vec<u32> {
+    r.surgery()
+        .steps()
+        .iter()
+        .map(|s| s.vertex.index() as u32)
+        .collect()
+}
+
+/// Runs `zipmesh moves`: the four movements of the pair and their outcome.
+pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
+    let (mesh, path) = load(&args.pair)?;
+    let mut rows = Vec::new();
+    for m in moves(&mesh.map, &path) {
+        let row = match &m.outcome {
+            Ok((edited, r)) => {
+                let mut e: Map = edited.clone();
+                let c = e.compact();
+                json!({
+                    "move": m.tag.to_string(),
+                    "realizable": true,
+                    "splits": r.splits(),
+                    "collapses": r.collapses(),
+                    "moved": {
+                        "from": renumber(&c, r.moved_from()),
+                        "to": renumber(&c, r.moved_to()),
+                    },
+                    "path": surgery_path(r),
+                })
+            }
+            Err(e) => json!({
+                "move": m.tag.to_string(),
+                "realizable": false,
+                "reason": e.to_string(),
+            }),
+        };
+        rows.push(row);
+    }
+    if args.pair.json {
+        println!("{}", Value::Array(rows));
+    } else {
+        println!(
+            "{}: moving {} -> {} along {}",
+            args.pair.file.display(),
+            args.pair.from,
+            args.pair.to,
+            join(&numbers(path.vertices()))
+        );
+        for r in &rows {
+            if r["realizable"] == json!(true) {
+                println!(
+                    "{}  realizable: {} splits, {} collapses; the pair moves to {} and {} \
+                     (vertex numbers after compaction)",
+                    r["move"].as_str().unwrap_or("?"),
+                    r["splits"],
+                    r["collapses"],
+                    r["moved"]["from"],
+                    r["moved"]["to"]
+                );
+            } else {
+                println!(
+                    "{}  not realizable: {}",
+                    r["move"].as_str().unwrap_or("?"),
+                    r["reason"].as_str().unwrap_or("?")
+                );
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn join(v: &[u32]) -> String {
+    v.iter()
+        .map(|x| x.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// Runs `zipmesh zip`: one movement, the edited mesh written compacted to OUT.
+pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
+    let (original, path) = load(&args.pair)?;
+    let mut mesh = original.clone();
+    let z = mesh_zip_along(&mut mesh, &path, args.tag).map_err(|e| {
+        InputError(format!(
+            "{}: the {} movement is not realizable: {e}",
+            args.pair.file.display(),
+            args.tag
+        ))
+    })?;
+    let r = z.report();
+    // The reverse run is found on the edited map before compaction renumbers it.
+    let reverse = find_reverse(&mesh.map, r, &original.map);
+    let c = mesh.compact();
+    io::write_mesh(&args.output, &mesh)?;
+    let moved_from = renumber(&c, r.moved_from());
+    let moved_to = renumber(&c, r.moved_to());
+    let undo = reverse.as_ref().map(|rev| {
+        let p: Vec<Option<u32>> = rev
+            .path
+            .vertices()
+            .iter()
+            .map(|&v| renumber(&c, v))
+            .collect();
+        json!({
+            "from": moved_to,
+            "to": moved_from,
+            "move": rev.tag.to_string(),
+            "path": p,
+        })
+    });
+    let report = json!({
+        "file": args.pair.file.display().to_string(),
+        "output": args.output.display().to_string(),
+        "move": args.tag.to_string(),
+        "splits": r.splits(),
+        "collapses": r.collapses(),
+        "cleanup": {"valence2_removals": r.cleanup_counts().0, "valence6_splits": r.cleanup_counts().1},
+        "moved": {"from": moved_from, "to": moved_to},
+        "path": surgery_path(r),
+        "footprint": {"faces": r.footprint_faces().len(), "edges": r.footprint_edges().len()},
+        "scar": {"faces": r.scar_faces().len(), "edges": r.scar_edges().len()},
+        "undo": undo,
+    });
+    if args.pair.json {
+        println!("{report}");
+    } else {
+        println!(
+            "{} -> {}: {} movement, {} splits, {} collapses; the pair moved to {} and {}",
+            args.pair.file.display(),
+            args.output.display(),
+            args.tag,
+            r.splits(),
+            r.collapses(),
+            report["moved"]["from"],
+            report["moved"]["to"]
+        );
+        match &reverse {
+            Some(rev) => println!(
+                "undo: zipmesh zip {} --from {} --to {} --move {} --path {} -o UNDONE",
+                args.output.display(),
+                report["moved"]["to"],
+                report["moved"]["from"],
+                rev.tag,
+                report["undo"]["path"]
+                    .as_array()
+                    .map(|a| a
+                        .iter()
+                        .map(|x| x.to_string())
+                        .collect::<Vec<_>>()
+                        .join(","))
+                    .unwrap_or_default()
+            ),
+            None => println!("undo: no reverse Q-zip restores the input here"),
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

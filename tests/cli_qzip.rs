@@ -1,0 +1,241 @@
+//! `zipmesh moves` and `zipmesh zip`: JSON reports checked against the library, the printed
+//! undo restoring the input, and exit 2 with no output file on bad input.
+#![cfg(feature = "cli")]
+
+use serde_json::Value;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use zipmesh::qzip::{moves, sketch, SketchOptions, Tag};
+use zipmesh::{io, is_isomorphic, Vert};
+
+fn zipmesh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(args)
+        .output()
+        .expect("the zipmesh binary runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-qzip-{name}"));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn spot() -> String {
+    let p =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/spot_quadrangulated.obj");
+    p.to_str().unwrap().to_string()
+}
+
+fn json(o: &Output) -> Value {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).expect("one JSON value")
+}
+
+/// Spot's v5 15 and v3 2, 16 edges apart (see `moves` below).
+const FROM: &str = "15";
+const TO: &str = "2";
+
+#[test]
+fn moves_json_matches_the_library() {
+    let v = json(&zipmesh(&[
+        "moves",
+        &spot(),
+        "--from",
+        FROM,
+        "--to",
+        TO,
+        "--json",
+    ]));
+    let rows = v.as_array().expect("a list");
+    let (mesh, _) = io::read_mesh(spot()).unwrap();
+    let path = sketch(
+        &mesh.map,
+        Vert::new(15),
+        Vert::new(2),
+        &SketchOptions::default(),
+    )
+    .unwrap();
+    let lib = moves(&mesh.map, &path);
+    assert_eq!(rows.len(), 4);
+    for (row, m) in rows.iter().zip(lib.iter()) {
+        assert_eq!(row["move"], m.tag.to_string());
+        assert_eq!(row["realizable"], m.outcome.is_ok());
+        match &m.outcome {
+            Ok((_, r)) => {
+                assert_eq!(row["splits"], r.splits());
+                assert_eq!(row["collapses"], r.collapses());
+                assert!(row["moved"]["from"].is_u64() && row["moved"]["to"].is_u64());
+            }
+            Err(e) => assert_eq!(row["reason"], e.to_string()),
+        }
+    }
+}
+
+/// Every realizable movement: the report's moved vertices carry the pair's valences in OUT,
+/// and the printed undo, passed back to `zip`, gives a mesh isomorphic to the input.
+#[test]
+fn zip_then_its_undo_restores_the_input() {
+    let dir = temp_dir("undo");
+    let (input, _) = io::read_mesh(spot()).unwrap();
+    let mut done = 0;
+    for tag in Tag::CCW {
+        let out = dir.join(format!("{tag}.obj"));
+        let o = zipmesh(&[
+            "zip",
+            &spot(),
+            "--from",
+            FROM,
+            "--to",
+            TO,
+            "--move",
+            &tag.to_string(),
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        if !o.status.success() {
+            assert_eq!(o.status.code(), Some(2));
+            assert!(!out.exists());
+            continue;
+        }
+        let r = json(&o);
+        for k in ["splits", "collapses", "moved", "path", "undo"] {
+            assert!(r.get(k).is_some(), "missing {k}");
+        }
+        let (edited, _) = io::read_mesh(&out).unwrap();
+        let at = |k: &str| Vert::new(r["moved"][k].as_u64().unwrap() as u32);
+        assert_eq!(edited.map.valence(at("from")), 5);
+        assert_eq!(edited.map.valence(at("to")), 3);
+        assert_eq!(
+            edited.map.num_vertices() as u64,
+            input.map.num_vertices() as u64 + r["splits"].as_u64().unwrap()
+                - r["collapses"].as_u64().unwrap()
+        );
+        let u = &r["undo"];
+        let path: Vec<String> = u["path"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_u64().unwrap().to_string())
+            .collect();
+        let back = dir.join(format!("{tag}-back.obj"));
+        let o = zipmesh(&[
+            "zip",
+            out.to_str().unwrap(),
+            "--from",
+            &u["from"].to_string(),
+            "--to",
+            &u["to"].to_string(),
+            "--move",
+            u["move"].as_str().unwrap(),
+            "--path",
+            &path.join(","),
+            "-o",
+            back.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let (restored, _) = io::read_mesh(&back).unwrap();
+        assert!(is_isomorphic(&restored.map, &input.map));
+        done += 1;
+    }
+    assert!(done >= 2);
+}
+
+/// Bad input: exit 2, a message naming the problem, and no output file.
+#[test]
+fn bad_input_exits_2_without_output() {
+    let dir = temp_dir("bad");
+    let out = dir.join("out.obj");
+    let o = out.to_str().unwrap();
+    let torus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri/torus.obj");
+    let helmet =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/osd_catmark_helmet.obj");
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (
+            vec!["--from".into(), FROM.into(), "--to".into(), "16".into()],
+            "not irregular",
+        ),
+        (
+            vec!["--from".into(), FROM.into(), "--to".into(), "99999".into()],
+            "no such vertex",
+        ),
+        (
+            vec![
+                "--from".into(),
+                FROM.into(),
+                "--to".into(),
+                TO.into(),
+                "--path".into(),
+                "15,2".into(),
+            ],
+            "no surgery path",
+        ),
+    ];
+    for (extra, msg) in cases {
+        let mut args: Vec<String> = vec![
+            "zip".into(),
+            spot(),
+            "--move".into(),
+            "LC".into(),
+            "-o".into(),
+            o.into(),
+        ];
+        args.extend(extra);
+        let a: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let r = zipmesh(&a);
+        assert_eq!(r.status.code(), Some(2));
+        assert!(
+            String::from_utf8_lossy(&r.stderr).contains(msg),
+            "{}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+        assert!(!out.exists());
+    }
+    let r = zipmesh(&[
+        "zip",
+        torus.to_str().unwrap(),
+        "--from",
+        "0",
+        "--to",
+        "1",
+        "--move",
+        "LC",
+        "-o",
+        o,
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("not a quad mesh"));
+    // Helmet: vertex 0 is a boundary corner (valence 2); Sec. 2.6 does not cover it.
+    let r = zipmesh(&[
+        "zip",
+        helmet.to_str().unwrap(),
+        "--from",
+        "0",
+        "--to",
+        "54",
+        "--move",
+        "LC",
+        "-o",
+        o,
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("not realizable"));
+    assert!(!out.exists());
+    let r = zipmesh(&[
+        "zip",
+        &spot(),
+        "--from",
+        FROM,
+        "--to",
+        TO,
+        "--move",
+        "XX",
+        "-o",
+        o,
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(!out.exists());
+}
