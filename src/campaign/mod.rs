@@ -325,6 +325,7 @@ fn execute<'a>(
     progress: &(dyn Fn() + Sync),
     replay: &Replay<'_>,
 ) -> Report {
+    let started = Instant::now();
     let positions: Vec<u64> = (0..count).filter(|&p| config.shard.contains(p)).collect();
     let deadline = config.time_limit.map(|t| Instant::now() + t);
     let one = |p: u64| -> Option<CaseResult> {
@@ -444,6 +445,7 @@ fn execute<'a>(
         planned: positions.len() as u64,
         run: ran,
         timed_out: ran < positions.len() as u64,
+        elapsed: started.elapsed(),
         rows,
         failures,
     }

@@ -92,6 +92,8 @@ pub struct Report {
     pub run: u64,
     /// Whether the time limit stopped the campaign early.
     pub timed_out: bool,
+    /// Wall time of the whole campaign, shrinking included (not deterministic).
+    pub elapsed: Duration,
     /// One row per property, in the order given.
     pub rows: Vec<Row>,
     /// One entry per property that failed, in the order of `rows`.
@@ -155,7 +157,8 @@ impl Report {
 
     /// The report as one JSON object: `seed`, `shard` (`"i/n"`), `planned`, `run`,
     /// `timed_out`, `passed`, `properties` (a list of objects with `name`, `cases`, `passed`,
-    /// `failed`, `skipped`, `checks` and, if `times`, `seconds`) and `failures` (a list of
+    /// `failed`, `skipped`, `checks` and, if `times`, `seconds`), if `times` the campaign's
+    /// wall time `seconds`, and `failures` (a list of
     /// objects with `property`, `case`, `description`, `message`, `original_faces`,
     /// `shrunk_faces`, `counterexample` (a path or null) and `replay`).
     ///
@@ -196,7 +199,12 @@ impl Report {
             }
             s.push('}');
         }
-        s.push_str("],\"failures\":[");
+        if times {
+            let _ = write!(s, "],\"seconds\":{}", self.elapsed.as_secs_f64());
+            s.push_str(",\"failures\":[");
+        } else {
+            s.push_str("],\"failures\":[");
+        }
         for (i, f) in self.failures.iter().enumerate() {
             if i > 0 {
                 s.push(',');

@@ -181,8 +181,11 @@ fn print_text(report: &Report) {
         format!(" (shard {})", report.shard)
     };
     println!(
-        "{} of {} cases run{scope}, seed {}",
-        report.run, report.planned, report.seed
+        "{} of {} cases run{scope}, seed {}, {:.2} s",
+        report.run,
+        report.planned,
+        report.seed,
+        report.elapsed.as_secs_f64()
     );
     if report.timed_out {
         println!(
