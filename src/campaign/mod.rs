@@ -5,7 +5,8 @@
 //!
 //! * [`Case`]: one mesh, made from `(seed, index)` only ([`Case::generate`]) or given.
 //! * [`Property`]: a name and a check `Fn(&Case) -> Outcome`; [`builtin`] lists the kernel's
-//!   and the operators' properties, and your own are just more values.
+//!   and the operators' properties, and your own are just more values; [`undo_property`]
+//!   makes one for an editing operator with an undo record.
 //! * [`run`] / [`run_cases`]: the campaign; [`Report`]: rows and [`Failure`]s.
 //! * [`shrink()`]: deletes faces far from the failure while it still fails.
 //!
@@ -57,7 +58,7 @@ mod report;
 mod shrink;
 
 pub use case::{Case, Kind, Origin};
-pub use property::{builtin, kernel, operators, CheckFn, Outcome, Property};
+pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use report::{Failure, Report, Row};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
 

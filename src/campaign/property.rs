@@ -275,6 +275,45 @@ pub fn operators() -> Vec<Property> {
     ]
 }
 
+/// A property for an editing operator of your own: at 16 sites per case (the darts of
+/// [`Case::sites`]), `apply(map, dart)` either refuses and leaves the map `==` to before, or
+/// returns a record after which the map passes [`Map::check`] and whose
+/// [`Undo::undo`] restores the map exactly (`==`, free lists included). `degree`: the face
+/// degree the operator works on (cases without such a face are skipped), or 0 for any.
+/// A failure's focus is the origin of the site's dart, so shrinking keeps the faces there.
+///
+/// ```
+/// use zipmesh::campaign::{self, undo_property, Config};
+/// use zipmesh::ops::tri;
+/// // The kernel's own triangle flip passes; plug in your operator the same way.
+/// let p = undo_property("my-flip", 3, |map, d| tri::flip(map, d));
+/// let report = campaign::run(&Config { cases: 10, max_faces: 300, ..Config::default() }, &[p]);
+/// assert!(report.passed());
+/// assert!(report.rows[0].checks > 0);
+/// ```
+pub fn undo_property<R, E, F>(name: impl Into<String>, degree: usize, apply: F) -> Property
+where
+    R: Undo + 'static,
+    F: Fn(&mut Map, Dart) -> Result<R, E> + Send + Sync + 'static,
+{
+    let name = name.into();
+    let about = format!(
+        "{name}: a refusal changes nothing; an application passes check() and undo restores the map exactly"
+    );
+    Property::new(name, about, move |case| {
+        at_sites(
+            case,
+            0x7573_6572,
+            degree,
+            |before, work, d, _| match apply(work, d) {
+                Err(_) if work == before => Ok(false),
+                Err(_) => Err("refused but changed the map".to_string()),
+                Ok(record) => settle(before, work, Ok(()), Ok(record), |_| Ok(())),
+            },
+        )
+    })
+}
+
 // ------------------------------------------------------------------------------------
 // Kernel properties.
 
@@ -422,7 +461,7 @@ const SITES: usize = 16;
 
 /// Runs `attempt` at the case's sites on a working copy that must equal the case's map
 /// again after every site. `degree`: the face degree the operator works on; a mesh without
-/// such a face is skipped.
+/// such a face is skipped (0: never skipped).
 fn at_sites(
     case: &Case,
     salt: u64,
@@ -446,7 +485,7 @@ fn at_darts(
     attempt: &mut Attempt<'_>,
 ) -> Outcome {
     let before = &case.mesh.map;
-    if !before.faces().any(|f| before.degree(f) == degree) {
+    if degree != 0 && !before.faces().any(|f| before.degree(f) == degree) {
         return Outcome::Skip;
     }
     let mut work = before.clone();
