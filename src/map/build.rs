@@ -149,6 +149,15 @@ pub struct BuildReport {
     pub unreferenced: Vec<super::Vert>,
 }
 
+/// `n` unset entries with room for edits: operators that add elements (splits) then grow
+/// the arrays in place instead of copying a whole large map on the first edit. The room is
+/// n/32 + 64 entries (3% more memory).
+fn with_room(n: usize) -> Vec<u32> {
+    let mut v = Vec::with_capacity(n + n / 32 + 64);
+    v.resize(n, NONE);
+    v
+}
+
 impl Map {
     /// Builds a map from polygons given as vertex indices in counter-clockwise order.
     ///
@@ -369,11 +378,11 @@ impl Map {
 
         let n_darts = 2 * n_edges as usize;
         let mut map = Map {
-            next: vec![NONE; n_darts],
-            vert: vec![NONE; n_darts],
-            face: vec![NONE; n_darts],
-            vdart: vec![NONE; n_vertices],
-            fdart: vec![NONE; n_faces],
+            next: with_room(n_darts),
+            vert: with_room(n_darts),
+            face: with_room(n_darts),
+            vdart: with_room(n_vertices),
+            fdart: with_room(n_faces),
             free_edges: Vec::new(),
             free_verts: Vec::new(),
             free_faces: Vec::new(),

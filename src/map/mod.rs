@@ -38,7 +38,7 @@ use alloc::vec::Vec;
 /// assert_eq!((map.num_vertices(), map.num_edges(), map.num_faces()), (4, 5, 2));
 /// assert!(map.check().is_ok());
 /// ```
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[derive(Debug, PartialEq, Eq, Default)]
 pub struct Map {
     /// Per dart: the next dart around its face or boundary loop; `NONE` for a dead dart.
     pub(crate) next: Vec<u32>,
@@ -311,4 +311,27 @@ impl Map {
 #[inline(always)]
 fn get(a: &[u32], i: u32) -> u32 {
     a.get(i as usize).copied().unwrap_or(NONE)
+}
+
+/// A copy of `v` with the same spare room, so a copied map edits in place as the original
+/// does (a derived clone would drop the room and copy the whole array on the first split).
+fn clone_with_room(v: &[u32], capacity: usize) -> Vec<u32> {
+    let mut out = Vec::with_capacity(capacity.max(v.len()));
+    out.extend_from_slice(v);
+    out
+}
+
+impl Clone for Map {
+    fn clone(&self) -> Map {
+        Map {
+            next: clone_with_room(&self.next, self.next.capacity()),
+            vert: clone_with_room(&self.vert, self.vert.capacity()),
+            face: clone_with_room(&self.face, self.face.capacity()),
+            vdart: clone_with_room(&self.vdart, self.vdart.capacity()),
+            fdart: clone_with_room(&self.fdart, self.fdart.capacity()),
+            free_edges: self.free_edges.clone(),
+            free_verts: self.free_verts.clone(),
+            free_faces: self.free_faces.clone(),
+        }
+    }
 }

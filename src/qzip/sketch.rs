@@ -23,10 +23,11 @@
 //! ```
 
 use alloc::collections::{BinaryHeap, VecDeque};
-use alloc::vec;
 use alloc::vec::Vec;
 use core::cmp::Ordering;
 use core::fmt;
+
+use hashbrown::{HashMap, HashSet};
 
 use crate::{Dart, Face, Map, Vert};
 
@@ -302,26 +303,18 @@ impl std::error::Error for SketchError {}
 
 /// The edge masks and checked weights shared by both searches and the validation.
 struct Rules<'a> {
-    edge_ok: Vec<bool>,
+    /// Forbidden edge indices; a set, so a search costs what it explores, not O(E).
+    forbidden: HashSet<u32>,
     weights: Option<&'a [f64]>,
 }
 
 impl<'a> Rules<'a> {
     fn new(map: &Map, opts: &'a SketchOptions) -> Result<Self, SketchError> {
         let n_edges = map.dart_slots() / 2;
-        let mut edge_ok = vec![true; n_edges];
-        for &e in &opts.forbidden_edges {
-            if let Some(x) = edge_ok.get_mut(e as usize) {
-                *x = false;
-            }
-        }
+        let mut forbidden: HashSet<u32> = opts.forbidden_edges.iter().copied().collect();
         for &f in &opts.forbidden_faces {
             if map.is_live_face(f) {
-                for d in map.face_darts(f) {
-                    if let Some(x) = edge_ok.get_mut(d.index() / 2) {
-                        *x = false;
-                    }
-                }
+                forbidden.extend(map.face_darts(f).map(|d| (d.index() / 2) as u32));
             }
         }
         let weights = match &opts.weights {
@@ -344,11 +337,11 @@ impl<'a> Rules<'a> {
                 Some(&w[..])
             }
         };
-        Ok(Rules { edge_ok, weights })
+        Ok(Rules { forbidden, weights })
     }
 
     fn usable(&self, d: Dart) -> bool {
-        self.edge_ok.get(d.index() / 2).copied().unwrap_or(false)
+        self.forbidden.is_empty() || !self.forbidden.contains(&((d.index() / 2) as u32))
     }
 }
 
@@ -417,16 +410,16 @@ impl Ord for Entry {
 }
 
 fn search(map: &Map, from: Vert, to: Vert, rules: &Rules<'_>, avoid: bool) -> Option<Path> {
-    const NONE: u32 = u32::MAX;
-    let nv = map.vertex_slots();
-    // pred[v]: the dart that reached v; from is marked by a sentinel distinct from NONE.
-    let mut pred = vec![NONE; nv];
+    const START: u32 = u32::MAX;
+    // pred[v]: the dart that reached v (START for `from`). Hash maps, not arrays over all
+    // vertices: a short path on a large mesh costs what the search explores.
+    let mut pred: HashMap<u32, u32> = HashMap::new();
     let mut buf = Vec::new();
     let blocked = |v: Vert| avoid && v != to && map.is_boundary_vertex(v);
     match rules.weights {
         None => {
             let mut queue = VecDeque::new();
-            pred[from.index()] = NONE - 1;
+            pred.insert(from.index() as u32, START);
             queue.push_back(from);
             while let Some(v) = queue.pop_front() {
                 if v == to {
@@ -435,52 +428,53 @@ fn search(map: &Map, from: Vert, to: Vert, rules: &Rules<'_>, avoid: bool) -> Op
                 sorted_darts(map, v, &mut buf);
                 for &d in &buf {
                     let w = map.dest(d);
-                    if rules.usable(d) && pred[w.index()] == NONE && !blocked(w) {
-                        pred[w.index()] = d.index() as u32;
-                        queue.push_back(w);
+                    if rules.usable(d) && !blocked(w) {
+                        if let hashbrown::hash_map::Entry::Vacant(e) = pred.entry(w.index() as u32)
+                        {
+                            e.insert(d.index() as u32);
+                            queue.push_back(w);
+                        }
                     }
                 }
             }
         }
         Some(weights) => {
-            let mut dist = vec![f64::INFINITY; nv];
-            let mut done = vec![false; nv];
+            let mut dist: HashMap<u32, f64> = HashMap::new();
+            let mut done: HashSet<u32> = HashSet::new();
             let mut heap = BinaryHeap::new();
-            dist[from.index()] = 0.0;
-            pred[from.index()] = NONE - 1;
+            dist.insert(from.index() as u32, 0.0);
+            pred.insert(from.index() as u32, START);
             heap.push(Entry(0.0, from.index() as u32));
             while let Some(Entry(dv, vi)) = heap.pop() {
                 let v = Vert::new(vi);
-                if done[v.index()] {
+                if !done.insert(vi) {
                     continue;
                 }
-                done[v.index()] = true;
                 if v == to {
                     break;
                 }
                 sorted_darts(map, v, &mut buf);
                 for &d in &buf {
                     let w = map.dest(d);
-                    if !rules.usable(d) || done[w.index()] || blocked(w) {
+                    let wi = w.index() as u32;
+                    if !rules.usable(d) || done.contains(&wi) || blocked(w) {
                         continue;
                     }
-                    let nd = dv + weights[d.index() / 2];
-                    if nd < dist[w.index()] {
-                        dist[w.index()] = nd;
-                        pred[w.index()] = d.index() as u32;
-                        heap.push(Entry(nd, w.index() as u32));
+                    let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
+                    if nd < dist.get(&wi).copied().unwrap_or(f64::INFINITY) {
+                        dist.insert(wi, nd);
+                        pred.insert(wi, d.index() as u32);
+                        heap.push(Entry(nd, wi));
                     }
                 }
             }
         }
     }
-    if pred[to.index()] == NONE {
-        return None;
-    }
+    pred.get(&(to.index() as u32))?;
     let mut darts = Vec::new();
     let mut v = to;
     while v != from {
-        let d = Dart::new(pred[v.index()]);
+        let d = Dart::new(*pred.get(&(v.index() as u32))?);
         darts.push(d);
         v = map.origin(d);
     }
