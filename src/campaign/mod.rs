@@ -54,11 +54,13 @@ use std::{format, vec};
 
 mod case;
 mod property;
+mod qzip;
 mod report;
 mod shrink;
 
 pub use case::{Case, Kind, Origin};
 pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
+pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
 

@@ -171,8 +171,8 @@ impl Property {
     }
 }
 
-/// Every built-in property: [`kernel`] then [`operators`]. (The Q-zip properties will be
-/// added here when Q-zip is complete.)
+/// Every built-in property: [`kernel`], [`operators`], then the Q-zip properties
+/// ([`qzip_properties`](super::qzip_properties) with the default [`PairChoice`](super::PairChoice)).
 ///
 /// ```
 /// let names: Vec<String> = zipmesh::campaign::builtin().iter().map(|p| p.name().to_string()).collect();
@@ -182,6 +182,7 @@ impl Property {
 pub fn builtin() -> Vec<Property> {
     let mut all = kernel();
     all.extend(operators());
+    all.extend(super::qzip_properties(super::PairChoice::default()));
     all
 }
 

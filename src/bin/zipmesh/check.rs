@@ -40,8 +40,8 @@ pub struct CheckArgs {
     /// Stop starting new cases after this many seconds.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
-    /// Q-zip pairs: the largest distance between two irregular vertices to pair (used by
-    /// the Q-zip properties once they are registered; accepted now).
+    /// Q-zip pairs: the largest distance (in edges) between two irregular vertices to pair;
+    /// on given files every such ordered pair is tried with every movement.
     #[arg(long, default_value_t = 12)]
     max_distance: usize,
     /// Run only generated case number INDEX (what a replay line uses).
@@ -166,11 +166,17 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
     })
 }
 
-/// Every property `check` knows. The Q-zip properties join here when Q-zip is complete,
-/// built with `args.max_distance` for their pair enumeration on given meshes.
+/// Every property `check` knows. On given meshes the Q-zip properties try every ordered
+/// pair of singularities within `--max-distance` (generated cases draw a few pairs each).
 fn properties(args: &CheckArgs) -> Vec<Property> {
-    let _ = args.max_distance;
-    campaign::builtin()
+    let mut all = campaign::kernel();
+    all.extend(campaign::operators());
+    let per_case = if args.files.is_empty() { Some(4) } else { None };
+    all.extend(campaign::qzip_properties(campaign::PairChoice {
+        max_distance: args.max_distance,
+        per_case,
+    }));
+    all
 }
 
 fn print_text(report: &Report) {

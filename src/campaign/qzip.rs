@@ -1,0 +1,398 @@
+//! The Q-zip properties: grid preservation, reversal, homotopy invariance and the four
+//! movements, checked on the singularity pairs of quad cases.
+
+use std::format;
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use super::{Case, Outcome, Property};
+use crate::invariants::canonical::CanonicalCode;
+use crate::invariants::Counts;
+use crate::qzip::{
+    find_reverse, sketch, start_turn, validate_path, zip_along, Path, SketchOptions, Tag,
+};
+use crate::{Map, Vert};
+
+/// How a Q-zip property picks its pairs.
+///
+/// ```
+/// use zipmesh::campaign::PairChoice;
+/// let p = PairChoice::default();
+/// assert_eq!((p.max_distance, p.per_case), (12, Some(4)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PairChoice {
+    /// Pairs whose shortest path is longer than this are not tried.
+    pub max_distance: usize,
+    /// `Some(n)`: n pairs drawn from the case's random stream (generated campaigns);
+    /// `None`: every ordered pair within `max_distance` (`zipmesh check FILE`).
+    pub per_case: Option<usize>,
+}
+
+impl Default for PairChoice {
+    fn default() -> Self {
+        PairChoice {
+            max_distance: 12,
+            per_case: Some(4),
+        }
+    }
+}
+
+/// The interior irregular vertices of a pure-quad map, or `None` if it is not pure quad.
+fn singularities(map: &Map) -> Option<Vec<Vert>> {
+    if map.num_faces() == 0 || map.faces().any(|f| map.degree(f) != 4) {
+        return None;
+    }
+    Some(
+        map.vertices()
+            .filter(|&v| !map.is_boundary_vertex(v) && map.valence(v) != 4)
+            .collect(),
+    )
+}
+
+/// The pairs to try on a case, each with its shortest path.
+fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
+    let map = &case.mesh.map;
+    let sing = singularities(map)?;
+    if sing.len() < 2 {
+        return None;
+    }
+    let opts = SketchOptions::default();
+    let fits = |a: Vert, b: Vert| {
+        sketch(map, a, b, &opts)
+            .ok()
+            .filter(|p| p.len() <= choice.max_distance)
+    };
+    let mut out = Vec::new();
+    match choice.per_case {
+        None => {
+            for &a in &sing {
+                for &b in &sing {
+                    if a != b {
+                        out.extend(fits(a, b));
+                    }
+                }
+            }
+        }
+        Some(n) => {
+            let mut rng = case.rng(salt);
+            // A focused replay tries pairs from the focus first.
+            let first = case.focus.filter(|v| sing.contains(v));
+            for k in 0..4 * n {
+                if out.len() >= n {
+                    break;
+                }
+                let a = match first {
+                    Some(f) if k < n => f,
+                    _ => sing[rng.below(sing.len())],
+                };
+                let b = sing[rng.below(sing.len())];
+                if a != b {
+                    out.extend(fits(a, b));
+                }
+            }
+        }
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// Sorted (valence, boundary) of the irregular vertices.
+fn irregular(map: &Map) -> Vec<(usize, bool)> {
+    let mut v: Vec<(usize, bool)> = map
+        .vertices()
+        .map(|v| (map.valence(v), map.is_boundary_vertex(v)))
+        .filter(|&(k, b)| k != if b { 3 } else { 4 })
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+/// One movement checked for grid preservation and exact undo: `Ok(Some(edited))` if done,
+/// `Ok(None)` if refused cleanly, `Err` if a promise is broken.
+fn checked_zip(
+    map: &Map,
+    path: &Path,
+    tag: Tag,
+) -> Result<Option<(Map, crate::qzip::ZipReport)>, String> {
+    let mut m = map.clone();
+    let r = match zip_along(&mut m, path, tag) {
+        Ok(r) => r,
+        Err(e) if &m == map => {
+            let _ = e;
+            return Ok(None);
+        }
+        Err(e) => return Err(format!("{tag} refused ({e}) but changed the map")),
+    };
+    let at = format!(
+        "{tag} from {} to {}",
+        path.start().index(),
+        path.end().index()
+    );
+    if let Err(v) = m.check() {
+        return Err(format!("{at}: check() fails: {v:?}"));
+    }
+    if m.faces().any(|f| m.degree(f) != 4) {
+        return Err(format!("{at}: a face is not a quad"));
+    }
+    let (c, c0) = (Counts::of(&m), Counts::of(map));
+    if c.euler_characteristic != c0.euler_characteristic || c.boundary_loops != c0.boundary_loops {
+        return Err(format!(
+            "{at}: Euler characteristic or boundary loops changed"
+        ));
+    }
+    if irregular(&m) != irregular(map) {
+        return Err(format!("{at}: the irregular valences changed"));
+    }
+    if m.num_vertices() as isize != map.num_vertices() as isize + r.vertex_delta() {
+        return Err(format!("{at}: V changed by other than the report's delta"));
+    }
+    let moved = (m.valence(r.moved_from()), m.valence(r.moved_to()));
+    if moved != (map.valence(path.start()), map.valence(path.end())) {
+        return Err(format!("{at}: the moved vertices have valences {moved:?}"));
+    }
+    let mut u = m.clone();
+    if r.undo(&mut u).is_err() || &u != map {
+        return Err(format!("{at}: undo does not restore the map exactly"));
+    }
+    Ok(Some((m, r)))
+}
+
+fn grid(case: &Case, choice: PairChoice) -> Outcome {
+    let Some(paths) = pairs(case, choice, 0x717a_6772) else {
+        return Outcome::Skip;
+    };
+    let map = &case.mesh.map;
+    let mut checks = 0;
+    for path in &paths {
+        for tag in Tag::CCW {
+            match checked_zip(map, path, tag) {
+                Ok(_) => checks += 1,
+                Err(e) => return Outcome::fail(e, Some(path.start())),
+            }
+        }
+    }
+    Outcome::Pass { checks }
+}
+
+fn reversal(case: &Case, choice: PairChoice) -> Outcome {
+    let Some(paths) = pairs(case, choice, 0x717a_7276) else {
+        return Outcome::Skip;
+    };
+    let map = &case.mesh.map;
+    let code = CanonicalCode::of(map);
+    let mut checks = 0;
+    for path in &paths {
+        for tag in Tag::CCW {
+            let edited = match checked_zip(map, path, tag) {
+                Ok(Some(x)) => x,
+                Ok(None) => continue,
+                Err(e) => return Outcome::fail(e, Some(path.start())),
+            };
+            let (m, r) = edited;
+            // A run found is re-executed independently; a movement with no restoring run
+            // is counted (the docs say where our reverse path misses) but not failed.
+            if let Some(back) = find_reverse(&m, &r, map) {
+                let mut again = m.clone();
+                let ok = zip_along(&mut again, &back.path, back.tag).is_ok()
+                    && CanonicalCode::of(&again) == code;
+                if !ok {
+                    return Outcome::fail(
+                        format!("the reverse run {} of {tag} does not restore", back.tag),
+                        Some(path.start()),
+                    );
+                }
+                checks += 1;
+            }
+        }
+    }
+    if checks == 0 {
+        Outcome::Skip
+    } else {
+        Outcome::Pass { checks }
+    }
+}
+
+fn regular(map: &Map, v: Vert) -> bool {
+    map.valence(v) == 4 && !map.is_boundary_vertex(v)
+}
+
+/// The paths homotopic to `p` by one quad swept across an edge (see tests/qzip_homotopy.rs).
+fn one_quad_sweeps(map: &Map, p: &Path) -> Vec<Path> {
+    let v = p.vertices();
+    let mut out = Vec::new();
+    for (i, &d) in p.darts().iter().enumerate() {
+        for left in [true, false] {
+            let e = if left { d } else { d.twin() };
+            let Some(f) = map.face(e) else { continue };
+            if map.degree(f) != 4 {
+                continue;
+            }
+            let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
+            let (ni, nj) = if left { (x, y) } else { (y, x) };
+            if v.contains(&ni) || v.contains(&nj) || !regular(map, ni) || !regular(map, nj) {
+                continue;
+            }
+            if (i > 0 && !regular(map, v[i])) || (i + 2 < v.len() && !regular(map, v[i + 1])) {
+                continue;
+            }
+            // Keep away from third singularities: every neighbour of the swept quad's corners
+            // is regular or one of the pair's ends.
+            let ends = [p.start(), p.end()];
+            let clear = [v[i], v[i + 1], ni, nj].iter().all(|&c| {
+                map.vertex_darts(c)
+                    .all(|d| ends.contains(&map.dest(d)) || regular(map, map.dest(d)))
+            });
+            if !clear {
+                continue;
+            }
+            let mut q = v[..=i].to_vec();
+            q.extend([ni, nj]);
+            q.extend_from_slice(&v[i + 1..]);
+            let opts = SketchOptions::default();
+            if let Ok(path) = validate_path(map, p.start(), p.end(), &q, &opts) {
+                out.push(path);
+            }
+        }
+    }
+    out
+}
+
+fn outcomes(map: &Map, p: &Path) -> [Option<CanonicalCode>; 4] {
+    Tag::CCW.map(|t| {
+        let mut m = map.clone();
+        zip_along(&mut m, p, t).ok().map(|_| CanonicalCode::of(&m))
+    })
+}
+
+fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
+    let choice = PairChoice {
+        max_distance: choice.max_distance.min(8),
+        ..choice
+    };
+    let Some(paths) = pairs(case, choice, 0x717a_686f) else {
+        return Outcome::Skip;
+    };
+    let map = &case.mesh.map;
+    let mut checks = 0;
+    for p in &paths {
+        let h0 = outcomes(map, p);
+        for q in one_quad_sweeps(map, p).into_iter().take(4) {
+            let Some(k) = start_turn(map, p, &q) else {
+                return Outcome::fail("the swept path does not share the start", None);
+            };
+            let h1 = outcomes(map, &q);
+            for (j, tag) in Tag::CCW.into_iter().enumerate() {
+                let jq = Tag::CCW
+                    .iter()
+                    .position(|&u| u == tag.turned(k))
+                    .unwrap_or(j);
+                if let (Some(x), Some(y)) = (&h0[j], &h1[jq]) {
+                    if x != y {
+                        return Outcome::fail(
+                            format!(
+                                "movement {tag} differs along two homotopic paths from {} to {}",
+                                p.start().index(),
+                                p.end().index()
+                            ),
+                            Some(p.start()),
+                        );
+                    }
+                    checks += 1;
+                }
+            }
+        }
+    }
+    if checks == 0 {
+        Outcome::Skip
+    } else {
+        Outcome::Pass { checks }
+    }
+}
+
+/// Whether the pair sits in a regular region: at least three edges apart, and every vertex
+/// within two edges of the path regular, the two ends excepted.
+fn in_regular_region(map: &Map, p: &Path) -> bool {
+    let ok = |y: Vert| y == p.start() || y == p.end() || regular(map, y);
+    p.len() >= 3
+        && p.vertices().iter().all(|&x| {
+            map.vertex_darts(x).all(|d| {
+                let y = map.dest(d);
+                ok(y) && map.vertex_darts(y).all(|e| ok(map.dest(e)))
+            })
+        })
+}
+
+fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
+    let Some(paths) = pairs(case, choice, 0x717a_666d) else {
+        return Outcome::Skip;
+    };
+    let map = &case.mesh.map;
+    let mut checks = 0;
+    for p in paths.iter().filter(|p| in_regular_region(map, p)) {
+        let codes = outcomes(map, p);
+        let done: Vec<&CanonicalCode> = codes.iter().flatten().collect();
+        for i in 0..done.len() {
+            for j in 0..i {
+                if done[i] == done[j] {
+                    return Outcome::fail(
+                        format!(
+                            "two movements of the pair {}-{} give isomorphic maps",
+                            p.start().index(),
+                            p.end().index()
+                        ),
+                        Some(p.start()),
+                    );
+                }
+            }
+        }
+        checks += 1;
+    }
+    if checks == 0 {
+        Outcome::Skip
+    } else {
+        Outcome::Pass { checks }
+    }
+}
+
+/// The Q-zip properties with this choice of pairs: `qzip-grid` (every movement done keeps
+/// a valid pure-quad map with the same Euler characteristic, boundary loops and irregular
+/// valences, moves the pair's valences, and undoes exactly; a refusal changes nothing),
+/// `qzip-reversal` (the reverse run found restores the original up to isomorphism),
+/// `qzip-homotopy` (paths one swept quad apart give the same maps, labels matched by
+/// [`start_turn`]), `qzip-four-moves` (in a regular region the movements done are pairwise
+/// different).
+///
+/// ```
+/// use zipmesh::campaign::{qzip_properties, Case, PairChoice};
+/// let case = Case::from_mesh(zipmesh::gen::subdivided_icosahedron(2), 0, 0, "ico");
+/// let props = qzip_properties(PairChoice { max_distance: 4, per_case: Some(2) });
+/// assert!(props[0].check(&case).is_pass()); // qzip-grid
+/// for p in &props {
+///     assert!(!p.check(&case).is_fail(), "{}", p.name());
+/// }
+/// ```
+pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
+    let about = |s: &str| s.to_string();
+    std::vec![
+        Property::new(
+            "qzip-grid",
+            about("a Q-zip done keeps the grid (valid, pure quad, chi, boundary, irregular valences) and undoes exactly; a refusal changes nothing"),
+            move |c| grid(c, choice)
+        ),
+        Property::new(
+            "qzip-reversal",
+            about("the reverse Q-zip found from the moved terminal back to the moved initial singularity restores the original up to isomorphism"),
+            move |c| reversal(c, choice)
+        ),
+        Property::new(
+            "qzip-homotopy",
+            about("along paths one swept regular quad apart, each movement gives the same map (labels matched by the turn at the start)"),
+            move |c| homotopy(c, choice)
+        ),
+        Property::new(
+            "qzip-four-moves",
+            about("for a pair in a regular region, the movements done give pairwise non-isomorphic maps"),
+            move |c| four_moves(c, choice)
+        ),
+    ]
+}
