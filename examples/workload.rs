@@ -1,4 +1,4 @@
-//! The kernel workload: `cargo run --release --example workload -- [N] [REPS]`.
+//! The kernel workload: `cargo run --release --example workload -- [N] [REPS] [qzip]`.
 //!
 //! Builds the N x N torus (default 1000) as quads and as triangles (each quad cut along the
 //! same diagonal) and prints one line per measurement, the median of REPS (default 5) runs,
@@ -8,12 +8,15 @@
 //!
 //! Peer programs print the same format so that one run can compare them. Operator rows
 //! (issue 3) give ns per attempted operation on 100,000 random darts, refusals included;
-//! how many were applied goes to stderr.
+//! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
+//! on the same N x N torus (at least 128 x 128) and on a real mesh; see `qzip_rows`. With the
+//! third argument `qzip`, only the Q-zip rows are run.
 
 use std::time::Instant;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::invariants::{euler_characteristic, Counts, Histograms};
 use zipmesh::ops::{quad, tri};
+use zipmesh::qzip::{self, SketchOptions, Tag};
 use zipmesh::rng::Rng;
 use zipmesh::{Dart, Face, Map, Vert};
 
@@ -73,7 +76,7 @@ fn report(
 ) {
     let scale = match unit {
         "ns/face" | "ns/vertex" | "ns/dart" | "ns/op" => 1e9 / count as f64,
-        "us/chain" => 1e6 / count as f64,
+        "us/chain" | "us/qzip" => 1e6 / count as f64,
         "ms" => 1e3,
         _ => 1.0,
     };
@@ -85,6 +88,152 @@ fn report(
     );
 }
 
+#[path = "../benches/support/qzip_torus.rs"]
+mod qzip_torus;
+
+/// Times `op` on each case in turn, `rounds` times over, on the same map: only `op` is inside
+/// the timing; the Q-zip it returns is undone after the clock stops (so the map is the same
+/// for every call). Returns (median, min, max) over `reps` of the total time per repetition.
+fn measure_zips<C>(
+    reps: usize,
+    map: &mut Map,
+    cases: &[C],
+    rounds: usize,
+    mut op: impl FnMut(&mut Map, &C) -> qzip::ZipReport,
+) -> (f64, f64, f64) {
+    let mut times: Vec<f64> = (0..reps.max(1))
+        .map(|_| {
+            let mut total = 0.0;
+            for _ in 0..rounds {
+                for c in cases {
+                    let t = Instant::now();
+                    let r = op(map, c);
+                    total += t.elapsed().as_secs_f64();
+                    r.undo(map).expect("undo of a Q-zip just done");
+                }
+            }
+            total
+        })
+        .collect();
+    times.sort_by(|a, b| a.total_cmp(b));
+    (times[times.len() / 2], times[0], times[times.len() - 1])
+}
+
+/// Q-zip rows (issue 4), microseconds per Q-zip, undo not timed (see `measure_zips`):
+///
+/// * `qzip{L}_{TAG}`: the full Q-zip (`qzip::zip`: sketch, plan, prepare, execute) of a v5
+///   and a v3 `L` edges apart on the n x n torus, 16 pairs (each made by two vertex
+///   splits, see `benches/support/qzip_torus.rs`) on rows n / 16 apart, with the initial
+///   operation TAG (LC: `L` collapses; RC: one split and `L - 1` collapses);
+///   `qzip{L}_{TAG}_along` the same without the sketch (`zip_along` a path found before),
+///   `qzip{L}_sketch` the sketch alone.
+/// * `qzip_spot`: the full Q-zip of every realizable (pair, initial operation) of irregular
+///   vertices within 12 edges on `spot_quadrangulated.obj` (skipped if the file is missing),
+///   the mean per Q-zip.
+fn qzip_rows(n: usize, reps: usize) {
+    let opts = SketchOptions::default();
+    for (len, rounds) in [(7usize, 32usize), (100, 2)] {
+        let (mut map, ends) = qzip_torus::torus_with_pairs(n.max(128), 16, len);
+        let before = map.clone();
+        let paths: Vec<qzip::Path> = ends
+            .iter()
+            .map(|&(a, b)| qzip::sketch(&map, a, b, &opts).expect("a path"))
+            .collect();
+        assert!(paths.iter().all(|p| p.len() == len));
+        for tag in [Tag::LC, Tag::RC] {
+            // Realizable, and undone exactly: checked once, outside the timing.
+            for &(a, b) in &ends {
+                let r = qzip::zip(&mut map, a, b, tag, &opts).expect("a realizable Q-zip");
+                r.undo(&mut map).expect("undo");
+                assert!(map == before, "undo restores the map");
+            }
+            let count = ends.len() * rounds;
+            let t = measure_zips(reps, &mut map, &ends, rounds, |m, &(a, b)| {
+                qzip::zip(m, a, b, tag, &opts).expect("realizable")
+            });
+            report(
+                "quad",
+                &format!("qzip{len}_{tag}"),
+                t,
+                "us/qzip",
+                count,
+                reps,
+            );
+            let t = measure_zips(reps, &mut map, &paths, rounds, |m, p| {
+                qzip::zip_along(m, p, tag).expect("realizable")
+            });
+            report(
+                "quad",
+                &format!("qzip{len}_{tag}_along"),
+                t,
+                "us/qzip",
+                count,
+                reps,
+            );
+        }
+        let t = measure(
+            reps,
+            || (),
+            |_| {
+                for _ in 0..rounds {
+                    for &(a, b) in &ends {
+                        std::hint::black_box(qzip::sketch(&map, a, b, &opts).expect("a path"));
+                    }
+                }
+            },
+        );
+        report(
+            "quad",
+            &format!("qzip{len}_sketch"),
+            t,
+            "us/qzip",
+            ends.len() * rounds,
+            reps,
+        );
+        assert!(map == before);
+    }
+
+    let spot = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/quad/spot_quadrangulated.obj"
+    );
+    let Ok((mesh, _)) = zipmesh::io::read_mesh(spot) else {
+        eprintln!("# qzip_spot skipped: cannot read {spot}");
+        return;
+    };
+    let mut map = mesh.map;
+    let sing: Vec<Vert> =
+        zipmesh::invariants::irregular_vertices(&map, zipmesh::invariants::MeshKind::Quad);
+    let mut cases = Vec::new();
+    let mut tried = 0;
+    for &a in &sing {
+        for &b in &sing {
+            let Ok(p) = qzip::sketch(&map, a, b, &opts) else {
+                continue;
+            };
+            if a == b || p.len() > 12 {
+                continue;
+            }
+            for tag in Tag::CCW {
+                tried += 1;
+                if let Ok(r) = qzip::zip_along(&mut map, &p, tag) {
+                    r.undo(&mut map).expect("undo");
+                    cases.push((a, b, tag, p.len()));
+                }
+            }
+        }
+    }
+    let mean_len = cases.iter().map(|c| c.3).sum::<usize>() as f64 / cases.len().max(1) as f64;
+    eprintln!(
+        "# qzip_spot: {} realizable of {tried} (pair, tag) within 12 edges, mean path {mean_len:.2} edges",
+        cases.len()
+    );
+    let t = measure_zips(reps, &mut map, &cases, 1, |m, &(a, b, tag, _)| {
+        qzip::zip(m, a, b, tag, &opts).expect("realizable")
+    });
+    report("quad", "qzip_spot", t, "us/qzip", cases.len(), reps);
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args
@@ -93,6 +242,10 @@ fn main() {
         .unwrap_or(1000)
         .max(3);
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
+    if args.get(3).is_some_and(|s| s == "qzip") {
+        qzip_rows(n, reps);
+        return;
+    }
     let quads = zipmesh::gen::torus_quads(n, n);
     let tris = triangulate(&quads);
     let nv = n * n;
@@ -302,4 +455,5 @@ fn main() {
             reps,
         );
     }
+    qzip_rows(n, reps);
 }

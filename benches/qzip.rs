@@ -1,0 +1,79 @@
+//! Criterion benches of Q-zip (issue 4) on the 1000 x 1000 torus with 16 inserted
+//! singularity pairs (two vertex splits each, `benches/support/qzip_torus.rs`): a v5 and a v3
+//! 7 or 100 edges apart, initial operation LC (all collapses). Iterations cycle through the
+//! 16 pairs on one warm map. `zip` and `zip_along` time only the Q-zip: each is undone after
+//! the clock stops (`iter_custom`); `zip + undo` times both.
+
+#[path = "support/qzip_torus.rs"]
+mod qzip_torus;
+
+use std::time::{Duration, Instant};
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use zipmesh::qzip::{self, SketchOptions, Tag};
+
+fn qzip_torus(c: &mut Criterion) {
+    let mut g = c.benchmark_group("qzip (torus 1000, 16 pairs)");
+    g.sample_size(20);
+    g.measurement_time(Duration::from_secs(4));
+    let opts = SketchOptions::default();
+    for len in [7usize, 100] {
+        let (mut map, ends) = qzip_torus::torus_with_pairs(1000, 16, len);
+        let paths: Vec<qzip::Path> = ends
+            .iter()
+            .map(|&(a, b)| qzip::sketch(&map, a, b, &opts).expect("a path"))
+            .collect();
+        g.bench_function(
+            format!("zip {len} edges (sketch+plan+prepare+execute)"),
+            |b| {
+                b.iter_custom(|iters| {
+                    let mut total = Duration::ZERO;
+                    for i in 0..iters as usize {
+                        let (a, v) = ends[i % ends.len()];
+                        let t = Instant::now();
+                        let r = qzip::zip(&mut map, a, v, Tag::LC, &opts).expect("realizable");
+                        total += t.elapsed();
+                        r.undo(&mut map).expect("undo");
+                    }
+                    total
+                })
+            },
+        );
+        g.bench_function(
+            format!("zip_along {len} edges (plan+prepare+execute)"),
+            |b| {
+                b.iter_custom(|iters| {
+                    let mut total = Duration::ZERO;
+                    for i in 0..iters as usize {
+                        let p = &paths[i % paths.len()];
+                        let t = Instant::now();
+                        let r = qzip::zip_along(&mut map, p, Tag::LC).expect("realizable");
+                        total += t.elapsed();
+                        r.undo(&mut map).expect("undo");
+                    }
+                    total
+                })
+            },
+        );
+        let mut i = 0;
+        g.bench_function(format!("zip + undo {len} edges"), |b| {
+            b.iter(|| {
+                i = (i + 1) % ends.len();
+                let (a, v) = ends[i];
+                let r = qzip::zip(&mut map, a, v, Tag::LC, &opts).expect("realizable");
+                r.undo(&mut map).expect("undo")
+            })
+        });
+        g.bench_function(format!("sketch {len} edges"), |b| {
+            b.iter(|| {
+                i = (i + 1) % ends.len();
+                let (a, v) = ends[i];
+                qzip::sketch(&map, a, v, &opts).expect("a path")
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, qzip_torus);
+criterion_main!(benches);
