@@ -297,3 +297,52 @@ fn farthest_first(
     }
     order
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+
+    #[test]
+    fn rings_grow_by_one_vertex_step_on_a_grid() {
+        // 6 x 6 quads, 7 x 7 vertices; the focus is the centre vertex (3, 3).
+        let mesh = gen::grid(6, 6);
+        let polys = mesh.polygons();
+        let centre = Vert::new(3 * 7 + 3);
+        let rings = face_rings(&polys, mesh.map.vertex_slots(), centre);
+        let count = |k: usize| rings.iter().filter(|&&r| r == k).count();
+        // Ring 0: the 4 quads at the centre; ring 1: the rest of the central 4 x 4 block
+        // (16 - 4); ring 2: the other 36 - 16.
+        assert_eq!((count(0), count(1), count(2)), (4, 12, 20));
+        assert!(rings.iter().all(|&r| r <= 2));
+    }
+
+    #[test]
+    fn build_drops_unused_vertices_and_keeps_their_order() {
+        let mesh = gen::grid(3, 1);
+        let polys = mesh.polygons();
+        let keep = [false, false, true];
+        let (small, renumber) =
+            build(&polys, mesh.map.vertex_slots(), &mesh.positions, &keep).unwrap();
+        assert_eq!(small.map.num_vertices(), 4);
+        assert_eq!(small.map.num_faces(), 1);
+        let kept: Vec<usize> = (0..renumber.len())
+            .filter(|&i| renumber[i].is_some())
+            .collect();
+        // The last quad's corners, renumbered 0..4 in their old order.
+        assert_eq!(kept, [2, 3, 6, 7]);
+        for (new, &old) in kept.iter().enumerate() {
+            assert_eq!(renumber[old], Some(Vert::new(new as u32)));
+            assert_eq!(small.positions[new], mesh.positions[old]);
+        }
+    }
+
+    #[test]
+    fn a_pinched_candidate_does_not_build() {
+        // Two quads of a 2 x 2 grid touching only at the centre: a non-manifold vertex.
+        let mesh = gen::grid(2, 2);
+        let polys = mesh.polygons();
+        let keep = [true, false, false, true];
+        assert!(build(&polys, mesh.map.vertex_slots(), &mesh.positions, &keep).is_none());
+    }
+}
