@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{check_zip, ico_cc, singular, torus_with_splits};
+use common::{check_zip, ico_cc, pairs_within, singular, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::qzip::{
@@ -23,27 +23,15 @@ struct Tally {
 /// Every ordered pair of singularities within `max_len` edges, every initial operation.
 fn sweep(map: &Map, max_len: usize) -> Tally {
     let mut t = Tally::default();
-    let sing = singular(map);
-    for &a in &sing {
-        for &b in &sing {
-            if a == b {
-                continue;
-            }
-            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
-                continue;
-            };
-            if path.len() > max_len {
-                continue;
-            }
-            for tag in Tag::CCW {
-                match check_zip(map, &path, tag) {
-                    Ok((_, r)) => {
-                        t.ok += 1;
-                        t.starts[r.surgery().start_rule() as usize] += 1;
-                        t.ends[r.surgery().end_rule() as usize] += 1;
-                    }
-                    Err(_) => t.refused += 1,
+    for path in pairs_within(map, max_len) {
+        for tag in Tag::CCW {
+            match check_zip(map, &path, tag) {
+                Ok((_, r)) => {
+                    t.ok += 1;
+                    t.starts[r.surgery().start_rule() as usize] += 1;
+                    t.ends[r.surgery().end_rule() as usize] += 1;
                 }
+                Err(_) => t.refused += 1,
             }
         }
     }
@@ -276,6 +264,9 @@ fn paths_touching_the_boundary() {
         }
     }
     assert!(touching > 0);
-    assert!(done > 0, "{touching} paths touch the boundary, no movement done");
+    assert!(
+        done > 0,
+        "{touching} paths touch the boundary, no movement done"
+    );
     eprintln!("boundary: {touching} paths touch it, {done} movements done");
 }
