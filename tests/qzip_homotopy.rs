@@ -4,50 +4,15 @@
 
 mod common;
 
-use common::{ico_cc, singular};
+use common::{ico_cc, pairs_within, singular};
 use zipmesh::invariants::canonical::canonical_hash;
-use zipmesh::qzip::{plan, sketch, start_turn, validate_path, zip_along, Path, SketchOptions, Tag};
+use zipmesh::qzip::{
+    one_quad_sweeps, plan, sketch, start_turn, validate_path, zip_along, Path, SketchOptions, Tag,
+};
 use zipmesh::{gen, Map, Vert};
 
 fn regular(map: &Map, v: Vert) -> bool {
     map.valence(v) == 4 && !map.is_boundary_vertex(v)
-}
-
-/// Paths homotopic to `p` by sweeping one quad on either side of one of its edges: the
-/// edge `p[i] -> p[i+1]` is replaced by the quad's three other sides. The quad's two new
-/// corners must be regular and off the path, and the edge's ends regular unless they are
-/// the path's ends (so no singularity is swept or passed on another side).
-fn one_quad_sweeps(map: &Map, p: &Path) -> Vec<(usize, Path)> {
-    let v = p.vertices();
-    let mut out = Vec::new();
-    for (i, &d) in p.darts().iter().enumerate() {
-        for left in [true, false] {
-            let e = if left { d } else { d.twin() };
-            let Some(f) = map.face(e) else { continue };
-            if map.degree(f) != 4 {
-                continue;
-            }
-            let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
-            let (near_i, near_j) = if left { (x, y) } else { (y, x) };
-            if v.contains(&near_i) || v.contains(&near_j) {
-                continue;
-            }
-            if !regular(map, near_i) || !regular(map, near_j) {
-                continue;
-            }
-            if (i > 0 && !regular(map, v[i])) || (i + 2 < v.len() && !regular(map, v[i + 1])) {
-                continue;
-            }
-            let mut q = v[..=i].to_vec();
-            q.extend([near_i, near_j]);
-            q.extend_from_slice(&v[i + 1..]);
-            if let Ok(path) = validate_path(map, p.start(), p.end(), &q, &SketchOptions::default())
-            {
-                out.push((i, path));
-            }
-        }
-    }
-    out
 }
 
 /// The canonical hash of each of the four movements (in `Tag::CCW` order), `None` where
@@ -69,31 +34,22 @@ struct Tally {
 
 fn sweep(map: &Map, max_len: usize) -> Tally {
     let mut t = Tally::default();
-    let sing = singular(map);
-    for &a in &sing {
-        for &b in &sing {
-            let Ok(p) = sketch(map, a, b, &SketchOptions::default()) else {
-                continue;
-            };
-            if a == b || p.len() > max_len {
-                continue;
-            }
-            let h0 = outcomes(map, &p);
-            for (i, q) in one_quad_sweeps(map, &p) {
-                t.path_pairs += 1;
-                let k = start_turn(map, &p, &q).expect("shared start");
-                assert_eq!(k == 0, i > 0);
-                t.at_start += usize::from(i == 0);
-                let h1 = outcomes(map, &q);
-                for (j, tag) in Tag::CCW.into_iter().enumerate() {
-                    let jq = Tag::CCW.iter().position(|&u| u == tag.turned(k)).unwrap();
-                    match (h0[j], h1[jq]) {
-                        (Some(x), Some(y)) => {
-                            assert_eq!(x, y, "movement {tag} along {:?} vs {:?}", p, q);
-                            t.compared += 1;
-                        }
-                        _ => t.one_side_refused += 1,
+    for p in pairs_within(map, max_len) {
+        let h0 = outcomes(map, &p);
+        for (i, q) in one_quad_sweeps(map, &p) {
+            t.path_pairs += 1;
+            let k = start_turn(map, &p, &q).expect("shared start");
+            assert_eq!(k == 0, i > 0);
+            t.at_start += usize::from(i == 0);
+            let h1 = outcomes(map, &q);
+            for (j, tag) in Tag::CCW.into_iter().enumerate() {
+                let jq = Tag::CCW.iter().position(|&u| u == tag.turned(k)).unwrap();
+                match (h0[j], h1[jq]) {
+                    (Some(x), Some(y)) => {
+                        assert_eq!(x, y, "movement {tag} along {:?} vs {:?}", p, q);
+                        t.compared += 1;
                     }
+                    _ => t.one_side_refused += 1,
                 }
             }
         }

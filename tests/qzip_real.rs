@@ -5,11 +5,11 @@
 
 mod common;
 
-use common::{check_zip, singular};
+use common::{check_zip, pairs_within};
 use std::collections::BTreeMap;
 use std::path::Path;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{find_reverse, sketch, zip_along, QzipError, SketchOptions, Tag};
+use zipmesh::qzip::{find_reverse, zip_along, QzipError, Tag};
 use zipmesh::{io, Map};
 
 const MAX_DISTANCE: usize = 12;
@@ -34,36 +34,24 @@ fn kind(e: &QzipError) -> String {
 
 fn campaign(map: &Map, reverse_every: usize) -> Tally {
     let mut t = Tally::default();
-    let sing = singular(map);
     let code = CanonicalCode::of(map);
-    for &a in &sing {
-        for &b in &sing {
-            if a == b {
-                continue;
-            }
-            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
-                continue;
-            };
-            if path.len() > MAX_DISTANCE {
-                continue;
-            }
-            t.pairs += 1;
-            for tag in Tag::CCW {
-                match check_zip(map, &path, tag) {
-                    Ok((edited, r)) => {
-                        t.moved += 1;
-                        if t.moved % reverse_every == 0 {
-                            t.reverse_checked += 1;
-                            if let Some(back) = find_reverse(&edited, &r, map) {
-                                let mut m = edited.clone();
-                                zip_along(&mut m, &back.path, back.tag).unwrap();
-                                assert_eq!(CanonicalCode::of(&m), code);
-                                t.reversed += 1;
-                            }
+    for path in pairs_within(map, MAX_DISTANCE) {
+        t.pairs += 1;
+        for tag in Tag::CCW {
+            match check_zip(map, &path, tag) {
+                Ok((edited, r)) => {
+                    t.moved += 1;
+                    if t.moved % reverse_every == 0 {
+                        t.reverse_checked += 1;
+                        if let Some(back) = find_reverse(&edited, &r, map) {
+                            let mut m = edited.clone();
+                            zip_along(&mut m, &back.path, back.tag).unwrap();
+                            assert_eq!(CanonicalCode::of(&m), code);
+                            t.reversed += 1;
                         }
                     }
-                    Err(e) => *t.refused.entry(kind(&e)).or_default() += 1,
                 }
+                Err(e) => *t.refused.entry(kind(&e)).or_default() += 1,
             }
         }
     }

@@ -3,9 +3,9 @@
 
 mod common;
 
-use common::{check_zip, ico_cc, singular};
+use common::{check_zip, ico_cc, pairs_within};
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{find_reverse, sketch, zip_along, SketchOptions, Tag};
+use zipmesh::qzip::{find_reverse, zip_along, Tag};
 use zipmesh::{gen, Map};
 
 #[derive(Default, Debug)]
@@ -18,48 +18,40 @@ struct Tally {
 
 fn sweep(map: &Map, max_len: usize) -> Tally {
     let mut t = Tally::default();
-    let sing = singular(map);
     let code = CanonicalCode::of(map);
-    for &a in &sing {
-        for &b in &sing {
-            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
+    for path in pairs_within(map, max_len) {
+        let (a, b) = (path.start(), path.end());
+        for tag in Tag::CCW {
+            let Ok((edited, r)) = check_zip(map, &path, tag) else {
                 continue;
             };
-            if a == b || path.len() > max_len {
+            t.forward += 1;
+            let Some(back) = find_reverse(&edited, &r, map) else {
+                eprintln!(
+                    "no reverse: {}{} len {} {tag}\n{}",
+                    map.valence(a),
+                    map.valence(b),
+                    path.len(),
+                    r.surgery()
+                );
                 continue;
-            }
-            for tag in Tag::CCW {
-                let Ok((edited, r)) = check_zip(map, &path, tag) else {
-                    continue;
-                };
-                t.forward += 1;
-                let Some(back) = find_reverse(&edited, &r, map) else {
-                    eprintln!(
-                        "no reverse: {}{} len {} {tag}\n{}",
-                        map.valence(a),
-                        map.valence(b),
-                        path.len(),
-                        r.surgery()
-                    );
-                    continue;
-                };
-                // Re-run it independently: the original comes back, and exactly one of the
-                // four initial operations along that path does it.
-                let mut m = edited.clone();
-                zip_along(&mut m, &back.path, back.tag).unwrap();
-                assert_eq!(CanonicalCode::of(&m), code);
-                let restoring = Tag::CCW
-                    .iter()
-                    .filter(|&&u| {
-                        let mut m = edited.clone();
-                        zip_along(&mut m, &back.path, u).is_ok() && CanonicalCode::of(&m) == code
-                    })
-                    .count();
-                assert_eq!(restoring, 1);
-                t.reversed += 1;
-                let last = r.surgery().steps().last().unwrap().hand;
-                t.pi_of_last_hand += usize::from(back.tag == last.rotate_pi());
-            }
+            };
+            // Re-run it independently: the original comes back, and exactly one of the
+            // four initial operations along that path does it.
+            let mut m = edited.clone();
+            zip_along(&mut m, &back.path, back.tag).unwrap();
+            assert_eq!(CanonicalCode::of(&m), code);
+            let restoring = Tag::CCW
+                .iter()
+                .filter(|&&u| {
+                    let mut m = edited.clone();
+                    zip_along(&mut m, &back.path, u).is_ok() && CanonicalCode::of(&m) == code
+                })
+                .count();
+            assert_eq!(restoring, 1);
+            t.reversed += 1;
+            let last = r.surgery().steps().last().unwrap().hand;
+            t.pi_of_last_hand += usize::from(back.tag == last.rotate_pi());
         }
     }
     t

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{check_zip, ico_cc, singular, torus_with_splits};
+use common::{check_zip, ico_cc, pairs_within, singular, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::qzip::{
@@ -23,27 +23,15 @@ struct Tally {
 /// Every ordered pair of singularities within `max_len` edges, every initial operation.
 fn sweep(map: &Map, max_len: usize) -> Tally {
     let mut t = Tally::default();
-    let sing = singular(map);
-    for &a in &sing {
-        for &b in &sing {
-            if a == b {
-                continue;
-            }
-            let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
-                continue;
-            };
-            if path.len() > max_len {
-                continue;
-            }
-            for tag in Tag::CCW {
-                match check_zip(map, &path, tag) {
-                    Ok((_, r)) => {
-                        t.ok += 1;
-                        t.starts[r.surgery().start_rule() as usize] += 1;
-                        t.ends[r.surgery().end_rule() as usize] += 1;
-                    }
-                    Err(_) => t.refused += 1,
+    for path in pairs_within(map, max_len) {
+        for tag in Tag::CCW {
+            match check_zip(map, &path, tag) {
+                Ok((_, r)) => {
+                    t.ok += 1;
+                    t.starts[r.surgery().start_rule() as usize] += 1;
+                    t.ends[r.surgery().end_rule() as usize] += 1;
                 }
+                Err(_) => t.refused += 1,
             }
         }
     }
@@ -239,4 +227,46 @@ proptest! {
         prop_assume!(path.len() <= 8);
         prop_assert!(check_zip(&map, &path, tag).is_ok());
     }
+}
+
+/// Paths that touch the boundary: the subdivided icosahedron with a hole cut round one v3
+/// (its faces removed). Every movement along a path through boundary vertices keeps the
+/// grid or is refused untouched, and some are done.
+#[test]
+fn paths_touching_the_boundary() {
+    let ico = gen::subdivided_icosahedron(2);
+    let hole = Vert::new(45);
+    let faces: Vec<Vec<u32>> = ico
+        .polygons()
+        .into_iter()
+        .filter(|f| !f.contains(&(hole.index() as u32)))
+        .collect();
+    let (mesh, _) = zipmesh::Mesh::from_polygons(ico.positions.clone(), &faces).unwrap();
+    let map = mesh.map;
+    assert_eq!(map.boundary_loops().len(), 1);
+    let sing = singular(&map);
+    let (mut touching, mut done) = (0, 0);
+    for &a in &sing {
+        for &b in &sing {
+            if a == b || map.is_boundary_vertex(a) || map.is_boundary_vertex(b) {
+                continue;
+            }
+            let Ok(path) = sketch(&map, a, b, &SketchOptions::default()) else {
+                continue;
+            };
+            if path.len() > 8 || !path.vertices().iter().any(|&v| map.is_boundary_vertex(v)) {
+                continue;
+            }
+            touching += 1;
+            for tag in Tag::CCW {
+                done += usize::from(check_zip(&map, &path, tag).is_ok());
+            }
+        }
+    }
+    assert!(touching > 0);
+    assert!(
+        done > 0,
+        "{touching} paths touch the boundary, no movement done"
+    );
+    eprintln!("boundary: {touching} paths touch it, {done} movements done");
 }

@@ -7,9 +7,9 @@ use std::vec::Vec;
 
 use super::{Case, Outcome, Property};
 use crate::invariants::canonical::CanonicalCode;
-use crate::invariants::Counts;
+use crate::invariants::{irregular_valences, Counts, MeshKind};
 use crate::qzip::{
-    find_reverse, sketch, start_turn, validate_path, zip_along, Path, SketchOptions, Tag,
+    find_reverse, one_quad_sweeps, sketch, start_turn, zip_along, Path, SketchOptions, Tag,
 };
 use crate::{Map, Vert};
 
@@ -96,17 +96,6 @@ fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
     (!out.is_empty()).then_some(out)
 }
 
-/// Sorted (valence, boundary) of the irregular vertices.
-fn irregular(map: &Map) -> Vec<(usize, bool)> {
-    let mut v: Vec<(usize, bool)> = map
-        .vertices()
-        .map(|v| (map.valence(v), map.is_boundary_vertex(v)))
-        .filter(|&(k, b)| k != if b { 3 } else { 4 })
-        .collect();
-    v.sort_unstable();
-    v
-}
-
 /// One movement checked for grid preservation and exact undo: `Ok(Some(edited))` if done,
 /// `Ok(None)` if refused cleanly, `Err` if a promise is broken.
 fn checked_zip(
@@ -140,7 +129,7 @@ fn checked_zip(
             "{at}: Euler characteristic or boundary loops changed"
         ));
     }
-    if irregular(&m) != irregular(map) {
+    if irregular_valences(&m, MeshKind::Quad) != irregular_valences(map, MeshKind::Quad) {
         return Err(format!("{at}: the irregular valences changed"));
     }
     if m.num_vertices() as isize != map.num_vertices() as isize + r.vertex_delta() {
@@ -205,6 +194,11 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
             }
         }
     }
+    tally(checks)
+}
+
+/// Pass with the number of checks made, or Skip if the property found nothing to check.
+fn tally(checks: u64) -> Outcome {
     if checks == 0 {
         Outcome::Skip
     } else {
@@ -214,47 +208,6 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
 
 fn regular(map: &Map, v: Vert) -> bool {
     map.valence(v) == 4 && !map.is_boundary_vertex(v)
-}
-
-/// The paths homotopic to `p` by one quad swept across an edge (see tests/qzip_homotopy.rs).
-fn one_quad_sweeps(map: &Map, p: &Path) -> Vec<Path> {
-    let v = p.vertices();
-    let mut out = Vec::new();
-    for (i, &d) in p.darts().iter().enumerate() {
-        for left in [true, false] {
-            let e = if left { d } else { d.twin() };
-            let Some(f) = map.face(e) else { continue };
-            if map.degree(f) != 4 {
-                continue;
-            }
-            let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
-            let (ni, nj) = if left { (x, y) } else { (y, x) };
-            if v.contains(&ni) || v.contains(&nj) || !regular(map, ni) || !regular(map, nj) {
-                continue;
-            }
-            if (i > 0 && !regular(map, v[i])) || (i + 2 < v.len() && !regular(map, v[i + 1])) {
-                continue;
-            }
-            // Keep away from third singularities: every neighbour of the swept quad's corners
-            // is regular or one of the pair's ends.
-            let ends = [p.start(), p.end()];
-            let clear = [v[i], v[i + 1], ni, nj].iter().all(|&c| {
-                map.vertex_darts(c)
-                    .all(|d| ends.contains(&map.dest(d)) || regular(map, map.dest(d)))
-            });
-            if !clear {
-                continue;
-            }
-            let mut q = v[..=i].to_vec();
-            q.extend([ni, nj]);
-            q.extend_from_slice(&v[i + 1..]);
-            let opts = SketchOptions::default();
-            if let Ok(path) = validate_path(map, p.start(), p.end(), &q, &opts) {
-                out.push(path);
-            }
-        }
-    }
-    out
 }
 
 fn outcomes(map: &Map, p: &Path) -> [Option<CanonicalCode>; 4] {
@@ -276,7 +229,7 @@ fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
     let mut checks = 0;
     for p in &paths {
         let h0 = outcomes(map, p);
-        for q in one_quad_sweeps(map, p).into_iter().take(4) {
+        for (_, q) in one_quad_sweeps(map, p).into_iter().take(4) {
             let Some(k) = start_turn(map, p, &q) else {
                 return Outcome::fail("the swept path does not share the start", None);
             };
@@ -302,11 +255,7 @@ fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
             }
         }
     }
-    if checks == 0 {
-        Outcome::Skip
-    } else {
-        Outcome::Pass { checks }
-    }
+    tally(checks)
 }
 
 /// Whether the pair sits in a regular region: at least three edges apart, and every vertex
@@ -347,11 +296,7 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
         }
         checks += 1;
     }
-    if checks == 0 {
-        Outcome::Skip
-    } else {
-        Outcome::Pass { checks }
-    }
+    tally(checks)
 }
 
 /// The Q-zip properties with this choice of pairs: `qzip-grid` (every movement done keeps

@@ -10,4 +10,6 @@ mod valence;
 
 pub use counts::{euler_characteristic, non_simple_edges, Counts};
 pub use gauss_bonnet::{gauss_bonnet, GaussBonnet};
-pub use valence::{irregular_vertices, is_irregular, regular_valence, Histograms, MeshKind};
+pub use valence::{
+    irregular_valences, irregular_vertices, is_irregular, regular_valence, Histograms, MeshKind,
+};

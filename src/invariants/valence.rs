@@ -81,6 +81,24 @@ pub fn irregular_vertices(map: &Map, kind: MeshKind) -> Vec<Vert> {
         .collect()
 }
 
+/// The irregular vertices as a sorted multiset of (valence, on the boundary): what a
+/// grid-preserving edit such as Q-zip must keep (it moves singularities, never makes or
+/// removes one).
+///
+/// ```
+/// use zipmesh::{gen, invariants::{irregular_valences, MeshKind}};
+/// let cube = gen::cube(2).map;
+/// assert_eq!(irregular_valences(&cube, MeshKind::Quad), vec![(3, false); 8]);
+/// ```
+pub fn irregular_valences(map: &Map, kind: MeshKind) -> Vec<(usize, bool)> {
+    let mut v: Vec<(usize, bool)> = irregular_vertices(map, kind)
+        .into_iter()
+        .map(|v| (map.valence(v), map.is_boundary_vertex(v)))
+        .collect();
+    v.sort_unstable();
+    v
+}
+
 /// Valence and face-degree histograms (value to count).
 ///
 /// ```

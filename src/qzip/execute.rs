@@ -161,10 +161,7 @@ impl ZipReport {
     ///
     /// See the module example.
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        for r in self.records.iter().rev() {
-            r.undo(map)?;
-        }
-        Ok(())
+        undo_records(&self.records, map)
     }
 }
 
@@ -371,14 +368,18 @@ impl Touched {
     }
 }
 
+/// Undoes records made in order on `map`, last first; stops at the first refusal.
+pub(crate) fn undo_records(records: &[QuadRecord], map: &mut Map) -> Result<(), Refusal> {
+    for r in records.iter().rev() {
+        r.undo(map)?;
+    }
+    Ok(())
+}
+
 fn undo_all(map: &mut Map, records: &[QuadRecord]) {
     // The records were made in order on this map, so undoing in reverse cannot be stale;
     // should it be, nothing better than stopping is possible, and the error is reported anyway.
-    for r in records.iter().rev() {
-        if r.undo(map).is_err() {
-            break;
-        }
-    }
+    let _ = undo_records(records, map);
 }
 
 /// The dart of the valence-6 vertex `v` to split along (with its opposite): the first pair

@@ -36,6 +36,6 @@ pub use execute::{execute, ZipError, ZipReport};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use sketch::{sketch, validate_path, Path, SketchError, SketchOptions};
 pub use zip::{
-    find_reverse, mesh_preprocess, mesh_zip_along, moves, preprocess, start_turn, zip, zip_along,
-    MeshZip, Move, Preprocessed, QzipError, ReverseRun,
+    find_reverse, mesh_preprocess, mesh_zip_along, moves, one_quad_sweeps, preprocess, start_turn,
+    zip, zip_along, MeshZip, Move, Preprocessed, QzipError, ReverseRun,
 };

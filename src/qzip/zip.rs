@@ -414,10 +414,7 @@ impl Preprocessed {
     ///
     /// See [`preprocess`] for an example.
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        for r in self.records.iter().rev() {
-            r.undo(map)?;
-        }
-        Ok(())
+        super::execute::undo_records(&self.records, map)
     }
 }
 
@@ -479,4 +476,63 @@ pub fn preprocess(map: &mut Map) -> Result<Preprocessed, Refusal> {
     }
     let _ = out.undo(map);
     Err(Refusal::BadArguments)
+}
+
+/// The paths homotopic to `path` by sweeping one quad across one of its edges: the edge
+/// `v[i] -> v[i+1]` is replaced by the quad's three other sides. Only sweeps that pass no
+/// third singularity are listed: the quad's two new corners are regular, interior and off
+/// the path, the edge's ends are regular unless they are the path's ends, and every
+/// neighbour of the quad's corners is regular or one of the path's ends. Each comes with the
+/// index `i` of the swept edge. Homotopy invariance (Sec. 3.1) says Q-zip gives the same maps
+/// along them, labels matched by [`start_turn`].
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{one_quad_sweeps, sketch, start_turn, SketchOptions};
+/// let map = gen::subdivided_icosahedron(2).map;
+/// let p = sketch(&map, Vert::new(0), Vert::new(42), &SketchOptions::default()).unwrap();
+/// let sweeps = one_quad_sweeps(&map, &p);
+/// assert!(!sweeps.is_empty());
+/// for (i, q) in &sweeps {
+///     assert_eq!(q.len(), p.len() + 2);
+///     assert_eq!(start_turn(&map, &p, q) == Some(0), *i > 0);
+/// }
+/// ```
+pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
+    let regular = |v: Vert| map.valence(v) == 4 && !map.is_boundary_vertex(v);
+    let v = path.vertices();
+    let ends = [path.start(), path.end()];
+    let mut out = Vec::new();
+    for (i, &d) in path.darts().iter().enumerate() {
+        for left in [true, false] {
+            let e = if left { d } else { d.twin() };
+            let Some(f) = map.face(e) else { continue };
+            if map.degree(f) != 4 {
+                continue;
+            }
+            let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
+            let (ni, nj) = if left { (x, y) } else { (y, x) };
+            if v.contains(&ni) || v.contains(&nj) || !regular(ni) || !regular(nj) {
+                continue;
+            }
+            if (i > 0 && !regular(v[i])) || (i + 2 < v.len() && !regular(v[i + 1])) {
+                continue;
+            }
+            let clear = [v[i], v[i + 1], ni, nj].iter().all(|&c| {
+                map.vertex_darts(c)
+                    .all(|d| ends.contains(&map.dest(d)) || regular(map.dest(d)))
+            });
+            if !clear {
+                continue;
+            }
+            let mut q = v[..=i].to_vec();
+            q.extend([ni, nj]);
+            q.extend_from_slice(&v[i + 1..]);
+            let opts = SketchOptions::default();
+            if let Ok(p) = super::sketch::validate_path(map, path.start(), path.end(), &q, &opts) {
+                out.push((i, p));
+            }
+        }
+    }
+    out
 }

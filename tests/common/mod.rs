@@ -1,9 +1,9 @@
 //! Fixtures and checks shared by the Q-zip tests.
 #![allow(dead_code)]
 
-use zipmesh::invariants::Counts;
+use zipmesh::invariants::{irregular_valences, Counts, MeshKind};
 use zipmesh::ops::quad;
-use zipmesh::qzip::{zip_along, Path, QzipError, Tag, ZipReport};
+use zipmesh::qzip::{sketch, zip_along, Path, QzipError, SketchOptions, Tag, ZipReport};
 use zipmesh::{gen, Map, Mesh, Vert};
 
 /// Catmull-Clark of an icosahedron, `levels` times: 12 v5s and 20 v3s, isolated
@@ -37,12 +37,27 @@ pub fn singular(map: &Map) -> Vec<Vert> {
 
 /// The sorted multiset of (valence, boundary) of the irregular vertices.
 pub fn irregular_multiset(map: &Map) -> Vec<(usize, bool)> {
-    let mut v: Vec<(usize, bool)> = singular(map)
-        .into_iter()
-        .map(|v| (map.valence(v), map.is_boundary_vertex(v)))
-        .collect();
-    v.sort_unstable();
-    v
+    irregular_valences(map, MeshKind::Quad)
+}
+
+/// Every ordered pair of singularities of `map` within `max_len` edges, with its shortest
+/// path.
+pub fn pairs_within(map: &Map, max_len: usize) -> Vec<Path> {
+    let sing = singular(map);
+    let mut out = Vec::new();
+    for &a in &sing {
+        for &b in &sing {
+            if a == b {
+                continue;
+            }
+            if let Ok(p) = sketch(map, a, b, &SketchOptions::default()) {
+                if p.len() <= max_len {
+                    out.push(p);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Runs a Q-zip on `map` and checks everything Q-zip promises: on success a valid pure-quad
