@@ -305,31 +305,41 @@ impl Touched {
     /// (re)born during the surgery, in order of first touch. Sorting keeps this
     /// O(k log k) for k touches.
     fn firsts(&self) -> Vec<(usize, bool)> {
-        let mut idx: Vec<usize> = (0..self.seen.len()).collect();
-        idx.sort_unstable_by_key(|&i| (self.seen[i].0, i));
+        // (vertex, touch index) packed in one u64: a plain integer sort.
+        let mut idx: Vec<u64> = self
+            .seen
+            .iter()
+            .enumerate()
+            .map(|(i, &(v, _))| ((v.index() as u64) << 32) | i as u64)
+            .collect();
+        idx.sort_unstable();
+        let at = |k: usize| (idx[k] >> 32, (idx[k] & 0xffff_ffff) as usize);
         let mut out: Vec<(usize, bool)> = Vec::new();
         let mut k = 0;
         while k < idx.len() {
-            let v = self.seen[idx[k]].0;
-            let first = idx[k];
+            let (v, first) = at(k);
             let mut born = false;
-            while k < idx.len() && self.seen[idx[k]].0 == v {
-                born |= self.seen[idx[k]].1.is_none();
+            while k < idx.len() && at(k).0 == v {
+                born |= self.seen[at(k).1].1.is_none();
                 k += 1;
             }
             out.push((first, born));
         }
-        out.sort_unstable();
+        out.sort_unstable_by_key(|x| x.0);
         out
     }
 
     /// Irregular valences (with the boundary flag) of the touched vertices before the
     /// surgery and now, each sorted: equal when no singularity was made or lost.
-    fn irregular_before_after(&self, map: &Map) -> (Irregulars, Irregulars) {
+    fn irregular_before_after(
+        &self,
+        map: &Map,
+        firsts: &[(usize, bool)],
+    ) -> (Irregulars, Irregulars) {
         let irregular = |k: usize, b: bool| k != regular_valence(MeshKind::Quad, b);
         let mut before = Vec::new();
         let mut after = Vec::new();
-        for (i, _) in self.firsts() {
+        for &(i, _) in firsts {
             let (v, k) = self.seen[i];
             if let Some(k) = k {
                 if irregular(k, self.boundary[i]) {
@@ -350,9 +360,9 @@ impl Touched {
 
     /// Vertices the surgery left at valence 2 or 6 that were not so before, in order of
     /// first touch.
-    fn to_clean(&self, map: &Map) -> Vec<Vert> {
+    fn to_clean(&self, map: &Map, firsts: &[(usize, bool)]) -> Vec<Vert> {
         let mut out: Vec<Vert> = Vec::new();
-        for (i, born) in self.firsts() {
+        for &(i, born) in firsts {
             let v = self.seen[i].0;
             if !map.is_live_vertex(v) || map.is_boundary_vertex(v) {
                 continue;
@@ -554,7 +564,9 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         to_cands.insert(0, cur);
     }
     let (mut v2_removals, mut v6_splits) = (0, 0);
-    for v in touched.to_clean(map) {
+    let mut firsts = touched.firsts();
+    let to_clean = touched.to_clean(map, &firsts);
+    for &v in &to_clean {
         for d in map.vertex_darts(v) {
             touched
                 .seen
@@ -574,7 +586,10 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             records.push(r.into());
         }
     }
-    let (before, after) = touched.irregular_before_after(map);
+    if !to_clean.is_empty() {
+        firsts = touched.firsts();
+    }
+    let (before, after) = touched.irregular_before_after(map, &firsts);
     if before != after {
         return Err(ZipError::NotGridPreserving {
             before: before.len(),
@@ -582,7 +597,6 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         });
     }
     // A vertex that carries valence k because of this edit: born here, or changed to k.
-    let firsts = touched.firsts();
     let changed_to = |v: Vert, k: usize| {
         map.is_live_vertex(v)
             && map.valence(v) == k
