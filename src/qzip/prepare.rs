@@ -472,10 +472,10 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
             i += 1;
         }
     }
-    for (i, &a) in v.iter().enumerate() {
-        if v[..i].contains(&a) {
-            return Err(PrepareError::NotSimple { vertex: a });
-        }
+    let mut sorted = v.clone();
+    sorted.sort_unstable();
+    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(PrepareError::NotSimple { vertex: w[0] });
     }
     let mut out: Vec<SurgeryStep> = v
         .iter()
