@@ -2,48 +2,17 @@
 //! errors for bad files and bad usage.
 #![cfg(feature = "cli")]
 
+mod common;
+
+use common::cli::{s, shared, stderr, stdout, temp_dir, zipmesh};
 use glam::DVec3;
 use serde_json::Value;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Command;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
 use zipmesh::{gen, io, Mesh};
-
-fn zipmesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
-        .args(args)
-        .output()
-        .expect("the zipmesh binary runs")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
-}
-
-fn shared(rel: &str) -> PathBuf {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
-        .join(rel);
-    assert!(p.is_file(), "missing shared test mesh {}", p.display());
-    p
-}
 
 /// Compares `stats --json` output with the library's own numbers for `mesh`.
 fn assert_stats_match(json: &Value, mesh: &Mesh, unreferenced: usize) {

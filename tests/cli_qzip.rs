@@ -2,26 +2,14 @@
 //! undo restoring the input, and exit 2 with no output file on bad input.
 #![cfg(feature = "cli")]
 
+mod common;
+
+use common::cli::{temp_dir, zipmesh};
 use serde_json::Value;
-use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 use zipmesh::qzip::{moves, sketch, SketchOptions, Tag};
 use zipmesh::{io, is_isomorphic, Vert};
-
-fn zipmesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
-        .args(args)
-        .output()
-        .expect("the zipmesh binary runs")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-qzip-{name}"));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn spot() -> String {
     let p =
@@ -78,7 +66,7 @@ fn moves_json_matches_the_library() {
 /// and the printed undo, passed back to `zip`, gives a mesh isomorphic to the input.
 #[test]
 fn zip_then_its_undo_restores_the_input() {
-    let dir = temp_dir("undo");
+    let dir = temp_dir("qzip-undo");
     let (input, _) = io::read_mesh(spot()).unwrap();
     let mut done = 0;
     for tag in Tag::CCW {
@@ -147,7 +135,7 @@ fn zip_then_its_undo_restores_the_input() {
 /// Bad input: exit 2, a message naming the problem, and no output file.
 #[test]
 fn bad_input_exits_2_without_output() {
-    let dir = temp_dir("bad");
+    let dir = temp_dir("qzip-bad");
     let out = dir.join("out.obj");
     let o = out.to_str().unwrap();
     let torus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri/torus.obj");

@@ -1,6 +1,9 @@
 //! Fixtures and checks shared by the Q-zip tests.
 #![allow(dead_code)]
 
+#[cfg(feature = "cli")]
+pub mod cli;
+
 use zipmesh::invariants::{irregular_valences, Counts, MeshKind};
 use zipmesh::ops::quad;
 use zipmesh::qzip::{sketch, zip_along, Path, QzipError, SketchOptions, Tag, ZipReport};
