@@ -459,8 +459,9 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
     // start/end rule predicts first; the first of them left with the singularity's valence
     // wins (at a turn right after a start the defect can land on the other copy).
     let (val_from, val_to) = (map.valence(s.from()), map.valence(s.to()));
-    let mut from_cands: Vec<Vert> = Vec::new();
-    let mut to_cands: Vec<Vert> = Vec::new();
+    // Fixed-size candidate lists: no allocation per operation.
+    let mut from_cands: Option<[Vert; 3]> = None;
+    let mut to_cands: [Vert; 4] = [Vert::new(u32::MAX); 4];
     let mut footprint_faces = Vec::new();
     let mut footprint_edges = Vec::new();
     let mut scar_faces: Vec<Face> = Vec::new();
@@ -500,13 +501,13 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             } else {
                 (right, left)
             };
-            if from_cands.is_empty() {
-                from_cands = match s.start_rule() {
-                    StartRule::V5Split => alloc::vec![steps[0].vertex, other, cont],
-                    _ => alloc::vec![other, cont, g],
-                };
+            if from_cands.is_none() {
+                from_cands = Some(match s.start_rule() {
+                    StartRule::V5Split => [steps[0].vertex, other, cont],
+                    _ => [other, cont, g],
+                });
             }
-            to_cands = alloc::vec![cont, other, n];
+            to_cands = [cont, cont, other, n];
             guide = Some(cont);
             born_faces.push(r.face());
             scar_faces.push(r.face());
@@ -539,13 +540,13 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             }
             let r = quad_collapse(map, d).map_err(refused)?;
             collapses += 1;
-            if from_cands.is_empty() {
-                from_cands = match s.start_rule() {
-                    StartRule::V5Collapse => alloc::vec![n, p, far],
-                    _ => alloc::vec![p, n, far],
-                };
+            if from_cands.is_none() {
+                from_cands = Some(match s.start_rule() {
+                    StartRule::V5Collapse => [n, p, far],
+                    _ => [p, n, far],
+                });
             }
-            to_cands = alloc::vec![far, n, p];
+            to_cands = [far, far, n, p];
             guide = Some(far);
             let f = r.face();
             if let Some(k) = born_faces.iter().rposition(|&b| b == f) {
@@ -561,7 +562,7 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         }
     }
     if matches!(s.end_rule(), EndRule::V5Collapse | EndRule::V5Split) {
-        to_cands.insert(0, cur);
+        to_cands[0] = cur;
     }
     let (mut v2_removals, mut v6_splits) = (0, 0);
     let mut firsts = touched.firsts();
@@ -597,26 +598,41 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         });
     }
     // A vertex that carries valence k because of this edit: born here, or changed to k.
+    // Looked up by binary search in the first touches sorted by vertex.
+    let mut by_vertex: Vec<(Vert, usize, bool)> = firsts
+        .iter()
+        .map(|&(i, born)| (touched.seen[i].0, i, born))
+        .collect();
+    by_vertex.sort_unstable_by_key(|x| x.0);
     let changed_to = |v: Vert, k: usize| {
         map.is_live_vertex(v)
             && map.valence(v) == k
-            && firsts
-                .iter()
-                .any(|&(i, born)| touched.seen[i].0 == v && (born || touched.seen[i].1 != Some(k)))
+            && by_vertex
+                .binary_search_by_key(&v, |x| x.0)
+                .is_ok_and(|j| by_vertex[j].2 || touched.seen[by_vertex[j].1].1 != Some(k))
+    };
+    let touched_order = |forward: bool| {
+        let it = firsts.iter().map(|&(i, _)| touched.seen[i].0);
+        let v: Vec<Vert> = if forward {
+            it.collect()
+        } else {
+            it.rev().collect()
+        };
+        v
     };
     let pick = |cands: &[Vert], k: usize, forward: bool| {
-        let mut order: Vec<Vert> = firsts.iter().map(|&(i, _)| touched.seen[i].0).collect();
-        if !forward {
-            order.reverse();
-        }
         cands
             .iter()
-            .chain(order.iter())
             .copied()
             .find(|&v| changed_to(v, k))
+            .or_else(|| {
+                touched_order(forward)
+                    .into_iter()
+                    .find(|&v| changed_to(v, k))
+            })
     };
     let (Some(moved_from), Some(moved_to)) = (
-        pick(&from_cands, val_from, true),
+        pick(&from_cands.unwrap_or([cur; 3]), val_from, true),
         pick(&to_cands, val_to, false),
     ) else {
         return Err(ZipError::Untracked);
