@@ -141,8 +141,8 @@ pub struct ReverseRun {
 /// singularity back to the moved initial one, the initial operation whose result is
 /// isomorphic to `original`. The path is the image of the surgery path: the shortest path
 /// that keeps to the vertices of the edit's scar and surviving path (Dijkstra with a high
-/// weight elsewhere), then, if no run along it restores the original, the plain shortest
-/// path. The compass rotated by pi (the surgery's last hand, rotated) is tried first, then
+/// weight elsewhere); if no run along it restores the original, the surgery path's surviving
+/// vertices read backwards (gaps bridged, loops cut); then the plain shortest path. The compass rotated by pi (the surgery's last hand, rotated) is tried first, then
 /// the other three; `None` if no run restores the original.
 ///
 /// `edited` is the map after the edit that `report` describes, `original` the map before.
@@ -224,11 +224,47 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
     sketch(edited, from, to, &image)
         .ok()
         .and_then(try_path)
+        .or_else(|| literal_image(edited, report).and_then(try_path))
         .or_else(|| {
             sketch(edited, from, to, &SketchOptions::default())
                 .ok()
                 .and_then(try_path)
         })
+}
+
+/// The surgery path's surviving vertices in reverse order, from the moved terminal to the
+/// moved initial singularity, gaps bridged by shortest paths and loops cut: the image of the
+/// surgery path read literally.
+fn literal_image(edited: &Map, report: &ZipReport) -> Option<Path> {
+    let (from, to) = (report.moved_to(), report.moved_from());
+    let opts = SketchOptions::default();
+    let mut walk: Vec<Vert> = alloc::vec![from];
+    let steps = report.surgery().steps().iter().rev().map(|s| s.vertex);
+    for v in steps.filter(|&v| edited.is_live_vertex(v)).chain([to]) {
+        let last = *walk.last()?;
+        if last == v {
+            continue;
+        }
+        if edited.vertex_darts(last).any(|d| edited.dest(d) == v) {
+            walk.push(v);
+        } else {
+            let bridge = sketch(edited, last, v, &opts).ok()?;
+            walk.extend_from_slice(&bridge.vertices()[1..]);
+        }
+    }
+    // Cut loops (keep the first visit) and stop at the moved initial singularity.
+    let mut simple: Vec<Vert> = Vec::with_capacity(walk.len());
+    for v in walk {
+        if let Some(k) = simple.iter().position(|&x| x == v) {
+            simple.truncate(k + 1);
+        } else {
+            simple.push(v);
+        }
+        if v == to {
+            break;
+        }
+    }
+    super::sketch::validate_path(edited, from, to, &simple, &opts).ok()
 }
 
 /// The turn, in quarter turns counter-clockwise, from the first edge of `a` to the first
