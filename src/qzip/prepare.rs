@@ -17,8 +17,14 @@
 //! | end v5 | LC (RC) | replace the last edge by the two sides of the quad on its left (right): RS (LS) at the turn, LC (RC) on the last edge |
 //! | end v5 | LS (RS) | append the guide edge to the second neighbour counter-clockwise (clockwise) of the incoming edge |
 //!
-//! Then edges crossed twice in opposite directions (`a -> b -> a`) cancel in pairs, keeping
-//! the compass unchanged: the surviving vertex takes the hand of the edge that leaves the fold.
+//! Before the end rule, a path that reaches the terminal singularity by going round a quad
+//! that touches it (`a -> b -> c -> end`, `a` and `end` joined by the quad's fourth side) is
+//! shortened to `a -> end` (a homotopy across that quad; the hand along `a -> end` is the
+//! hand along the parallel side `b -> c`). After the adjustments, edges crossed twice in
+//! opposite directions (`a -> b -> a`) cancel in pairs, keeping the compass unchanged: the
+//! surviving vertex takes the hand of the edge that leaves the fold. If a v3 start's reroute
+//! folds back so that the first operation is a split, the v3 is put back in front as its
+//! guide with a no-op (as in a v3 start with a split).
 //!
 //! ```
 //! use zipmesh::{gen, Vert};
@@ -425,6 +431,34 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
         }
     };
 
+    // A path that reaches the terminal singularity by going round a quad touching it
+    // (a -> b -> c -> end, with a and end joined by that quad's fourth side) is first
+    // shortened to a -> end, a homotopy across that quad inside the one-ring: the compass
+    // along a -> end is the hand along b -> c, the parallel side. Adjusting the end of the
+    // U-turn instead would reroute back over it.
+    if v.len() >= 4 {
+        let m = v.len() - 1;
+        let (a, b, c, e) = (v[m - 3], v[m - 2], v[m - 1], v[m]);
+        let quad = dart_between(map, a, e).is_some_and(|d| {
+            [d, d.twin()].iter().any(|&x| {
+                map.face(x).is_some_and(|f| {
+                    map.degree(f) == 4
+                        && map
+                            .face_darts(f)
+                            .map(|y| map.origin(y))
+                            .all(|w| [a, b, c, e].contains(&w))
+                })
+            })
+        });
+        let regular = |w: Vert| map.valence(w) == 4 && !map.is_boundary_vertex(w);
+        if quad && regular(b) && regular(c) && !noop[m - 3] {
+            hand[m - 3] = hand[m - 2];
+            v.drain(m - 2..m);
+            hand.drain(m - 2..m);
+            noop.drain(m - 2..m);
+        }
+    }
+
     let last = steps.len() - 1;
     let m = v.len() - 1;
     let arriving = hand[m - 1];
@@ -471,6 +505,19 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
         } else {
             i += 1;
         }
+    }
+    // A reroute folded back onto the path so that the first operation is a split: it needs
+    // a guide, and the v3 it started from is one (as in a v3 start with a split, whose
+    // no-op start guides the first split).
+    if start == StartRule::V3Collapse
+        && hand.first().is_some_and(|h| h.is_split())
+        && noop.first() == Some(&false)
+        && !v.contains(&from)
+        && dart_between(map, from, v[0]).is_some()
+    {
+        v.insert(0, from);
+        hand.insert(0, hand[0]);
+        noop.insert(0, true);
     }
     let mut sorted = v.clone();
     sorted.sort_unstable();
