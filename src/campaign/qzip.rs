@@ -106,10 +106,7 @@ fn checked_zip(
     let mut m = map.clone();
     let r = match zip_along(&mut m, path, tag) {
         Ok(r) => r,
-        Err(e) if &m == map => {
-            let _ = e;
-            return Ok(None);
-        }
+        Err(_) if &m == map => return Ok(None),
         Err(e) => return Err(format!("{tag} refused ({e}) but changed the map")),
     };
     let at = format!(
