@@ -7,9 +7,9 @@ use std::vec::Vec;
 
 use super::{Case, Outcome, Property};
 use crate::invariants::canonical::CanonicalCode;
-use crate::invariants::{irregular_valences, Counts, MeshKind};
 use crate::qzip::{
-    find_reverse, one_quad_sweeps, sketch, start_turn, zip_along, Path, SketchOptions, Tag,
+    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, zip_along, Path, SketchOptions,
+    Tag,
 };
 use crate::{Map, Vert};
 
@@ -109,36 +109,12 @@ fn checked_zip(
         Err(_) if &m == map => return Ok(None),
         Err(e) => return Err(format!("{tag} refused ({e}) but changed the map")),
     };
-    let at = format!(
-        "{tag} from {} to {}",
-        path.start().index(),
-        path.end().index()
-    );
-    if let Err(v) = m.check() {
-        return Err(format!("{at}: check() fails: {v:?}"));
-    }
-    if m.faces().any(|f| m.degree(f) != 4) {
-        return Err(format!("{at}: a face is not a quad"));
-    }
-    let (c, c0) = (Counts::of(&m), Counts::of(map));
-    if c.euler_characteristic != c0.euler_characteristic || c.boundary_loops != c0.boundary_loops {
+    if let Err(b) = verify_edit(map, &m, path, &r) {
         return Err(format!(
-            "{at}: Euler characteristic or boundary loops changed"
+            "{tag} from {} to {}: {b}",
+            path.start().index(),
+            path.end().index()
         ));
-    }
-    if irregular_valences(&m, MeshKind::Quad) != irregular_valences(map, MeshKind::Quad) {
-        return Err(format!("{at}: the irregular valences changed"));
-    }
-    if m.num_vertices() as isize != map.num_vertices() as isize + r.vertex_delta() {
-        return Err(format!("{at}: V changed by other than the report's delta"));
-    }
-    let moved = (m.valence(r.moved_from()), m.valence(r.moved_to()));
-    if moved != (map.valence(path.start()), map.valence(path.end())) {
-        return Err(format!("{at}: the moved vertices have valences {moved:?}"));
-    }
-    let mut u = m.clone();
-    if r.undo(&mut u).is_err() || &u != map {
-        return Err(format!("{at}: undo does not restore the map exactly"));
     }
     Ok(Some((m, r)))
 }

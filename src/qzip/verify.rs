@@ -1,0 +1,108 @@
+//! The promises of a Q-zip, checked after the fact: for tests, fuzzers and campaigns that
+//! want one oracle instead of their own copy.
+
+use core::fmt;
+
+use super::execute::ZipReport;
+use super::sketch::Path;
+use crate::invariants::{irregular_valences, Counts, MeshKind};
+use crate::Map;
+use crate::Violation;
+
+/// A broken promise of a Q-zip, found by [`verify_edit`].
+///
+/// ```
+/// use zipmesh::qzip::Broken;
+/// assert!(Broken::NotQuad.to_string().contains("quad"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Broken {
+    /// The edited map fails [`Map::check`].
+    Invalid(Violation),
+    /// A face of the edited map is not a quad.
+    NotQuad,
+    /// The Euler characteristic or the number of boundary loops changed.
+    Topology,
+    /// The multiset of irregular valences changed: a singularity was made or lost.
+    Singularities,
+    /// The vertex count changed by other than [`ZipReport::vertex_delta`].
+    VertexCount,
+    /// The reported moved vertices do not carry the pair's valences, or are one vertex.
+    Moved {
+        /// Their valences in the edited map.
+        found: (usize, usize),
+        /// The pair's valences before.
+        expected: (usize, usize),
+    },
+    /// Undoing the report does not give back the map before, `==`.
+    Undo,
+}
+
+impl fmt::Display for Broken {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Invalid(v) => write!(f, "the edited map fails check(): {v:?}"),
+            Self::NotQuad => f.write_str("a face of the edited map is not a quad"),
+            Self::Topology => f.write_str("the Euler characteristic or the boundary loops changed"),
+            Self::Singularities => f.write_str("the irregular valences changed"),
+            Self::VertexCount => f.write_str("V changed by other than the report's delta"),
+            Self::Moved { found, expected } => write!(
+                f,
+                "the moved vertices have valences {found:?}, the pair had {expected:?}"
+            ),
+            Self::Undo => f.write_str("undo does not restore the map exactly"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for Broken {}
+
+/// Checks everything a done Q-zip promises: `after` is a valid pure-quad map with the
+/// Euler characteristic, boundary loops and irregular valences of `before`; its vertex count
+/// changed by the report's delta; the two moved vertices are distinct and carry the valences
+/// of the path's ends; and undoing the report on a copy of `after` gives `before` exactly.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{sketch, verify_edit, zip_along, SketchOptions, Tag};
+/// let before = gen::subdivided_icosahedron(2).map;
+/// let path = sketch(&before, Vert::new(0), Vert::new(42), &SketchOptions::default()).unwrap();
+/// let mut after = before.clone();
+/// let r = zip_along(&mut after, &path, Tag::RS).unwrap();
+/// assert_eq!(verify_edit(&before, &after, &path, &r), Ok(()));
+/// // Against the wrong "before", the promises do not hold.
+/// assert!(verify_edit(&after, &after, &path, &r).is_err());
+/// ```
+pub fn verify_edit(
+    before: &Map,
+    after: &Map,
+    path: &Path,
+    report: &ZipReport,
+) -> Result<(), Broken> {
+    after.check().map_err(Broken::Invalid)?;
+    if after.faces().any(|f| after.degree(f) != 4) {
+        return Err(Broken::NotQuad);
+    }
+    let (c, c0) = (Counts::of(after), Counts::of(before));
+    if (c.euler_characteristic, c.boundary_loops) != (c0.euler_characteristic, c0.boundary_loops) {
+        return Err(Broken::Topology);
+    }
+    if irregular_valences(after, MeshKind::Quad) != irregular_valences(before, MeshKind::Quad) {
+        return Err(Broken::Singularities);
+    }
+    if after.num_vertices() as isize != before.num_vertices() as isize + report.vertex_delta() {
+        return Err(Broken::VertexCount);
+    }
+    let (from, to) = (report.moved_from(), report.moved_to());
+    let found = (after.valence(from), after.valence(to));
+    let expected = (before.valence(path.start()), before.valence(path.end()));
+    if found != expected || from == to {
+        return Err(Broken::Moved { found, expected });
+    }
+    let mut undone = after.clone();
+    if report.undo(&mut undone).is_err() || &undone != before {
+        return Err(Broken::Undo);
+    }
+    Ok(())
+}
