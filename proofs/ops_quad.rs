@@ -33,7 +33,7 @@ use crate::choice::Exhaustive;
 use crate::oracle::RawMap;
 use std::collections::BTreeMap;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::quad::{self, QuadRecord, Rotation};
+use zipmesh::ops::quad::{QuadRecord, Rotation};
 use zipmesh::ops::Refusal;
 use zipmesh::{Dart, Face, Map, Vert};
 
@@ -41,52 +41,8 @@ use zipmesh::{Dart, Face, Map, Vert};
 const MAX_EDGES: usize = 4;
 const SEQ_EDGES: usize = 3;
 
-/// One operator with its arguments.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Op {
-    Collapse(Dart),
-    Split(Dart, Dart),
-    HighValence(Dart),
-    RemoveValence2(Dart),
-    InsertDoublet(Dart),
-    Rotate(Dart, Rotation),
-}
-
-impl Op {
-    pub fn name(self) -> &'static str {
-        match self {
-            Op::Collapse(_) => "collapse",
-            Op::Split(..) => "split",
-            Op::HighValence(_) => "high-valence split",
-            Op::RemoveValence2(_) => "valence-2 removal",
-            Op::InsertDoublet(_) => "doublet insertion",
-            Op::Rotate(_, Rotation::Clockwise) => "rotation cw",
-            Op::Rotate(_, Rotation::CounterClockwise) => "rotation ccw",
-        }
-    }
-
-    pub fn can(self, m: &Map) -> Result<(), Refusal> {
-        match self {
-            Op::Collapse(d) => quad::can_quad_collapse(m, d),
-            Op::Split(a, b) => quad::can_vertex_split(m, a, b),
-            Op::HighValence(d) => quad::can_split_high_valence(m, m.origin(d), d),
-            Op::RemoveValence2(d) => quad::can_remove_valence2(m, d),
-            Op::InsertDoublet(d) => quad::can_insert_doublet(m, d),
-            Op::Rotate(d, r) => quad::can_rotate_edge(m, d, r),
-        }
-    }
-
-    pub fn apply(self, m: &mut Map) -> Result<QuadRecord, Refusal> {
-        Ok(match self {
-            Op::Collapse(d) => quad::quad_collapse(m, d)?.into(),
-            Op::Split(a, b) => quad::vertex_split(m, a, b)?.into(),
-            Op::HighValence(d) => quad::split_high_valence(m, m.origin(d), d)?.into(),
-            Op::RemoveValence2(d) => quad::remove_valence2(m, d)?.into(),
-            Op::InsertDoublet(d) => quad::insert_doublet(m, d)?.into(),
-            Op::Rotate(d, r) => quad::rotate_edge(m, d, r)?.into(),
-        })
-    }
-}
+/// One operator with its arguments (the library's own value type).
+pub use zipmesh::ops::quad::QuadOp as Op;
 
 /// Every operator at every argument on a map whose darts are `0..n`.
 pub fn all_ops(m: &Map) -> Vec<Op> {

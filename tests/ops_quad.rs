@@ -14,46 +14,10 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::ops::quad::{self, MeshEdit, Rotation};
-use zipmesh::ops::Refusal;
 use zipmesh::rng::Rng;
 use zipmesh::{gen, Dart, Map, Mesh, Vert};
 
-#[derive(Clone, Copy, Debug)]
-enum Op {
-    Collapse(Dart),
-    Split(Dart, Dart),
-    HighValence(Dart),
-    RemoveValence2(Dart),
-    InsertDoublet(Dart),
-    Rotate(Dart, Rotation),
-}
-
-impl Op {
-    fn can(self, m: &Map) -> Result<(), Refusal> {
-        match self {
-            Op::Collapse(d) => quad::can_quad_collapse(m, d),
-            Op::Split(a, b) => quad::can_vertex_split(m, a, b),
-            Op::HighValence(d) => quad::can_split_high_valence(m, m.origin(d), d),
-            Op::RemoveValence2(d) => quad::can_remove_valence2(m, d),
-            Op::InsertDoublet(d) => quad::can_insert_doublet(m, d),
-            Op::Rotate(d, r) => quad::can_rotate_edge(m, d, r),
-        }
-    }
-
-    fn apply(self, mesh: &mut Mesh) -> Result<MeshEdit, Refusal> {
-        match self {
-            Op::Collapse(d) => quad::mesh_quad_collapse(mesh, d),
-            Op::Split(a, b) => quad::mesh_vertex_split(mesh, a, b),
-            Op::HighValence(d) => {
-                let v = mesh.map.origin(d);
-                quad::mesh_split_high_valence(mesh, v, d)
-            }
-            Op::RemoveValence2(d) => quad::mesh_remove_valence2(mesh, d),
-            Op::InsertDoublet(d) => quad::mesh_insert_doublet(mesh, d),
-            Op::Rotate(d, r) => quad::mesh_rotate_edge(mesh, d, r),
-        }
-    }
-}
+use zipmesh::ops::quad::QuadOp as Op;
 
 /// The documented effect of an operator, computed from the map before it.
 struct Expect {
@@ -246,7 +210,7 @@ fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
         let before_val = valences(&before.map);
         let can = op.can(&mesh.map);
         let expected = can.is_ok().then(|| expect(&mesh.map, op));
-        match op.apply(&mut mesh) {
+        match op.apply_mesh(&mut mesh) {
             Err(r) => {
                 assert_eq!(can, Err(r), "{op:?}");
                 assert!(
@@ -433,7 +397,7 @@ fn every_operator_applies_on_generated_meshes() {
     let mut hot = Vec::new();
     for _ in 0..3000 {
         let op = random_op(&m.map, &mut rng, &hot);
-        if op.apply(&mut m).is_ok() {
+        if op.apply_mesh(&mut m).is_ok() {
             let name = match op {
                 Op::Collapse(_) => "collapse",
                 Op::Split(..) => "split",

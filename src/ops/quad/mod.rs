@@ -63,6 +63,106 @@ pub use mesh::{
 };
 pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
 
+/// Any quad operator with its arguments, as a value: for drivers that pick operators at
+/// run time (fuzzers, exhaustive proofs, property tests).
+///
+/// ```
+/// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let before = map.clone();
+/// let op = QuadOp::Collapse(Dart::new(0));
+/// assert_eq!(op.can(&map), Ok(()));
+/// let record = op.apply(&mut map).unwrap();
+/// record.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// assert_eq!(op.name(), "collapse");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuadOp {
+    /// [`quad_collapse`] at the dart.
+    Collapse(Dart),
+    /// [`vertex_split`] along the two separators.
+    Split(Dart, Dart),
+    /// [`split_high_valence`] of the dart's origin, from the dart.
+    HighValence(Dart),
+    /// [`remove_valence2`] of the dart's origin.
+    RemoveValence2(Dart),
+    /// [`insert_doublet`] at the dart.
+    InsertDoublet(Dart),
+    /// [`rotate_edge`] of the dart's edge.
+    Rotate(Dart, Rotation),
+}
+
+impl QuadOp {
+    /// A short name for reports.
+    ///
+    /// See [`QuadOp`] for an example.
+    pub fn name(self) -> &'static str {
+        match self {
+            QuadOp::Collapse(_) => "collapse",
+            QuadOp::Split(..) => "split",
+            QuadOp::HighValence(_) => "high-valence split",
+            QuadOp::RemoveValence2(_) => "valence-2 removal",
+            QuadOp::InsertDoublet(_) => "doublet insertion",
+            QuadOp::Rotate(_, Rotation::Clockwise) => "rotation cw",
+            QuadOp::Rotate(_, Rotation::CounterClockwise) => "rotation ccw",
+        }
+    }
+
+    /// The operator's `can_*` check.
+    ///
+    /// See [`QuadOp`] for an example.
+    pub fn can(self, m: &Map) -> Result<(), Refusal> {
+        match self {
+            QuadOp::Collapse(d) => can_quad_collapse(m, d),
+            QuadOp::Split(a, b) => can_vertex_split(m, a, b),
+            QuadOp::HighValence(d) => can_split_high_valence(m, m.origin(d), d),
+            QuadOp::RemoveValence2(d) => can_remove_valence2(m, d),
+            QuadOp::InsertDoublet(d) => can_insert_doublet(m, d),
+            QuadOp::Rotate(d, r) => can_rotate_edge(m, d, r),
+        }
+    }
+
+    /// Applies the operator to a map.
+    ///
+    /// See [`QuadOp`] for an example.
+    pub fn apply(self, m: &mut Map) -> Result<QuadRecord, Refusal> {
+        Ok(match self {
+            QuadOp::Collapse(d) => quad_collapse(m, d)?.into(),
+            QuadOp::Split(a, b) => vertex_split(m, a, b)?.into(),
+            QuadOp::HighValence(d) => split_high_valence(m, m.origin(d), d)?.into(),
+            QuadOp::RemoveValence2(d) => remove_valence2(m, d)?.into(),
+            QuadOp::InsertDoublet(d) => insert_doublet(m, d)?.into(),
+            QuadOp::Rotate(d, r) => rotate_edge(m, d, r)?.into(),
+        })
+    }
+
+    /// Applies the operator to a mesh, placing new vertices (the `mesh_*` wrappers).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+    /// let mut mesh = gen::torus_grid(5, 5);
+    /// let before = mesh.clone();
+    /// let e = QuadOp::Collapse(Dart::new(0)).apply_mesh(&mut mesh).unwrap();
+    /// assert_eq!(mesh.map.num_faces(), before.map.num_faces() - 1);
+    /// e.undo(&mut mesh).unwrap();
+    /// assert_eq!(mesh.map, before.map);
+    /// ```
+    pub fn apply_mesh(self, mesh: &mut crate::Mesh) -> Result<MeshEdit, Refusal> {
+        match self {
+            QuadOp::Collapse(d) => mesh_quad_collapse(mesh, d),
+            QuadOp::Split(a, b) => mesh_vertex_split(mesh, a, b),
+            QuadOp::HighValence(d) => {
+                let v = mesh.map.origin(d);
+                mesh_split_high_valence(mesh, v, d)
+            }
+            QuadOp::RemoveValence2(d) => mesh_remove_valence2(mesh, d),
+            QuadOp::InsertDoublet(d) => mesh_insert_doublet(mesh, d),
+            QuadOp::Rotate(d, r) => mesh_rotate_edge(mesh, d, r),
+        }
+    }
+}
+
 /// Any quad operator's record, for undo stacks that mix operators.
 ///
 /// ```
