@@ -471,6 +471,13 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
     // itself, and then the position jumps ahead while the handle stays the merged vertex.
     let mut index = 0;
     let mut cur = steps[0].vertex;
+    // Path vertices sorted, with their positions: a collapse asks whether it removes one.
+    let mut position: Vec<(Vert, usize)> = steps
+        .iter()
+        .enumerate()
+        .map(|(i, x)| (x.vertex, i))
+        .collect();
+    position.sort_unstable();
     while index < m {
         let (p, n) = (cur, steps[index + 1].vertex);
         let Some(tag) = steps[index].op else {
@@ -526,8 +533,12 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             // back to the merged vertex, and that pair of edges cancels (like a fold of the
             // preparation, with the compass unchanged). Anything else would lose the vertex.
             let mut next = index + 1;
-            if let Some(j) = steps[index + 2..].iter().position(|x| x.vertex == removed) {
-                if j != 1 {
+            let at = position
+                .binary_search_by_key(&removed, |x| x.0)
+                .ok()
+                .map(|k| position[k].1);
+            if let Some(j) = at.filter(|&j| j >= index + 2) {
+                if j != index + 3 {
                     return Err(ZipError::Lost {
                         index,
                         vertex: removed,
