@@ -70,23 +70,23 @@ fn cubespikes() {
     let t = campaign(&mesh("cubespikes.obj"), 1);
     eprintln!("cubespikes: {t:?}");
     assert!(t.moved > 100, "{t:?}");
-    assert!(t.reversed * 10 >= t.reverse_checked * 9, "{t:?}");
+    assert_eq!(t.reversed, t.reverse_checked, "{t:?}");
 }
 
 #[test]
 fn spot() {
-    let t = campaign(&mesh("spot_quadrangulated.obj"), 4);
+    let t = campaign(&mesh("spot_quadrangulated.obj"), 1);
     eprintln!("spot: {t:?}");
     assert!(t.moved > 100, "{t:?}");
-    assert!(t.reversed * 10 >= t.reverse_checked * 9, "{t:?}");
+    assert_eq!(t.reversed, t.reverse_checked, "{t:?}");
 }
 
 #[test]
 fn blub() {
-    let t = campaign(&mesh("blub_quadrangulated.obj"), 4);
+    let t = campaign(&mesh("blub_quadrangulated.obj"), 1);
     eprintln!("blub: {t:?}");
     assert!(t.moved > 20, "{t:?}");
-    assert!(t.reversed * 10 >= t.reverse_checked * 9, "{t:?}");
+    assert_eq!(t.reversed, t.reverse_checked, "{t:?}");
 }
 
 /// The helmet has a boundary (its irregular boundary corners are refused by name) and four
@@ -96,6 +96,7 @@ fn small_meshes() {
     let t = campaign(&mesh("osd_catmark_helmet.obj"), 1);
     eprintln!("helmet: {t:?}");
     assert!(t.pairs > 0);
+    assert_eq!(t.reversed, t.reverse_checked, "{t:?}");
     for name in ["osd_catmark_torus.obj", "osd_catmark_toroidal_tet.obj"] {
         let t = campaign(&mesh(name), 1);
         eprintln!("{name}: {t:?}");
@@ -118,6 +119,9 @@ fn preprocessed_spot_and_blub() {
         eprintln!("{name} preprocessed: {t:?}");
         assert!(!t.refused.contains_key("Plan Valence"), "{t:?}");
         assert!(t.moved > 100, "{t:?}");
+        // Measured on every movement: 5,322 of 5,336 on Spot, 510 of 526 on Blub; each miss
+        // has a third singularity on its path or next to one of its ends (docs/qzip.md).
+        assert!(t.reversed * 100 >= t.reverse_checked * 95, "{t:?}");
         p.undo(&mut map).unwrap();
         assert_eq!(map, before);
     }
