@@ -32,7 +32,7 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::Tag;
-use super::prepare::{dart_between, EndRule, StartRule, Surgery};
+use super::prepare::{bounds_one_quad, dart_between, EndRule, StartRule, Surgery};
 use crate::invariants::{regular_valence, MeshKind};
 use crate::ops::quad::{
     quad_collapse, remove_valence2, split_high_valence, vertex_split, QuadRecord,
@@ -537,14 +537,20 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
                 .binary_search_by_key(&removed, |x| x.0)
                 .ok()
                 .map(|k| position[k].1);
+            // Merging with the path vertex four steps ahead makes a loop n -> .. -> n:
+            // cancelled like the loops of the preparation when it goes round one quad
+            // (checked after the collapse, which is undone with the rest if not).
+            let mut round = None;
             if let Some(j) = at.filter(|&j| j >= index + 2) {
-                if j != index + 3 {
+                if j == index + 5 {
+                    round = Some(j);
+                } else if j != index + 3 {
                     return Err(ZipError::Lost {
                         index,
                         vertex: removed,
                     });
                 }
-                next = index + 3;
+                next = j;
             }
             for x in [p, n, far, removed] {
                 touched.touch(map, x);
@@ -568,6 +574,21 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             }
             scar_edges.extend(r.merged_edges().map(|d| d.index() / 2));
             records.push(r.into());
+            if let Some(j) = round {
+                let ring = [
+                    n,
+                    steps[j - 3].vertex,
+                    steps[j - 2].vertex,
+                    steps[j - 1].vertex,
+                ];
+                // Valences mid-chain are transient: only the quad is required.
+                if !bounds_one_quad(map, ring, [s.from(), s.to()], false) {
+                    return Err(ZipError::Lost {
+                        index,
+                        vertex: removed,
+                    });
+                }
+            }
             index = next;
             cur = n;
         }

@@ -22,7 +22,8 @@
 //! shortened to `a -> end` (a homotopy across that quad; the hand along `a -> end` is the
 //! hand along the parallel side `b -> c`). After the adjustments, edges crossed twice in
 //! opposite directions (`a -> b -> a`) cancel in pairs, keeping the compass unchanged: the
-//! surviving vertex takes the hand of the edge that leaves the fold. If a v3 start's reroute
+//! surviving vertex takes the hand of the edge that leaves the fold; loops that go round one
+//! quad with regular corners (`a -> x -> y -> z -> a`) are cut the same way. If a v3 start's reroute
 //! folds back so that the first operation is a split, the v3 is put back in front as its
 //! guide with a no-op (as in a v3 start with a split).
 //!
@@ -202,7 +203,7 @@ impl Surgery {
         self.end
     }
 
-    /// How many pairs of folded edges were cancelled.
+    /// How many folds (`a -> b -> a`) and loops round one quad were cancelled.
     ///
     /// ```
     /// use zipmesh::{gen, Vert};
@@ -273,7 +274,7 @@ pub enum PrepareError {
         /// The singularity whose one-ring it is in.
         vertex: Vert,
     },
-    /// The adjusted path visits a vertex twice (other than a cancelled fold).
+    /// The adjusted path visits a vertex twice (other than a cancelled fold or loop).
     NotSimple {
         /// The repeated vertex.
         vertex: Vert,
@@ -319,6 +320,26 @@ impl fmt::Display for PrepareError {
 
 #[cfg(feature = "std")]
 impl std::error::Error for PrepareError {}
+
+/// Whether the closed walk `ring[0] -> ring[1] -> ring[2] -> ring[3] -> ring[0]` goes round
+/// one quad of `map` whose corners other than `ring[0]` are not one of `ends` and, when
+/// `regular` is set, are regular interior vertices: cutting it out of a path is a homotopy
+/// across that quad.
+pub(crate) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regular: bool) -> bool {
+    let ok = |w: Vert| {
+        map.is_live_vertex(w)
+            && !ends.contains(&w)
+            && (!regular || (map.valence(w) == 4 && !map.is_boundary_vertex(w)))
+    };
+    ring[1..].iter().all(|&w| ok(w))
+        && dart_between(map, ring[0], ring[1]).is_some_and(|d| {
+            [d, d.twin()].iter().any(|&x| {
+                map.face(x).is_some_and(|f| {
+                    map.degree(f) == 4 && map.face_darts(f).all(|y| ring.contains(&map.origin(y)))
+                })
+            })
+        })
+}
 
 /// The unique dart from `p` to `n`, if there is exactly one.
 pub(crate) fn dart_between(map: &Map, p: Vert, n: Vert) -> Option<Dart> {
@@ -370,7 +391,8 @@ fn end_valence(map: &Map, index: usize, v: Vert) -> Result<usize, PrepareError> 
     }
 }
 
-/// Applies the end-point adjustments of Sec. 2.6 to a plan, then cancels folded edges.
+/// Applies the end-point adjustments of Sec. 2.6 to a plan, then cancels folds and loops
+/// round one quad.
 ///
 /// Both ends must be interior v3s or v5s ([`PrepareError::End`] otherwise: boundary ends and
 /// other valences are outside Sec. 2.6). The adjustments are listed in the
@@ -502,6 +524,27 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
             hand.drain(i..i + 2);
             folds += 1;
             i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
+    }
+    // Cancel loops a -> x -> y -> z -> a round one quad whose other corners are regular: a
+    // homotopy across that quad (an end reroute after a path that went round the quad on the
+    // other side makes them). Vertex a takes the hand of the edge leaving the loop, as at a
+    // fold.
+    let mut i = 0;
+    while i + 4 < v.len() {
+        let round_quad = v[i] == v[i + 4]
+            && bounds_one_quad(map, [v[i], v[i + 1], v[i + 2], v[i + 3]], [from, to], true);
+        if round_quad {
+            if i + 4 == v.len() - 1 {
+                noop.drain(i..i + 4);
+            } else {
+                noop.drain(i + 1..i + 5);
+            }
+            v.drain(i + 1..i + 5);
+            hand.drain(i..i + 4);
+            folds += 1;
         } else {
             i += 1;
         }
