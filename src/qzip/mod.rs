@@ -35,7 +35,10 @@ mod zip;
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
-pub use sketch::{sketch, validate_path, Path, SketchError, SketchOptions};
+pub use sketch::{
+    max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,
+    SketchWorkspace,
+};
 pub use verify::{verify_edit, Broken};
 pub use zip::{
     find_reverse, mesh_preprocess, mesh_zip_along, moves, one_quad_sweeps, preprocess, start_turn,

@@ -6,9 +6,20 @@
 //! [`validate_path`] accepts a caller-given vertex list under the same rules or refuses it with
 //! a [`SketchError`] naming the defect.
 //!
-//! **Tie-breaking.** Both searches are deterministic, so the same map and options give the same
-//! path: the outgoing darts of a vertex are expanded in increasing dart index, the breadth-first
-//! queue is first-in first-out, Dijkstra settles the vertex of smallest (distance, vertex index)
+//! **Speed.** On unit weights the search is bidirectional (two breadth-first searches that
+//! meet in the middle), or, with a [`Guide`] (a point per vertex and a bound on the edge
+//! length), an A* search that explores about the path's length on a regular grid. A
+//! [`SketchWorkspace`] keeps epoch-stamped per-vertex arrays between calls, so repeated
+//! sketches on a large map neither allocate nor clear O(V) memory; [`sketch`] alone uses hash
+//! maps sized by what it explores.
+//!
+//! **Tie-breaking.** Every search is deterministic and gives the same path for the same map
+//! and options, with or without a workspace or a guide (a correct one). The path is the one a
+//! one-sided breadth-first search from `from` would give: the outgoing darts of a vertex are
+//! expanded in increasing dart index, the queue is first-in first-out, and a vertex keeps the
+//! first predecessor that reached it. The bidirectional and A* searches find the vertices of
+//! all shortest paths and replay that rule over them (a vertex's first predecessor is always
+//! on a shortest path too). Dijkstra settles the vertex of smallest (distance, vertex index)
 //! first, and a vertex keeps the first predecessor that reached it at its final distance.
 //!
 //! ```
@@ -22,14 +33,15 @@
 //! assert_eq!(path.len(), 3);
 //! ```
 
-use alloc::collections::{BinaryHeap, VecDeque};
+use alloc::collections::BinaryHeap;
 use alloc::vec::Vec;
 use core::cmp::Ordering;
 use core::fmt;
 
-use hashbrown::{HashMap, HashSet};
+use glam::DVec3;
+use hashbrown::HashMap;
 
-use crate::{Dart, Face, Map, Vert};
+use crate::{Dart, Face, Map, Mesh, Vert};
 
 /// Options of [`sketch`] and [`validate_path`].
 ///
@@ -44,11 +56,12 @@ use crate::{Dart, Face, Map, Vert};
 ///     forbidden_edges: vec![3, 4],
 ///     forbidden_faces: vec![Face::new(0)],
 ///     weights: None,
+///     guide: None,
 /// };
 /// assert!(opts.avoid_boundary);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct SketchOptions {
+pub struct SketchOptions<'a> {
     /// Prefer paths whose interior vertices are not on the boundary; when no such path exists,
     /// fall back to any path. Ignored by [`validate_path`].
     pub avoid_boundary: bool,
@@ -60,6 +73,10 @@ pub struct SketchOptions {
     /// finite and non-negative; `None` means unit weights and breadth-first search. Path
     /// lengths whose sum overflows to infinity count as unreachable.
     pub weights: Option<Vec<f64>>,
+    /// Points that direct a unit-weight search towards `to` (A*); the path is the same, the
+    /// work smaller. See [`Guide`], also for what a wrong bound does. Ignored with `weights`
+    /// and by [`validate_path`].
+    pub guide: Option<Guide<'a>>,
 }
 
 /// A simple edge path: its vertices `v0 .. vn` and the darts `v(i) -> v(i+1)`.
@@ -301,22 +318,154 @@ impl fmt::Display for SketchError {
 #[cfg(feature = "std")]
 impl std::error::Error for SketchError {}
 
-/// The edge masks and checked weights shared by both searches and the validation.
+/// A guide for the goal-directed search of [`sketch`]: a point per vertex and an upper bound
+/// on the distance between the points of the two ends of any edge.
+///
+/// With unit weights (`weights: None`), a guided sketch is an A* search whose heuristic is
+/// `|p(v) - p(to)| / max_edge_length`, a lower bound on the number of edges from `v` to `to`
+/// when the bound holds. It returns **the same path** as the unguided search (the tie-breaking
+/// rule of the module documentation) while exploring, on a regular grid with a straight
+/// shortest path, a number of vertices proportional to the path's length instead of to its
+/// square.
+///
+/// The points need not be the mesh's geometry: any points with `|p(a) - p(b)| <=
+/// max_edge_length` for every edge `ab` will do, and the closer they are to the graph
+/// distance, the less the search explores. A vertex without a point (index past the end of
+/// `positions`) or with a non-finite point gets the heuristic 0, which is still a lower bound.
+/// A guide is ignored (the unguided search runs) when `max_edge_length` is not finite and
+/// positive or when `to` has no finite point, and with `weights`, where Dijkstra runs.
+///
+/// **If the bound is wrong** (some edge longer than `max_edge_length`), the heuristic may
+/// overestimate: the path is still a valid simple path between the two ends that respects
+/// every option, and `NoPath` is still only returned when there is no path, but the path may
+/// be longer than the shortest one.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{sketch, Guide, SketchOptions};
+/// let mesh = gen::grid(40, 40);
+/// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+/// let (a, b) = (Vert::new(41 * 20 + 3), Vert::new(41 * 20 + 30));
+/// let p = sketch(&mesh.map, a, b, &guided).unwrap();
+/// assert_eq!(p, sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap());
+/// assert_eq!(p.len(), 27);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Guide<'a> {
+    /// A point per vertex, indexed by vertex index.
+    pub positions: &'a [DVec3],
+    /// An upper bound on `|p(a) - p(b)|` over the edges `ab` of the map.
+    pub max_edge_length: f64,
+}
+
+impl<'a> Guide<'a> {
+    /// A guide from points and a bound on the edge length (see [`max_edge_length`]).
+    ///
+    /// ```
+    /// use zipmesh::gen;
+    /// use zipmesh::qzip::{max_edge_length, Guide};
+    /// let mesh = gen::grid(3, 3);
+    /// let g = Guide::new(&mesh.positions, max_edge_length(&mesh));
+    /// assert_eq!(g.positions.len(), 16);
+    /// ```
+    pub fn new(positions: &'a [DVec3], max_edge_length: f64) -> Self {
+        Guide {
+            positions,
+            max_edge_length,
+        }
+    }
+
+    /// A guide from a mesh's positions and its longest edge ([`max_edge_length`], O(E)):
+    /// compute it once and reuse it for many sketches on an unchanged mesh. To sketch on
+    /// `mesh.map` while it is borrowed mutably, use [`Guide::new`] on `&mesh.positions`.
+    ///
+    /// ```
+    /// use zipmesh::gen;
+    /// use zipmesh::qzip::Guide;
+    /// let mesh = gen::grid(3, 3);
+    /// assert_eq!(Guide::from_mesh(&mesh).max_edge_length, 1.0);
+    /// ```
+    pub fn from_mesh(mesh: &'a Mesh) -> Self {
+        Guide::new(&mesh.positions, max_edge_length(mesh))
+    }
+
+    /// The point of `v`, when it has a finite one.
+    fn point(&self, v: Vert) -> Option<DVec3> {
+        self.positions
+            .get(v.index())
+            .copied()
+            .filter(|p| p.is_finite())
+    }
+
+    /// Whether the guide can direct a search towards `to`.
+    fn usable(&self, to: Vert) -> bool {
+        self.max_edge_length.is_finite() && self.max_edge_length > 0.0 && self.point(to).is_some()
+    }
+}
+
+/// The longest edge of `mesh`: the largest `|p(a) - p(b)|` over its live edges, the bound
+/// that makes [`Guide`] exact; `0.0` without edges, and infinity when an edge has an end
+/// without a finite position (a guide with that bound is ignored).
+///
+/// ```
+/// use zipmesh::gen;
+/// use zipmesh::qzip::max_edge_length;
+/// assert_eq!(max_edge_length(&gen::grid(4, 2)), 1.0);
+/// ```
+pub fn max_edge_length(mesh: &Mesh) -> f64 {
+    let map = &mesh.map;
+    let point = |v: Vert| {
+        mesh.positions
+            .get(v.index())
+            .copied()
+            .filter(|p| p.is_finite())
+    };
+    let mut longest: f64 = 0.0;
+    for e in 0..map.dart_slots() / 2 {
+        let d = Dart::new(2 * e as u32);
+        if !map.is_live_dart(d) {
+            continue;
+        }
+        match (point(map.origin(d)), point(map.dest(d))) {
+            (Some(a), Some(b)) => {
+                let l = a.distance(b);
+                if l.is_finite() {
+                    longest = longest.max(l);
+                } else {
+                    return f64::INFINITY;
+                }
+            }
+            _ => return f64::INFINITY,
+        }
+    }
+    longest
+}
+
+/// The edge masks and checked weights shared by the searches and the validation.
 struct Rules<'a> {
-    /// Forbidden edge indices; a set, so a search costs what it explores, not O(E).
-    forbidden: HashSet<u32>,
+    /// Forbidden edge indices, sorted without repeats: a lookup costs O(log k), and a search
+    /// costs what it explores, not O(E).
+    forbidden: Vec<u32>,
     weights: Option<&'a [f64]>,
 }
 
 impl<'a> Rules<'a> {
-    fn new(map: &Map, opts: &'a SketchOptions) -> Result<Self, SketchError> {
+    /// The rules of `opts`, their forbidden list built in `forbidden` (a reused buffer).
+    fn new(
+        map: &Map,
+        opts: &'a SketchOptions<'_>,
+        mut forbidden: Vec<u32>,
+    ) -> Result<Self, SketchError> {
         let n_edges = map.dart_slots() / 2;
-        let mut forbidden: HashSet<u32> = opts.forbidden_edges.iter().copied().collect();
+        forbidden.clear();
+        forbidden.extend_from_slice(&opts.forbidden_edges);
         for &f in &opts.forbidden_faces {
             if map.is_live_face(f) {
                 forbidden.extend(map.face_darts(f).map(|d| (d.index() / 2) as u32));
             }
         }
+        forbidden.sort_unstable();
+        forbidden.dedup();
         let weights = match &opts.weights {
             None => None,
             Some(w) => {
@@ -341,7 +490,11 @@ impl<'a> Rules<'a> {
     }
 
     fn usable(&self, d: Dart) -> bool {
-        self.forbidden.is_empty() || !self.forbidden.contains(&((d.index() / 2) as u32))
+        self.forbidden.is_empty()
+            || self
+                .forbidden
+                .binary_search(&((d.index() / 2) as u32))
+                .is_err()
     }
 }
 
@@ -355,13 +508,258 @@ fn sorted_darts(map: &Map, v: Vert, buf: &mut Vec<Dart>) {
     }
 }
 
+/// What a search knows of one vertex. Every field is valid only with its flag set.
+#[derive(Clone, Copy, Debug, Default)]
+struct Slot {
+    /// The search epoch that wrote this slot (workspace arrays only).
+    stamp: u32,
+    flags: u8,
+    /// Distance from `from` (BFS layer, A* g).
+    fwd: u32,
+    /// Distance from `to` (backward BFS layer).
+    bwd: u32,
+    /// Position on a shortest path (`DAG`).
+    pos: u32,
+    /// The dart that reached this vertex in the final pass (`PRED`; Dijkstra and replay).
+    pred: u32,
+    /// The dart that last improved `fwd` in A*.
+    link: u32,
+    /// Dijkstra distance (`FWD` in the weighted search).
+    dist: f64,
+}
+
+const FWD: u8 = 1;
+const BWD: u8 = 2;
+const DAG: u8 = 4;
+const PRED: u8 = 8;
+const DONE: u8 = 16;
+
+impl Slot {
+    fn has(&self, flag: u8) -> bool {
+        self.flags & flag != 0
+    }
+}
+
+/// Per-vertex records of one search pass: a hash map ([`sketch`]) or epoch-stamped arrays
+/// ([`SketchWorkspace`]).
+trait Store {
+    /// The record of `v` (all flags clear when the pass has not touched it).
+    fn get(&self, v: Vert) -> Slot;
+    /// The record of `v`, created empty on first touch.
+    fn get_mut(&mut self, v: Vert) -> &mut Slot;
+}
+
+/// One-off records: the search costs what it explores, with no O(V) set-up.
+struct HashStore(HashMap<u32, Slot>);
+
+impl Store for HashStore {
+    fn get(&self, v: Vert) -> Slot {
+        self.0.get(&(v.index() as u32)).copied().unwrap_or_default()
+    }
+    fn get_mut(&mut self, v: Vert) -> &mut Slot {
+        self.0.entry(v.index() as u32).or_default()
+    }
+}
+
+/// Records in a reused array: a slot is valid when its stamp is the current epoch, so a new
+/// pass costs one increment, not an O(V) clear.
+struct ArrayStore<'w> {
+    slots: &'w mut Vec<Slot>,
+    epoch: u32,
+    touched: &'w mut usize,
+}
+
+impl Store for ArrayStore<'_> {
+    fn get(&self, v: Vert) -> Slot {
+        match self.slots.get(v.index()) {
+            Some(s) if s.stamp == self.epoch => *s,
+            _ => Slot::default(),
+        }
+    }
+    fn get_mut(&mut self, v: Vert) -> &mut Slot {
+        let i = v.index();
+        if i >= self.slots.len() {
+            // Only for handles past the map's slots, which live darts never reach.
+            self.slots.resize(i + 1, Slot::default());
+        }
+        let s = &mut self.slots[i];
+        if s.stamp != self.epoch {
+            *s = Slot {
+                stamp: self.epoch,
+                ..Slot::default()
+            };
+            *self.touched += 1;
+        }
+        s
+    }
+}
+
+/// Reused buffers of one search.
+#[derive(Default)]
+struct Buffers {
+    a: Vec<Vert>,
+    b: Vec<Vert>,
+    c: Vec<Vert>,
+    m: Vec<Vert>,
+    darts: Vec<Dart>,
+    astar: BinaryHeap<AEntry>,
+    dijkstra: BinaryHeap<Entry>,
+}
+
+/// Reusable memory for many sketches: per-vertex arrays stamped with a search epoch, so a
+/// sketch on a million-vertex map costs what it explores, with no O(V) clear or allocation
+/// per call (the arrays grow to the largest map seen, once). The results are those of
+/// [`sketch`], path for path.
+///
+/// One workspace serves any number of maps, one after another, and stays correct after the
+/// map is edited: nothing is cached between calls but memory.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{sketch, SketchOptions, SketchWorkspace};
+/// let map = gen::torus_grid(50, 50).map;
+/// let opts = SketchOptions::default();
+/// let mut ws = SketchWorkspace::new();
+/// for (a, b) in [(0, 7), (120, 1300), (7, 0)] {
+///     let (a, b) = (Vert::new(a), Vert::new(b));
+///     assert_eq!(ws.sketch(&map, a, b, &opts), sketch(&map, a, b, &opts));
+/// }
+/// ```
+#[derive(Default)]
+pub struct SketchWorkspace {
+    slots: Vec<Slot>,
+    epoch: u32,
+    forbidden: Vec<u32>,
+    bufs: Buffers,
+    explored: usize,
+}
+
+impl fmt::Debug for SketchWorkspace {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SketchWorkspace")
+            .field("vertex_slots", &self.slots.len())
+            .field("epoch", &self.epoch)
+            .field("explored", &self.explored)
+            .finish()
+    }
+}
+
+impl SketchWorkspace {
+    /// An empty workspace; its arrays grow on first use.
+    ///
+    /// ```
+    /// let ws = zipmesh::qzip::SketchWorkspace::new();
+    /// assert_eq!(ws.explored(), 0);
+    /// ```
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The same as [`sketch`] (the same path or error), using this workspace's memory.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{SketchOptions, SketchWorkspace};
+    /// let map = gen::grid(5, 5).map;
+    /// let mut ws = SketchWorkspace::new();
+    /// let p = ws.sketch(&map, Vert::new(7), Vert::new(10), &SketchOptions::default()).unwrap();
+    /// assert_eq!(p.len(), 3);
+    /// ```
+    pub fn sketch(
+        &mut self,
+        map: &Map,
+        from: Vert,
+        to: Vert,
+        opts: &SketchOptions<'_>,
+    ) -> Result<Path, SketchError> {
+        self.explored = 0;
+        check_ends(map, from, to)?;
+        if self.slots.len() < map.vertex_slots() {
+            self.slots.resize(map.vertex_slots(), Slot::default());
+        }
+        let rules = Rules::new(map, opts, core::mem::take(&mut self.forbidden))?;
+        let mut found = None;
+        for &avoid in passes(opts) {
+            // A fresh epoch per pass; on wrap-around, clear once so no old stamp matches.
+            self.epoch = self.epoch.wrapping_add(1);
+            if self.epoch == 0 {
+                self.slots.fill(Slot::default());
+                self.epoch = 1;
+            }
+            let mut store = ArrayStore {
+                slots: &mut self.slots,
+                epoch: self.epoch,
+                touched: &mut self.explored,
+            };
+            let cx = Ctx {
+                map,
+                from,
+                to,
+                rules: &rules,
+                avoid,
+            };
+            found = search(&cx, opts.guide.as_ref(), &mut store, &mut self.bufs);
+            if found.is_some() {
+                break;
+            }
+        }
+        self.forbidden = rules.forbidden;
+        found.ok_or(SketchError::NoPath { from, to })
+    }
+
+    /// How many vertices the last [`SketchWorkspace::sketch`] touched (labelled by any of its
+    /// search passes): the measure of its work, for tests and benchmarks.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{Guide, SketchOptions, SketchWorkspace};
+    /// let mesh = gen::grid(60, 60);
+    /// let (a, b) = (Vert::new(61 * 30 + 5), Vert::new(61 * 30 + 45));
+    /// let mut ws = SketchWorkspace::new();
+    /// ws.sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap();
+    /// let plain = ws.explored();
+    /// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+    /// ws.sketch(&mesh.map, a, b, &guided).unwrap();
+    /// assert!(ws.explored() * 5 < plain);
+    /// ```
+    pub fn explored(&self) -> usize {
+        self.explored
+    }
+}
+
+/// The end checks shared by both entry points.
+fn check_ends(map: &Map, from: Vert, to: Vert) -> Result<(), SketchError> {
+    for v in [from, to] {
+        if !map.is_live_vertex(v) {
+            return Err(SketchError::DeadVertex(v));
+        }
+    }
+    if from == to {
+        return Err(SketchError::SameVertex(from));
+    }
+    Ok(())
+}
+
+/// The search passes: with `avoid_boundary`, first without boundary vertices, then without
+/// the exclusion.
+fn passes(opts: &SketchOptions<'_>) -> &'static [bool] {
+    if opts.avoid_boundary {
+        &[true, false]
+    } else {
+        &[false]
+    }
+}
+
 /// A shortest allowed path from `from` to `to`.
 ///
-/// With `opts.weights == None` the length is the number of edges (breadth-first search);
-/// otherwise the sum of the weights (Dijkstra). Ties are broken as the module documentation
-/// says. With `opts.avoid_boundary`, boundary vertices other than the two ends are first
-/// excluded from the search; if that leaves no path, the search runs again without the
-/// exclusion.
+/// With `opts.weights == None` the length is the number of edges (breadth-first search,
+/// bidirectional, or A* with `opts.guide`); otherwise the sum of the weights (Dijkstra). Ties
+/// are broken as the module documentation says, so every search gives the same path. With
+/// `opts.avoid_boundary`, boundary vertices other than the two ends are first excluded from
+/// the search; if that leaves no path, the search runs again without the exclusion.
+///
+/// Its memory is hash maps sized by what it explores; for many sketches, a
+/// [`SketchWorkspace`] gives the same paths faster.
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
@@ -372,22 +770,29 @@ fn sorted_darts(map: &Map, v: Vert, buf: &mut Vec<Dart>) {
 /// let p = sketch(&map, Vert::new(0), Vert::new(4), &opts).unwrap(); // every vertex is on the boundary
 /// assert_eq!(p.len(), 4);
 /// ```
-pub fn sketch(map: &Map, from: Vert, to: Vert, opts: &SketchOptions) -> Result<Path, SketchError> {
-    for v in [from, to] {
-        if !map.is_live_vertex(v) {
-            return Err(SketchError::DeadVertex(v));
-        }
-    }
-    if from == to {
-        return Err(SketchError::SameVertex(from));
-    }
-    let rules = Rules::new(map, opts)?;
-    if opts.avoid_boundary {
-        if let Some(p) = search(map, from, to, &rules, true) {
+pub fn sketch(
+    map: &Map,
+    from: Vert,
+    to: Vert,
+    opts: &SketchOptions<'_>,
+) -> Result<Path, SketchError> {
+    check_ends(map, from, to)?;
+    let rules = Rules::new(map, opts, Vec::new())?;
+    let mut bufs = Buffers::default();
+    for &avoid in passes(opts) {
+        let mut store = HashStore(HashMap::with_capacity(256));
+        let cx = Ctx {
+            map,
+            from,
+            to,
+            rules: &rules,
+            avoid,
+        };
+        if let Some(p) = search(&cx, opts.guide.as_ref(), &mut store, &mut bufs) {
             return Ok(p);
         }
     }
-    search(map, from, to, &rules, false).ok_or(SketchError::NoPath { from, to })
+    Err(SketchError::NoPath { from, to })
 }
 
 /// Dijkstra heap entry: smallest (distance, vertex) first.
@@ -412,85 +817,367 @@ impl Ord for Entry {
     }
 }
 
-fn search(map: &Map, from: Vert, to: Vert, rules: &Rules<'_>, avoid: bool) -> Option<Path> {
-    const START: u32 = u32::MAX;
-    // pred[v]: the dart that reached v (START for `from`). Hash maps, not arrays over all
-    // vertices: a short path on a large mesh costs what the search explores.
-    let mut pred: HashMap<u32, u32> = HashMap::with_capacity(256);
-    let mut buf = Vec::new();
-    let blocked = |v: Vert| avoid && v != to && map.is_boundary_vertex(v);
-    match rules.weights {
-        None => {
-            let mut queue = VecDeque::new();
-            pred.insert(from.index() as u32, START);
-            queue.push_back(from);
-            // A vertex's predecessor is fixed when it is first reached, so the search can stop
-            // as soon as `to` is reached: the same path as popping it, a layer sooner.
-            'search: while let Some(v) = queue.pop_front() {
-                if v == to {
-                    break;
-                }
-                sorted_darts(map, v, &mut buf);
-                for &d in &buf {
-                    let w = map.dest(d);
-                    if rules.usable(d) && !blocked(w) {
-                        if let hashbrown::hash_map::Entry::Vacant(e) = pred.entry(w.index() as u32)
-                        {
-                            e.insert(d.index() as u32);
-                            if w == to {
-                                break 'search;
-                            }
-                            queue.push_back(w);
-                        }
-                    }
-                }
-            }
+/// A* heap entry `(f, g, vertex)`: smallest f first, then the deepest (largest g), which
+/// walks straight down a run of ties; the order only changes the work, not the path.
+#[derive(PartialEq)]
+struct AEntry(f64, u32, u32);
+
+impl Eq for AEntry {}
+
+impl PartialOrd for AEntry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for AEntry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .0
+            .total_cmp(&self.0)
+            .then_with(|| self.1.cmp(&other.1))
+            .then_with(|| other.2.cmp(&self.2))
+    }
+}
+
+/// One search pass's fixed inputs.
+struct Ctx<'m, 'r> {
+    map: &'m Map,
+    from: Vert,
+    to: Vert,
+    rules: &'r Rules<'r>,
+    /// Exclude boundary vertices other than the ends.
+    avoid: bool,
+}
+
+impl Ctx<'_, '_> {
+    /// Whether the search may step along `d` (an allowed edge to an allowed vertex).
+    fn step(&self, d: Dart) -> bool {
+        let w = self.map.dest(d);
+        self.rules.usable(d)
+            && !(self.avoid && w != self.to && w != self.from && self.map.is_boundary_vertex(w))
+    }
+}
+
+fn search<S: Store>(
+    cx: &Ctx<'_, '_>,
+    guide: Option<&Guide<'_>>,
+    st: &mut S,
+    b: &mut Buffers,
+) -> Option<Path> {
+    match (cx.rules.weights, guide) {
+        (Some(w), _) => dijkstra(cx, w, st, b),
+        (None, Some(g)) if g.usable(cx.to) => astar(cx, g, st, b),
+        (None, _) => bfs(cx, st, b),
+    }
+}
+
+/// Dijkstra: settles the vertex of smallest (distance, index); a vertex keeps the first
+/// predecessor that reached it at its final distance.
+fn dijkstra<S: Store>(
+    cx: &Ctx<'_, '_>,
+    weights: &[f64],
+    st: &mut S,
+    b: &mut Buffers,
+) -> Option<Path> {
+    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let heap = &mut b.dijkstra;
+    heap.clear();
+    let s = st.get_mut(from);
+    s.flags |= FWD;
+    s.dist = 0.0;
+    heap.push(Entry(0.0, from.index() as u32));
+    while let Some(Entry(dv, vi)) = heap.pop() {
+        let v = Vert::new(vi);
+        let s = st.get_mut(v);
+        if s.has(DONE) {
+            continue;
         }
-        Some(weights) => {
-            let mut dist: HashMap<u32, f64> = HashMap::new();
-            let mut done: HashSet<u32> = HashSet::new();
-            let mut heap = BinaryHeap::new();
-            dist.insert(from.index() as u32, 0.0);
-            pred.insert(from.index() as u32, START);
-            heap.push(Entry(0.0, from.index() as u32));
-            while let Some(Entry(dv, vi)) = heap.pop() {
-                let v = Vert::new(vi);
-                if !done.insert(vi) {
-                    continue;
-                }
-                if v == to {
-                    break;
-                }
-                sorted_darts(map, v, &mut buf);
-                for &d in &buf {
-                    let w = map.dest(d);
-                    let wi = w.index() as u32;
-                    if !rules.usable(d) || done.contains(&wi) || blocked(w) {
-                        continue;
-                    }
-                    let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
-                    if nd < dist.get(&wi).copied().unwrap_or(f64::INFINITY) {
-                        dist.insert(wi, nd);
-                        pred.insert(wi, d.index() as u32);
-                        heap.push(Entry(nd, wi));
-                    }
-                }
+        s.flags |= DONE;
+        if v == to {
+            break;
+        }
+        sorted_darts(map, v, &mut b.darts);
+        for &d in &b.darts {
+            if !cx.step(d) {
+                continue;
+            }
+            let w = map.dest(d);
+            let sw = st.get_mut(w);
+            if sw.has(DONE) {
+                continue;
+            }
+            let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
+            let old = if sw.has(FWD) { sw.dist } else { f64::INFINITY };
+            if nd < old {
+                sw.flags |= FWD | PRED;
+                sw.dist = nd;
+                sw.pred = d.index() as u32;
+                heap.push(Entry(nd, w.index() as u32));
             }
         }
     }
-    pred.get(&(to.index() as u32))?;
+    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
+}
+
+/// The path ending at `to` read back through `pred` (darts); `None` when the chain breaks or
+/// runs longer than the map has vertices.
+fn trace<S: Store>(cx: &Ctx<'_, '_>, st: &S, pred: impl Fn(&Slot) -> Option<u32>) -> Option<Path> {
+    let map = cx.map;
     let mut darts = Vec::new();
-    let mut v = to;
-    while v != from {
-        let d = Dart::new(*pred.get(&(v.index() as u32))?);
+    let mut v = cx.to;
+    while v != cx.from {
+        if darts.len() > map.vertex_slots() {
+            return None;
+        }
+        let d = Dart::new(pred(&st.get(v))?);
         darts.push(d);
         v = map.origin(d);
     }
     darts.reverse();
     let mut vertices = Vec::with_capacity(darts.len() + 1);
-    vertices.push(from);
+    vertices.push(cx.from);
     vertices.extend(darts.iter().map(|&d| map.dest(d)));
     Some(Path { vertices, darts })
+}
+
+/// Bidirectional breadth-first search, then the path the one-sided search would give.
+///
+/// The two sides grow by whole layers, the smaller frontier first (forward on a tie), until a
+/// vertex is labelled by both: with forward layers `0..=kf` and backward layers `0..=kb`
+/// complete, the distance is `kf + kb + 1` and the shortest paths cross from forward layer
+/// `kf` to backward layer `kb` over one edge. [`mark_and_replay`] then keeps the vertices of
+/// shortest paths and replays the one-sided BFS over them.
+fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
+    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let s = st.get_mut(from);
+    s.flags |= FWD;
+    s.fwd = 0;
+    let s = st.get_mut(to);
+    s.flags |= BWD;
+    s.bwd = 0;
+    let (fr, bk, next) = (&mut b.a, &mut b.b, &mut b.c);
+    fr.clear();
+    bk.clear();
+    fr.push(from);
+    bk.push(to);
+    let (mut kf, mut kb) = (0u32, 0u32);
+    loop {
+        if fr.is_empty() || bk.is_empty() {
+            return None;
+        }
+        let forward = fr.len() <= bk.len();
+        let (front, mine, theirs, k) = if forward {
+            (&*fr, FWD, BWD, kf)
+        } else {
+            (&*bk, BWD, FWD, kb)
+        };
+        next.clear();
+        let mut met = false;
+        'layer: for &u in front {
+            for d in map.vertex_darts(u) {
+                if !cx.step(d) {
+                    continue;
+                }
+                let s = st.get_mut(map.dest(d));
+                if s.has(mine) {
+                    continue;
+                }
+                s.flags |= mine;
+                if forward {
+                    s.fwd = k + 1;
+                } else {
+                    s.bwd = k + 1;
+                }
+                if s.has(theirs) {
+                    met = true;
+                    break 'layer;
+                }
+                next.push(map.dest(d));
+            }
+        }
+        if met {
+            break;
+        }
+        if forward {
+            core::mem::swap(fr, next);
+            kf += 1;
+        } else {
+            core::mem::swap(bk, next);
+            kb += 1;
+        }
+    }
+    // The middle: backward layer kb vertices one edge from forward layer kf.
+    let total = kf + kb + 1;
+    b.m.clear();
+    for &v in bk.iter() {
+        let crosses = map.vertex_darts(v).any(|d| {
+            let s = st.get(map.dest(d));
+            cx.step(d) && s.has(FWD) && s.fwd == kf
+        });
+        if crosses {
+            let s = st.get_mut(v);
+            s.flags |= DAG;
+            s.pos = kf + 1;
+            b.m.push(v);
+        }
+    }
+    // Down to `to` along backward labels, then back to `from` along forward labels.
+    let (cur, nxt) = (&mut b.a, &mut b.c);
+    cur.clear();
+    cur.extend_from_slice(&b.m);
+    for pos in kf + 1..total {
+        nxt.clear();
+        for &v in cur.iter() {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                let s = st.get(w);
+                if cx.step(d) && s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
+                    let s = st.get_mut(w);
+                    s.flags |= DAG;
+                    s.pos = pos + 1;
+                    nxt.push(w);
+                }
+            }
+        }
+        core::mem::swap(cur, nxt);
+    }
+    cur.clear();
+    cur.extend_from_slice(&b.m);
+    mark_back(cx, st, cur, nxt, kf + 1, |s| s.has(FWD).then_some(s.fwd));
+    replay(cx, st, b, total)
+}
+
+/// Marks, from the `DAG` vertices at position `pos` in `cur`, the vertices at positions
+/// `pos - 1` down to 0 whose exact distance from `from` (`dist`) is their position.
+fn mark_back<S: Store>(
+    cx: &Ctx<'_, '_>,
+    st: &mut S,
+    cur: &mut Vec<Vert>,
+    nxt: &mut Vec<Vert>,
+    pos: u32,
+    dist: impl Fn(&Slot) -> Option<u32>,
+) {
+    let map = cx.map;
+    for pos in (1..=pos).rev() {
+        nxt.clear();
+        for &v in cur.iter() {
+            for d in map.vertex_darts(v) {
+                let u = map.dest(d);
+                let s = st.get(u);
+                if cx.step(d) && !s.has(DAG) && dist(&s) == Some(pos - 1) {
+                    let s = st.get_mut(u);
+                    s.flags |= DAG;
+                    s.pos = pos - 1;
+                    nxt.push(u);
+                }
+            }
+        }
+        core::mem::swap(cur, nxt);
+    }
+}
+
+/// Replays the one-sided BFS over the `DAG` vertices (every vertex of a shortest path, each
+/// marked with its distance from `from`): layer by layer, darts in increasing index, a vertex
+/// keeps the first predecessor that reaches it. A vertex's BFS predecessor is always on a
+/// shortest path too, so this gives the one-sided search's path.
+fn replay<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, total: u32) -> Option<Path> {
+    let map = cx.map;
+    let (cur, nxt) = (&mut b.a, &mut b.c);
+    cur.clear();
+    if !st.get(cx.from).has(DAG) {
+        return None;
+    }
+    cur.push(cx.from);
+    for pos in 0..total {
+        nxt.clear();
+        for &v in cur.iter() {
+            sorted_darts(map, v, &mut b.darts);
+            for &d in &b.darts {
+                let w = map.dest(d);
+                let s = st.get(w);
+                if s.has(DAG) && !s.has(PRED) && s.pos == pos + 1 && cx.step(d) {
+                    let s = st.get_mut(w);
+                    s.flags |= PRED;
+                    s.pred = d.index() as u32;
+                    nxt.push(w);
+                }
+            }
+        }
+        core::mem::swap(cur, nxt);
+    }
+    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
+}
+
+/// A* on unit weights with the guide's heuristic, re-expanding a vertex whose distance
+/// improves (so an admissible heuristic suffices), until every vertex that could lie on a
+/// shortest path has its exact distance: the open vertices' `g + h` all exceed the best
+/// distance to `to` (beyond a margin for the rounding of `h`). Then [`mark_back`] from `to` and [`replay`] give the one-sided BFS's path. With
+/// an overestimating heuristic, the last improving darts still form a simple path to `to`,
+/// returned when the replay does not reach it.
+fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
+    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let target = g.point(to)?;
+    let scale = 1.0 / g.max_edge_length;
+    let h = |v: Vert| match g.point(v) {
+        Some(p) => {
+            let x = p.distance(target) * scale;
+            if x.is_finite() {
+                x
+            } else {
+                0.0
+            }
+        }
+        None => 0.0,
+    };
+    let heap = &mut b.astar;
+    heap.clear();
+    let s = st.get_mut(from);
+    s.flags |= FWD;
+    s.fwd = 0;
+    heap.push(AEntry(h(from), 0, from.index() as u32));
+    let mut best = u32::MAX;
+    while let Some(AEntry(f, gv, vi)) = heap.pop() {
+        // A vertex of a shortest path has f <= best up to the rounding of h (relative error
+        // far below 1e-9); the margin keeps rounding from dropping one.
+        if best != u32::MAX && f > best as f64 * (1.0 + 1e-9) + 1e-9 {
+            break;
+        }
+        let v = Vert::new(vi);
+        if st.get(v).fwd != gv {
+            continue; // stale: improved since it was pushed
+        }
+        for d in map.vertex_darts(v) {
+            if !cx.step(d) {
+                continue;
+            }
+            let w = map.dest(d);
+            let ng = gv + 1;
+            let s = st.get_mut(w);
+            if s.has(FWD) && s.fwd <= ng {
+                continue;
+            }
+            s.flags |= FWD;
+            s.fwd = ng;
+            s.link = d.index() as u32;
+            if w == to {
+                best = ng;
+            } else {
+                heap.push(AEntry(ng as f64 + h(w), ng, w.index() as u32));
+            }
+        }
+    }
+    if best == u32::MAX {
+        return None;
+    }
+    let s = st.get_mut(to);
+    s.flags |= DAG;
+    s.pos = best;
+    let (cur, nxt) = (&mut b.a, &mut b.c);
+    cur.clear();
+    cur.push(to);
+    mark_back(cx, st, cur, nxt, best, |s| s.has(FWD).then_some(s.fwd));
+    replay(cx, st, b, best).or_else(|| trace(cx, st, |s| s.has(FWD).then_some(s.link)))
 }
 
 /// Checks a caller-given path (`vertices`) that should run from `from` to `to` and returns it as a [`Path`].
@@ -517,7 +1204,7 @@ pub fn validate_path(
     from: Vert,
     to: Vert,
     vertices: &[Vert],
-    opts: &SketchOptions,
+    opts: &SketchOptions<'_>,
 ) -> Result<Path, SketchError> {
     if vertices.len() < 2 {
         return Err(SketchError::TooShort(vertices.len()));
@@ -548,7 +1235,7 @@ pub fn validate_path(
         weights: None,
         ..opts.clone()
     };
-    let rules = Rules::new(map, &unweighted)?;
+    let rules = Rules::new(map, &unweighted, Vec::new())?;
     let forbidden_face = |d: Dart| {
         opts.forbidden_faces
             .iter()

@@ -200,7 +200,7 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
         .filter(|&v| v != from && v != to && is_irregular(edited, MeshKind::Quad, v))
         .flat_map(|v| edited.vertex_darts(v).map(|d| (d.index() / 2) as u32))
         .collect();
-    let block = |o: &SketchOptions| SketchOptions {
+    let block = |o: &SketchOptions<'static>| SketchOptions {
         forbidden_edges: blocked.clone(),
         ..o.clone()
     };
@@ -331,7 +331,7 @@ fn near_paths(edited: &Map, report: &ZipReport, max_len: usize, cap: usize) -> V
 
 /// Sketch options for the image of the surgery path: unit weight on edges between vertices
 /// of the edit's scar and surviving path, a high weight elsewhere.
-fn image_options(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> SketchOptions {
+fn image_options(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> SketchOptions<'static> {
     let mut near = alloc::vec![false; edited.vertex_slots()];
     let mut mark = |v: Vert| {
         if let Some(x) = near.get_mut(v.index()) {
