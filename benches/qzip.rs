@@ -2,7 +2,9 @@
 //! singularity pairs (two vertex splits each, `benches/support/qzip_torus.rs`): a v5 and a v3
 //! 7 or 100 edges apart, initial operation LC (all collapses). Iterations cycle through the
 //! 16 pairs on one warm map. `zip` and `zip_along` time only the Q-zip: each is undone after
-//! the clock stops (`iter_custom`); `zip + undo` times both.
+//! the clock stops (`iter_custom`); `zip + undo` times both. The fast stage 1: `sketch (workspace)`
+//! is the bidirectional BFS in a reused `SketchWorkspace`, `sketch (guided)` A* guided by the
+//! torus's positions, and `zip guided` the full Q-zip with that sketch then `zip_along`.
 
 #[path = "support/qzip_torus.rs"]
 mod qzip_torus;
@@ -18,7 +20,14 @@ fn qzip_torus(c: &mut Criterion) {
     g.measurement_time(Duration::from_secs(4));
     let opts = SketchOptions::default();
     for len in [7usize, 100] {
-        let (mut map, ends) = qzip_torus::torus_with_pairs(1000, 16, len);
+        let (mesh, ends) = qzip_torus::torus_mesh_with_pairs(1000, 16, len);
+        let bound = qzip::max_edge_length(&mesh);
+        let zipmesh::Mesh { mut map, positions } = mesh;
+        let guided = SketchOptions {
+            guide: Some(qzip::Guide::new(&positions, bound)),
+            ..SketchOptions::default()
+        };
+        let mut ws = qzip::SketchWorkspace::new();
         let paths: Vec<qzip::Path> = ends
             .iter()
             .map(|&(a, b)| qzip::sketch(&map, a, b, &opts).expect("a path"))
@@ -71,6 +80,32 @@ fn qzip_torus(c: &mut Criterion) {
                 qzip::sketch(&map, a, v, &opts).expect("a path")
             })
         });
+        for (name, o) in [("workspace", &opts), ("guided", &guided)] {
+            g.bench_function(format!("sketch {len} edges ({name})"), |b| {
+                b.iter(|| {
+                    i = (i + 1) % ends.len();
+                    let (a, v) = ends[i];
+                    ws.sketch(&map, a, v, o).expect("a path")
+                })
+            });
+        }
+        g.bench_function(
+            format!("zip guided {len} edges (workspace sketch+plan+prepare+execute)"),
+            |b| {
+                b.iter_custom(|iters| {
+                    let mut total = Duration::ZERO;
+                    for i in 0..iters as usize {
+                        let (a, v) = ends[i % ends.len()];
+                        let t = Instant::now();
+                        let p = ws.sketch(&map, a, v, &guided).expect("a path");
+                        let r = qzip::zip_along(&mut map, &p, Tag::LC).expect("realizable");
+                        total += t.elapsed();
+                        r.undo(&mut map).expect("undo");
+                    }
+                    total
+                })
+            },
+        );
     }
     g.finish();
 }

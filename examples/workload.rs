@@ -127,13 +127,33 @@ fn measure_zips<C>(
 ///   operation TAG (LC: `L` collapses; RC: one split and `L - 1` collapses);
 ///   `qzip{L}_{TAG}_along` the same without the sketch (`zip_along` a path found before),
 ///   `qzip{L}_sketch` the sketch alone.
+/// * The fast stage 1 (`qzip::SketchWorkspace`, reused): `qzip{L}_sketch_ws` the bidirectional
+///   BFS, `qzip{L}_sketch_guided` A* guided by the torus's positions (`qzip::Guide`, split
+///   copies at the mean of their neighbours), `qzip{L}_sketch_layout` A* guided by a flat
+///   layout of the torus (`flat_layout` in `benches/support/qzip_torus.rs`: points whose
+///   distance follows the rows, not the geometry), and `qzip{L}_{TAG}_guided`,
+///   `qzip{L}_{TAG}_layout` the full Q-zip with those sketches (`SketchWorkspace::sketch` then
+///   `zip_along`; the same path, so the same edit). A `#` line gives the vertices each sketch
+///   explored, mean over the pairs.
 /// * `qzip_spot`: the full Q-zip of every realizable (pair, initial operation) of irregular
 ///   vertices within 12 edges on `spot_quadrangulated.obj` (skipped if the file is missing),
 ///   the mean per Q-zip.
 fn qzip_rows(n: usize, reps: usize) {
     let opts = SketchOptions::default();
     for (len, rounds) in [(7usize, 32usize), (100, 2)] {
-        let (mut map, ends) = qzip_torus::torus_with_pairs(n.max(128), 16, len);
+        let (mesh, ends) = qzip_torus::torus_mesh_with_pairs(n.max(128), 16, len);
+        let bound = qzip::max_edge_length(&mesh);
+        let (flat, flat_bound) = qzip_torus::flat_layout(n.max(128), &mesh);
+        let zipmesh::Mesh { mut map, positions } = mesh;
+        let guided = SketchOptions {
+            guide: Some(qzip::Guide::new(&positions, bound)),
+            ..SketchOptions::default()
+        };
+        let layout = SketchOptions {
+            guide: Some(qzip::Guide::new(&flat, flat_bound)),
+            ..SketchOptions::default()
+        };
+        let mut ws = qzip::SketchWorkspace::new();
         let before = map.clone();
         let paths: Vec<qzip::Path> = ends
             .iter()
@@ -190,6 +210,57 @@ fn qzip_rows(n: usize, reps: usize) {
             ends.len() * rounds,
             reps,
         );
+        // The fast sketches give the same paths; count what each explores.
+        let mut explored = [0usize; 3];
+        for (&(a, b), p) in ends.iter().zip(&paths) {
+            for (k, o) in [&opts, &guided, &layout].into_iter().enumerate() {
+                assert_eq!(&ws.sketch(&map, a, b, o).expect("a path"), p);
+                explored[k] += ws.explored();
+            }
+        }
+        let fast = [(&opts, "ws"), (&guided, "guided"), (&layout, "layout")];
+        for (k, &(o, name)) in fast.iter().enumerate() {
+            let t = measure(
+                reps,
+                || (),
+                |_| {
+                    for _ in 0..rounds {
+                        for &(a, b) in &ends {
+                            std::hint::black_box(ws.sketch(&map, a, b, o).expect("a path"));
+                        }
+                    }
+                },
+            );
+            report(
+                "quad",
+                &format!("qzip{len}_sketch_{name}"),
+                t,
+                "us/qzip",
+                ends.len() * rounds,
+                reps,
+            );
+            println!(
+                "# qzip{len}_sketch_{name}: {:.0} vertices explored per sketch",
+                explored[k] as f64 / ends.len() as f64
+            );
+        }
+        for (tag, (o, name)) in [Tag::LC, Tag::RC]
+            .into_iter()
+            .flat_map(|t| [(t, (&guided, "guided")), (t, (&layout, "layout"))])
+        {
+            let t = measure_zips(reps, &mut map, &ends, rounds, |m, &(a, b)| {
+                let p = ws.sketch(m, a, b, o).expect("a path");
+                qzip::zip_along(m, &p, tag).expect("realizable")
+            });
+            report(
+                "quad",
+                &format!("qzip{len}_{tag}_{name}"),
+                t,
+                "us/qzip",
+                ends.len() * rounds,
+                reps,
+            );
+        }
         assert!(map == before);
     }
 

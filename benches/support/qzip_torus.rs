@@ -2,7 +2,7 @@
 //! n x n torus with singularity pairs inserted at a chosen distance.
 
 use zipmesh::ops::quad;
-use zipmesh::{gen, Map, Vert};
+use zipmesh::{gen, Map, Mesh, Vert};
 
 /// The vertex `(i, j)` of the `n` x `n` torus grid (coordinates taken mod `n`).
 fn at(n: usize, i: usize, j: usize) -> Vert {
@@ -27,22 +27,68 @@ fn split(map: &mut Map, v: Vert, a: Vert, b: Vert) {
 /// `(x, y)`, cluster B the split of `(x + len + 1, y)`; the pair is A's east v5 `(x + 1, y)`
 /// and B's v3 that keeps the handle of `(x + len + 1, y)`. The shortest path between them is
 /// the straight row, `len` edges, passing through B's west v5 just before its end.
+#[allow(dead_code)] // each includer uses one of the two forms
 pub fn torus_with_pairs(n: usize, pairs: usize, len: usize) -> (Map, Vec<(Vert, Vert)>) {
+    let (mesh, ends) = torus_mesh_with_pairs(n, pairs, len);
+    (mesh.map, ends)
+}
+
+/// [`torus_with_pairs`] with positions: the torus of `gen::torus_grid` (radii 2 and 0.75),
+/// the new copy made by each vertex split at the point of the vertex it was split from (so no
+/// edge is longer than on the plain torus).
+#[allow(dead_code)]
+pub fn torus_mesh_with_pairs(n: usize, pairs: usize, len: usize) -> (Mesh, Vec<(Vert, Vert)>) {
     assert!(
         len + 20 < n && pairs > 0 && pairs * 8 <= n,
         "torus too small"
     );
-    let mut map = gen::torus_grid(n, n).map;
+    let mut mesh = gen::torus_grid(n, n);
     let mut ends = Vec::with_capacity(pairs);
     for p in 0..pairs {
         let (x, y) = (10 + 3 * p, 5 + p * (n / pairs));
         let xb = x + len + 1;
         for c in [x, xb] {
-            split(&mut map, at(n, c, y), at(n, c + 1, y), at(n, c + n - 1, y));
+            let v = at(n, c, y);
+            let old = mesh.map.vertex_slots();
+            split(&mut mesh.map, v, at(n, c + 1, y), at(n, c + n - 1, y));
+            let copy = mesh.positions[v.index()];
+            mesh.positions.resize(mesh.map.vertex_slots(), copy);
+            assert_eq!(mesh.map.vertex_slots(), old + 1, "one new vertex per split");
         }
         let (v5, v3) = (at(n, x + 1, y), at(n, xb, y));
-        assert_eq!((map.valence(v5), map.valence(v3)), (5, 3));
+        assert_eq!((mesh.map.valence(v5), mesh.map.valence(v3)), (5, 3));
         ends.push((v5, v3));
     }
-    (map, ends)
+    (mesh, ends)
+}
+
+/// A flat layout of [`torus_mesh_with_pairs`]'s vertices for `qzip::Guide`, with its bound
+/// on the edge length (measured, so the guide is exact): vertex `(i, j)` at
+/// `(r cos(2 pi i / n), r sin(2 pi i / n), min(j, n - j))` with `2 r sin(pi / n) = 1`, so a
+/// step along a row or a column moves at most 1 and the row direction wraps without a seam;
+/// a split's new copy at the point of the vertex it was split from. Not the torus's geometry:
+/// points chosen so that `|p(v) - p(to)|` is close to the number of edges along rows (the
+/// guide needs only the bound, see `qzip::Guide`).
+#[allow(dead_code)]
+pub fn flat_layout(n: usize, mesh: &Mesh) -> (Vec<glam::DVec3>, f64) {
+    let r = 0.5 / (core::f64::consts::PI / n as f64).sin();
+    let map = &mesh.map;
+    let point = |v: usize| {
+        let (i, j) = (v % n, v / n);
+        let a = core::f64::consts::TAU * i as f64 / n as f64;
+        glam::DVec3::new(r * a.cos(), r * a.sin(), j.min(n - j) as f64)
+    };
+    let mut p: Vec<glam::DVec3> = (0..n * n).map(point).collect();
+    // The copies, in split order, each at the point of the vertex it came from.
+    for v in n * n..map.vertex_slots() {
+        let twin = mesh.positions[v];
+        let from = (0..n * n).find(|&u| mesh.positions[u] == twin);
+        p.push(from.map_or(glam::DVec3::ZERO, point));
+    }
+    let laid = Mesh {
+        map: map.clone(),
+        positions: p,
+    };
+    let bound = zipmesh::qzip::max_edge_length(&laid);
+    (laid.positions, bound)
 }
