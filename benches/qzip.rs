@@ -4,7 +4,8 @@
 //! 16 pairs on one warm map. `zip` and `zip_along` time only the Q-zip: each is undone after
 //! the clock stops (`iter_custom`); `zip + undo` times both. The fast stage 1: `sketch (workspace)`
 //! is the bidirectional BFS in a reused `SketchWorkspace`, `sketch (guided)` A* guided by the
-//! torus's positions, and `zip guided` the full Q-zip with that sketch then `zip_along`.
+//! torus's positions, `sketch (layout)` A* guided by a flat layout (`flat_layout`), and
+//! `zip guided` / `zip layout` the full Q-zip with those sketches then `zip_along`.
 
 #[path = "support/qzip_torus.rs"]
 mod qzip_torus;
@@ -25,6 +26,17 @@ fn qzip_torus(c: &mut Criterion) {
         let zipmesh::Mesh { mut map, positions } = mesh;
         let guided = SketchOptions {
             guide: Some(qzip::Guide::new(&positions, bound)),
+            ..SketchOptions::default()
+        };
+        let (flat, flat_bound) = qzip_torus::flat_layout(
+            1000,
+            &zipmesh::Mesh {
+                map: map.clone(),
+                positions: positions.clone(),
+            },
+        );
+        let layout = SketchOptions {
+            guide: Some(qzip::Guide::new(&flat, flat_bound)),
             ..SketchOptions::default()
         };
         let mut ws = qzip::SketchWorkspace::new();
@@ -80,7 +92,11 @@ fn qzip_torus(c: &mut Criterion) {
                 qzip::sketch(&map, a, v, &opts).expect("a path")
             })
         });
-        for (name, o) in [("workspace", &opts), ("guided", &guided)] {
+        for (name, o) in [
+            ("workspace", &opts),
+            ("guided", &guided),
+            ("layout", &layout),
+        ] {
             g.bench_function(format!("sketch {len} edges ({name})"), |b| {
                 b.iter(|| {
                     i = (i + 1) % ends.len();
@@ -89,23 +105,25 @@ fn qzip_torus(c: &mut Criterion) {
                 })
             });
         }
-        g.bench_function(
-            format!("zip guided {len} edges (workspace sketch+plan+prepare+execute)"),
-            |b| {
-                b.iter_custom(|iters| {
-                    let mut total = Duration::ZERO;
-                    for i in 0..iters as usize {
-                        let (a, v) = ends[i % ends.len()];
-                        let t = Instant::now();
-                        let p = ws.sketch(&map, a, v, &guided).expect("a path");
-                        let r = qzip::zip_along(&mut map, &p, Tag::LC).expect("realizable");
-                        total += t.elapsed();
-                        r.undo(&mut map).expect("undo");
-                    }
-                    total
-                })
-            },
-        );
+        for (name, o) in [("guided", &guided), ("layout", &layout)] {
+            g.bench_function(
+                format!("zip {name} {len} edges (workspace sketch+plan+prepare+execute)"),
+                |b| {
+                    b.iter_custom(|iters| {
+                        let mut total = Duration::ZERO;
+                        for i in 0..iters as usize {
+                            let (a, v) = ends[i % ends.len()];
+                            let t = Instant::now();
+                            let p = ws.sketch(&map, a, v, o).expect("a path");
+                            let r = qzip::zip_along(&mut map, &p, Tag::LC).expect("realizable");
+                            total += t.elapsed();
+                            r.undo(&mut map).expect("undo");
+                        }
+                        total
+                    })
+                },
+            );
+        }
     }
     g.finish();
 }
