@@ -508,24 +508,19 @@ fn sorted_darts(map: &Map, v: Vert, buf: &mut Vec<Dart>) {
     }
 }
 
-/// What a search knows of one vertex. Every field is valid only with its flag set.
+/// What a search knows of one vertex, in 16 bytes (the searches are bound by memory traffic
+/// on large maps). Every field is valid only with its flag set.
 #[derive(Clone, Copy, Debug, Default)]
 struct Slot {
-    /// The search epoch that wrote this slot (workspace arrays only).
-    stamp: u32,
-    flags: u8,
-    /// Distance from `from` (BFS layer, A* g).
+    /// The search epoch that wrote this slot (workspace arrays only) above 8 flag bits.
+    tag: u32,
+    /// Distance from `from` (BFS layer, A* g; `FWD`).
     fwd: u32,
-    /// Distance from `to` (backward BFS layer).
+    /// Distance from `to` (backward BFS layer, `BWD`); in A*, the dart that last improved
+    /// `fwd` (with `FWD`).
     bwd: u32,
-    /// Position on a shortest path (`DAG`).
-    pos: u32,
-    /// The dart that reached this vertex in the final pass (`PRED`; Dijkstra and replay).
+    /// The dart that reached this vertex in the final pass (`PRED`).
     pred: u32,
-    /// The dart that last improved `fwd` in A*.
-    link: u32,
-    /// Dijkstra distance (`FWD` in the weighted search).
-    dist: f64,
 }
 
 const FWD: u8 = 1;
@@ -533,10 +528,27 @@ const BWD: u8 = 2;
 const DAG: u8 = 4;
 const PRED: u8 = 8;
 const DONE: u8 = 16;
+/// Epochs live in the tag's upper 24 bits.
+const EPOCHS: u32 = 1 << 24;
 
 impl Slot {
     fn has(&self, flag: u8) -> bool {
-        self.flags & flag != 0
+        self.tag & u32::from(flag) != 0
+    }
+
+    fn set(&mut self, flag: u8) {
+        self.tag |= u32::from(flag);
+    }
+
+    /// Dijkstra's distance, kept in `fwd` and `bwd` (with `FWD`).
+    fn dist(&self) -> f64 {
+        f64::from_bits((u64::from(self.fwd) << 32) | u64::from(self.bwd))
+    }
+
+    fn set_dist(&mut self, d: f64) {
+        let bits = d.to_bits();
+        self.fwd = (bits >> 32) as u32;
+        self.bwd = bits as u32;
     }
 }
 
@@ -572,7 +584,7 @@ struct ArrayStore<'w> {
 impl Store for ArrayStore<'_> {
     fn get(&self, v: Vert) -> Slot {
         match self.slots.get(v.index()) {
-            Some(s) if s.stamp == self.epoch => *s,
+            Some(s) if s.tag >> 8 == self.epoch => *s,
             _ => Slot::default(),
         }
     }
@@ -583,9 +595,9 @@ impl Store for ArrayStore<'_> {
             self.slots.resize(i + 1, Slot::default());
         }
         let s = &mut self.slots[i];
-        if s.stamp != self.epoch {
+        if s.tag >> 8 != self.epoch {
             *s = Slot {
-                stamp: self.epoch,
+                tag: self.epoch << 8,
                 ..Slot::default()
             };
             *self.touched += 1;
@@ -681,8 +693,8 @@ impl SketchWorkspace {
         let mut found = None;
         for &avoid in passes(opts) {
             // A fresh epoch per pass; on wrap-around, clear once so no old stamp matches.
-            self.epoch = self.epoch.wrapping_add(1);
-            if self.epoch == 0 {
+            self.epoch += 1;
+            if self.epoch >= EPOCHS {
                 self.slots.fill(Slot::default());
                 self.epoch = 1;
             }
@@ -817,26 +829,29 @@ impl Ord for Entry {
     }
 }
 
-/// A* heap entry `(f, g, vertex)`: smallest f first, then the deepest (largest g), which
-/// walks straight down a run of ties; the order only changes the work, not the path.
-#[derive(PartialEq)]
-struct AEntry(f64, u32, u32);
+/// A* heap entry `(f, g, vertex)` packed in one integer: smallest f first, then the deepest
+/// (largest g), which walks straight down a run of ties, then the smallest vertex. The order
+/// only changes the work, not the path. `f >= 0`, so its bits order as the numbers do.
+#[derive(PartialEq, Eq, PartialOrd, Ord)]
+struct AEntry(core::cmp::Reverse<u128>);
 
-impl Eq for AEntry {}
-
-impl PartialOrd for AEntry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
+impl AEntry {
+    fn new(f: f64, g: u32, v: Vert) -> Self {
+        let key =
+            (u128::from(f.to_bits()) << 64) | (u128::from(u32::MAX - g) << 32) | v.index() as u128;
+        AEntry(core::cmp::Reverse(key))
     }
-}
 
-impl Ord for AEntry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .0
-            .total_cmp(&self.0)
-            .then_with(|| self.1.cmp(&other.1))
-            .then_with(|| other.2.cmp(&self.2))
+    fn f(&self) -> f64 {
+        f64::from_bits((self.0 .0 >> 64) as u64)
+    }
+
+    fn g(&self) -> u32 {
+        u32::MAX - (self.0 .0 >> 32) as u32
+    }
+
+    fn vertex(&self) -> Vert {
+        Vert::new(self.0 .0 as u32)
     }
 }
 
@@ -884,8 +899,8 @@ fn dijkstra<S: Store>(
     let heap = &mut b.dijkstra;
     heap.clear();
     let s = st.get_mut(from);
-    s.flags |= FWD;
-    s.dist = 0.0;
+    s.set(FWD);
+    s.set_dist(0.0);
     heap.push(Entry(0.0, from.index() as u32));
     while let Some(Entry(dv, vi)) = heap.pop() {
         let v = Vert::new(vi);
@@ -893,7 +908,7 @@ fn dijkstra<S: Store>(
         if s.has(DONE) {
             continue;
         }
-        s.flags |= DONE;
+        s.set(DONE);
         if v == to {
             break;
         }
@@ -908,10 +923,14 @@ fn dijkstra<S: Store>(
                 continue;
             }
             let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
-            let old = if sw.has(FWD) { sw.dist } else { f64::INFINITY };
+            let old = if sw.has(FWD) {
+                sw.dist()
+            } else {
+                f64::INFINITY
+            };
             if nd < old {
-                sw.flags |= FWD | PRED;
-                sw.dist = nd;
+                sw.set(FWD | PRED);
+                sw.set_dist(nd);
                 sw.pred = d.index() as u32;
                 heap.push(Entry(nd, w.index() as u32));
             }
@@ -951,10 +970,10 @@ fn trace<S: Store>(cx: &Ctx<'_, '_>, st: &S, pred: impl Fn(&Slot) -> Option<u32>
 fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
     let (map, from, to) = (cx.map, cx.from, cx.to);
     let s = st.get_mut(from);
-    s.flags |= FWD;
+    s.set(FWD);
     s.fwd = 0;
     let s = st.get_mut(to);
-    s.flags |= BWD;
+    s.set(BWD);
     s.bwd = 0;
     let (fr, bk, next) = (&mut b.a, &mut b.b, &mut b.c);
     fr.clear();
@@ -983,7 +1002,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
                 if s.has(mine) {
                     continue;
                 }
-                s.flags |= mine;
+                s.set(mine);
                 if forward {
                     s.fwd = k + 1;
                 } else {
@@ -1017,8 +1036,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
         });
         if crosses {
             let s = st.get_mut(v);
-            s.flags |= DAG;
-            s.pos = kf + 1;
+            s.set(DAG);
             b.m.push(v);
         }
     }
@@ -1034,8 +1052,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
                 let s = st.get(w);
                 if cx.step(d) && s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
                     let s = st.get_mut(w);
-                    s.flags |= DAG;
-                    s.pos = pos + 1;
+                    s.set(DAG);
                     nxt.push(w);
                 }
             }
@@ -1045,7 +1062,14 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
     cur.clear();
     cur.extend_from_slice(&b.m);
     mark_back(cx, st, cur, nxt, kf + 1, |s| s.has(FWD).then_some(s.fwd));
-    replay(cx, st, b, total)
+    // Labels are exact BFS distances, so a marked vertex's position is either.
+    replay(cx, st, b, total, |s| {
+        if s.has(FWD) {
+            s.fwd
+        } else {
+            total.saturating_sub(s.bwd)
+        }
+    })
 }
 
 /// Marks, from the `DAG` vertices at position `pos` in `cur`, the vertices at positions
@@ -1067,8 +1091,7 @@ fn mark_back<S: Store>(
                 let s = st.get(u);
                 if cx.step(d) && !s.has(DAG) && dist(&s) == Some(pos - 1) {
                     let s = st.get_mut(u);
-                    s.flags |= DAG;
-                    s.pos = pos - 1;
+                    s.set(DAG);
                     nxt.push(u);
                 }
             }
@@ -1081,7 +1104,13 @@ fn mark_back<S: Store>(
 /// marked with its distance from `from`): layer by layer, darts in increasing index, a vertex
 /// keeps the first predecessor that reaches it. A vertex's BFS predecessor is always on a
 /// shortest path too, so this gives the one-sided search's path.
-fn replay<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, total: u32) -> Option<Path> {
+fn replay<S: Store>(
+    cx: &Ctx<'_, '_>,
+    st: &mut S,
+    b: &mut Buffers,
+    total: u32,
+    position: impl Fn(&Slot) -> u32,
+) -> Option<Path> {
     let map = cx.map;
     let (cur, nxt) = (&mut b.a, &mut b.c);
     cur.clear();
@@ -1096,9 +1125,9 @@ fn replay<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, total: u32) -
             for &d in &b.darts {
                 let w = map.dest(d);
                 let s = st.get(w);
-                if s.has(DAG) && !s.has(PRED) && s.pos == pos + 1 && cx.step(d) {
+                if s.has(DAG) && !s.has(PRED) && position(&s) == pos + 1 && cx.step(d) {
                     let s = st.get_mut(w);
-                    s.flags |= PRED;
+                    s.set(PRED);
                     s.pred = d.index() as u32;
                     nxt.push(w);
                 }
@@ -1133,17 +1162,17 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
     let heap = &mut b.astar;
     heap.clear();
     let s = st.get_mut(from);
-    s.flags |= FWD;
+    s.set(FWD);
     s.fwd = 0;
-    heap.push(AEntry(h(from), 0, from.index() as u32));
+    heap.push(AEntry::new(h(from), 0, from));
     let mut best = u32::MAX;
-    while let Some(AEntry(f, gv, vi)) = heap.pop() {
+    while let Some(e) = heap.pop() {
+        let (f, gv, v) = (e.f(), e.g(), e.vertex());
         // A vertex of a shortest path has f <= best up to the rounding of h (relative error
         // far below 1e-9); the margin keeps rounding from dropping one.
         if best != u32::MAX && f > best as f64 * (1.0 + 1e-9) + 1e-9 {
             break;
         }
-        let v = Vert::new(vi);
         if st.get(v).fwd != gv {
             continue; // stale: improved since it was pushed
         }
@@ -1157,13 +1186,13 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
             if s.has(FWD) && s.fwd <= ng {
                 continue;
             }
-            s.flags |= FWD;
+            s.set(FWD);
             s.fwd = ng;
-            s.link = d.index() as u32;
+            s.bwd = d.index() as u32;
             if w == to {
                 best = ng;
             } else {
-                heap.push(AEntry(ng as f64 + h(w), ng, w.index() as u32));
+                heap.push(AEntry::new(ng as f64 + h(w), ng, w));
             }
         }
     }
@@ -1171,13 +1200,12 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
         return None;
     }
     let s = st.get_mut(to);
-    s.flags |= DAG;
-    s.pos = best;
+    s.set(DAG);
     let (cur, nxt) = (&mut b.a, &mut b.c);
     cur.clear();
     cur.push(to);
     mark_back(cx, st, cur, nxt, best, |s| s.has(FWD).then_some(s.fwd));
-    replay(cx, st, b, best).or_else(|| trace(cx, st, |s| s.has(FWD).then_some(s.link)))
+    replay(cx, st, b, best, |s| s.fwd).or_else(|| trace(cx, st, |s| s.has(FWD).then_some(s.bwd)))
 }
 
 /// Checks a caller-given path (`vertices`) that should run from `from` to `to` and returns it as a [`Path`].
