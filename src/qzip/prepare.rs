@@ -391,6 +391,26 @@ fn end_valence(map: &Map, index: usize, v: Vert) -> Result<usize, PrepareError> 
     }
 }
 
+/// Cuts the closed walk of `len` edges that starts at position `i` (`v[i] == v[i + len]`):
+/// the surviving `v[i]` takes the hand of the edge leaving the walk, so the compass after it
+/// is unchanged.
+fn cut_closed_walk(
+    v: &mut Vec<Vert>,
+    hand: &mut Vec<Tag>,
+    noop: &mut Vec<bool>,
+    i: usize,
+    len: usize,
+) {
+    // noop is per outgoing edge: if the walk ends the path, vertex i becomes last.
+    if i + len == v.len() - 1 {
+        noop.drain(i..i + len);
+    } else {
+        noop.drain(i + 1..i + len + 1);
+    }
+    v.drain(i + 1..i + len + 1);
+    hand.drain(i..i + len);
+}
+
 /// Applies the end-point adjustments of Sec. 2.6 to a plan, then cancels folds and loops
 /// round one quad.
 ///
@@ -514,14 +534,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     let mut i = 0;
     while i + 2 < v.len() {
         if v[i] == v[i + 2] {
-            // noop is per outgoing edge: if the fold ends the path, vertex i becomes last.
-            if i + 2 == v.len() - 1 {
-                noop.drain(i..i + 2);
-            } else {
-                noop.drain(i + 1..i + 3);
-            }
-            v.drain(i + 1..i + 3);
-            hand.drain(i..i + 2);
+            cut_closed_walk(&mut v, &mut hand, &mut noop, i, 2);
             folds += 1;
             i = i.saturating_sub(1);
         } else {
@@ -537,13 +550,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
         let round_quad = v[i] == v[i + 4]
             && bounds_one_quad(map, [v[i], v[i + 1], v[i + 2], v[i + 3]], [from, to], true);
         if round_quad {
-            if i + 4 == v.len() - 1 {
-                noop.drain(i..i + 4);
-            } else {
-                noop.drain(i + 1..i + 5);
-            }
-            v.drain(i + 1..i + 5);
-            hand.drain(i..i + 4);
+            cut_closed_walk(&mut v, &mut hand, &mut noop, i, 4);
             folds += 1;
         } else {
             i += 1;

@@ -429,21 +429,30 @@ fn pushed_off(map: &Map, path: &Path) -> Vec<Path> {
         if !ok {
             continue;
         }
-        // Cut loops so the result is simple.
-        let mut simple: Vec<Vert> = Vec::with_capacity(walk.len());
-        for x in walk {
-            if let Some(k) = simple.iter().position(|&y| y == x) {
-                simple.truncate(k + 1);
-            } else {
-                simple.push(x);
-            }
-        }
+        let simple = cut_loops(walk, path.end());
         let opts = SketchOptions::default();
         if let Ok(p) = super::sketch::validate_path(map, path.start(), path.end(), &simple, &opts) {
             out.push(p);
         }
     }
     out
+}
+
+/// The walk with its loops cut (a vertex met again goes back to its first visit), up to the
+/// first visit of `end`: a simple walk.
+fn cut_loops(walk: Vec<Vert>, end: Vert) -> Vec<Vert> {
+    let mut simple: Vec<Vert> = Vec::with_capacity(walk.len());
+    for v in walk {
+        if let Some(k) = simple.iter().position(|&x| x == v) {
+            simple.truncate(k + 1);
+        } else {
+            simple.push(v);
+        }
+        if v == end {
+            break;
+        }
+    }
+    simple
 }
 
 /// The surgery path's surviving vertices in reverse order, from the moved terminal to the
@@ -467,18 +476,7 @@ fn literal_image(edited: &Map, report: &ZipReport, bridge: &SketchOptions) -> Op
             walk.extend_from_slice(&b.vertices()[1..]);
         }
     }
-    // Cut loops (keep the first visit) and stop at the moved initial singularity.
-    let mut simple: Vec<Vert> = Vec::with_capacity(walk.len());
-    for v in walk {
-        if let Some(k) = simple.iter().position(|&x| x == v) {
-            simple.truncate(k + 1);
-        } else {
-            simple.push(v);
-        }
-        if v == to {
-            break;
-        }
-    }
+    let simple = cut_loops(walk, to);
     super::sketch::validate_path(edited, from, to, &simple, &SketchOptions::default()).ok()
 }
 
