@@ -434,3 +434,30 @@ fn unusable_guides_are_ignored() {
         sketch(&m.map, Vert::new(119), a, &SketchOptions::default()).unwrap()
     );
 }
+
+/// The workspace's epoch wraps after 2^24 searches (one per sketch without avoid_boundary)
+/// and clears its arrays then: records left by the first search, on another map, must not
+/// be read as current when the epoch comes round again. The calls around the wrap are
+/// checked against `sketch`.
+#[test]
+fn workspace_epoch_wrap_clears_old_records() {
+    let big = gen::grid(8, 8).map;
+    let small = gen::grid(1, 1).map;
+    let plain = SketchOptions::default();
+    let mut ws = SketchWorkspace::new();
+    // Epoch 1: labels much of `big` (away from vertices 0..4, which `small` relabels).
+    let (a, b) = (Vert::new(10), Vert::new(70));
+    assert_eq!(ws.sketch(&big, a, b, &plain), sketch(&big, a, b, &plain));
+    // Epochs 2 to 2^24 - 1 on `small`; the next search wraps round to epoch 1.
+    for _ in 2..1u32 << 24 {
+        ws.sketch(&small, Vert::new(0), Vert::new(1), &plain)
+            .unwrap();
+    }
+    // The pair reversed: stale records of the first call would carry predecessors pointing
+    // the other way, which the search would take as its own.
+    let expected = sketch(&big, b, a, &plain);
+    for k in 0..3 {
+        assert_eq!(ws.sketch(&big, b, a, &plain), expected, "call {k}");
+        assert!(ws.explored() > 40, "every record fresh: {}", ws.explored());
+    }
+}
