@@ -281,73 +281,101 @@ fn strip_quad(map: &Map, e: Dart, tag: Tag) -> (Dart, Vert) {
 /// Sorted (valence, on the boundary) of some irregular vertices.
 type Irregulars = Vec<(usize, bool)>;
 
-/// Vertices the chain touched, with what the clean-up needs to know about them.
+/// A vertex the chain touched: its valence and boundary flag at the first touch (`None` if
+/// the surgery made it), and whether its handle was (re)born during the surgery.
+#[derive(Clone, Copy)]
+struct Seen {
+    v: Vert,
+    before: Option<usize>,
+    boundary: bool,
+    born: bool,
+}
+
+/// The distinct vertices the chain touched, in order of first touch, with a small
+/// open-addressing index so each touch costs O(1) and nothing is sorted (hand-written: a
+/// hash map from `alloc` would need std's hasher, and the sets here are a few dozen).
 #[derive(Default)]
 struct Touched {
-    /// (vertex, valence before the surgery or `None` if made by it), in order of touch.
-    seen: Vec<(Vert, Option<usize>)>,
-    /// Whether each `seen` vertex was on the boundary when touched.
-    boundary: Vec<bool>,
+    list: Vec<Seen>,
+    /// Position in `list` plus one, 0 for empty; the length is zero or a power of two.
+    table: Vec<u32>,
 }
 
 impl Touched {
+    fn slot(&self, v: Vert) -> usize {
+        let mask = self.table.len() - 1;
+        let mut h = (v.index() as u32).wrapping_mul(0x9e37_79b1) as usize & mask;
+        while let Some(&k) = self.table.get(h) {
+            if k == 0 || self.list[k as usize - 1].v == v {
+                break;
+            }
+            h = (h + 1) & mask;
+        }
+        h
+    }
+
+    fn find(&self, v: Vert) -> Option<&Seen> {
+        if self.table.is_empty() {
+            return None;
+        }
+        match self.table[self.slot(v)] {
+            0 => None,
+            k => self.list.get(k as usize - 1),
+        }
+    }
+
+    /// The entry of `v`, made with `make` at its first touch.
+    fn entry(&mut self, v: Vert, make: impl FnOnce() -> Seen) -> &mut Seen {
+        if 2 * (self.list.len() + 1) > self.table.len() {
+            let size = (4 * (self.list.len() + 1)).next_power_of_two().max(64);
+            self.table = alloc::vec![0; size];
+            for i in 0..self.list.len() {
+                let h = self.slot(self.list[i].v);
+                self.table[h] = i as u32 + 1;
+            }
+        }
+        let h = self.slot(v);
+        if self.table[h] == 0 {
+            self.list.push(make());
+            self.table[h] = self.list.len() as u32;
+        }
+        let k = self.table[h] as usize - 1;
+        &mut self.list[k]
+    }
+
     fn touch(&mut self, map: &Map, v: Vert) {
-        self.seen.push((v, Some(map.valence(v))));
-        self.boundary.push(map.is_boundary_vertex(v));
+        self.entry(v, || Seen {
+            v,
+            before: Some(map.valence(v)),
+            boundary: map.is_boundary_vertex(v),
+            born: false,
+        });
     }
 
     fn born(&mut self, v: Vert) {
-        self.seen.push((v, None));
-        self.boundary.push(false);
-    }
-
-    /// Index into `seen` of each distinct vertex's first touch and whether the handle was
-    /// (re)born during the surgery, in order of first touch. Sorting keeps this
-    /// O(k log k) for k touches.
-    fn firsts(&self) -> Vec<(usize, bool)> {
-        // (vertex, touch index) packed in one u64: a plain integer sort.
-        let mut idx: Vec<u64> = self
-            .seen
-            .iter()
-            .enumerate()
-            .map(|(i, &(v, _))| ((v.index() as u64) << 32) | i as u64)
-            .collect();
-        idx.sort_unstable();
-        let at = |k: usize| (idx[k] >> 32, (idx[k] & 0xffff_ffff) as usize);
-        let mut out: Vec<(usize, bool)> = Vec::new();
-        let mut k = 0;
-        while k < idx.len() {
-            let (v, first) = at(k);
-            let mut born = false;
-            while k < idx.len() && at(k).0 == v {
-                born |= self.seen[at(k).1].1.is_none();
-                k += 1;
-            }
-            out.push((first, born));
-        }
-        out.sort_unstable_by_key(|x| x.0);
-        out
+        self.entry(v, || Seen {
+            v,
+            before: None,
+            boundary: false,
+            born: true,
+        })
+        .born = true;
     }
 
     /// Irregular valences (with the boundary flag) of the touched vertices before the
     /// surgery and now, each sorted: equal when no singularity was made or lost.
-    fn irregular_before_after(
-        &self,
-        map: &Map,
-        firsts: &[(usize, bool)],
-    ) -> (Irregulars, Irregulars) {
+    fn irregular_before_after(&self, map: &Map) -> (Irregulars, Irregulars) {
         let irregular = |k: usize, b: bool| k != regular_valence(MeshKind::Quad, b);
         let mut before = Vec::new();
         let mut after = Vec::new();
-        for &(i, _) in firsts {
-            let (v, k) = self.seen[i];
-            if let Some(k) = k {
-                if irregular(k, self.boundary[i]) {
-                    before.push((k, self.boundary[i]));
+        for s in &self.list {
+            if let Some(k) = s.before {
+                if irregular(k, s.boundary) {
+                    before.push((k, s.boundary));
                 }
             }
-            if map.is_live_vertex(v) {
-                let (k, b) = (map.valence(v), map.is_boundary_vertex(v));
+            if map.is_live_vertex(s.v) {
+                let (k, b) = (map.valence(s.v), map.is_boundary_vertex(s.v));
                 if irregular(k, b) {
                     after.push((k, b));
                 }
@@ -360,21 +388,28 @@ impl Touched {
 
     /// Vertices the surgery left at valence 2 or 6 that were not so before, in order of
     /// first touch.
-    fn to_clean(&self, map: &Map, firsts: &[(usize, bool)]) -> Vec<Vert> {
+    fn to_clean(&self, map: &Map) -> Vec<Vert> {
         let mut out: Vec<Vert> = Vec::new();
-        for &(i, born) in firsts {
-            let v = self.seen[i].0;
-            if !map.is_live_vertex(v) || map.is_boundary_vertex(v) {
+        for s in &self.list {
+            if !map.is_live_vertex(s.v) || map.is_boundary_vertex(s.v) {
                 continue;
             }
-            let k = map.valence(v);
+            let k = map.valence(s.v);
             // A handle freed and reused is a new vertex.
-            let before = if born { None } else { self.seen[i].1 };
+            let before = if s.born { None } else { s.before };
             if (k == 2 || k == 6) && before != Some(k) {
-                out.push(v);
+                out.push(s.v);
             }
         }
         out
+    }
+
+    /// Whether the edit left `v` with valence `k` and it carries `k` because of the edit:
+    /// born here, or changed to `k`.
+    fn changed_to(&self, map: &Map, v: Vert, k: usize) -> bool {
+        map.is_live_vertex(v)
+            && map.valence(v) == k
+            && self.find(v).is_some_and(|s| s.born || s.before != Some(k))
     }
 }
 
@@ -395,13 +430,13 @@ fn undo_all(map: &mut Map, records: &[QuadRecord]) {
 /// The dart of the valence-6 vertex `v` to split along (with its opposite): the first pair
 /// of opposite edges, in the order the surgery touched their far ends, whose far ends are
 /// both regular interior vertices (they become the two v5s).
-fn v6_first_dart(map: &Map, v: Vert, order: &[(Vert, Option<usize>)]) -> Dart {
+fn v6_first_dart(map: &Map, v: Vert, order: &[Seen]) -> Dart {
     let regular = |x: Vert| map.valence(x) == 4 && !map.is_boundary_vertex(x);
     let good = |d: Dart| {
         let o = map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
         regular(map.dest(d)) && regular(map.dest(o))
     };
-    for &(t, _) in order {
+    for t in order.iter().map(|s| s.v) {
         if let Some(d) = map.vertex_darts(v).find(|&d| map.dest(d) == t) {
             if good(d) {
                 return d;
@@ -597,14 +632,10 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         to_cands[0] = cur;
     }
     let (mut v2_removals, mut v6_splits) = (0, 0);
-    let mut firsts = touched.firsts();
-    let to_clean = touched.to_clean(map, &firsts);
+    let to_clean = touched.to_clean(map);
     for &v in &to_clean {
         for d in map.vertex_darts(v) {
-            touched
-                .seen
-                .push((map.dest(d), Some(map.valence(map.dest(d)))));
-            touched.boundary.push(map.is_boundary_vertex(map.dest(d)));
+            touched.touch(map, map.dest(d));
         }
         if map.valence(v) == 2 {
             let r = remove_valence2(map, map.vertex_dart(v))
@@ -612,39 +643,23 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             v2_removals += 1;
             records.push(r.into());
         } else {
-            let first = v6_first_dart(map, v, &touched.seen);
+            let first = v6_first_dart(map, v, &touched.list);
             let r = split_high_valence(map, v, first)
                 .map_err(|refusal| ZipError::Cleanup { vertex: v, refusal })?;
             v6_splits += 1;
             records.push(r.into());
         }
     }
-    if !to_clean.is_empty() {
-        firsts = touched.firsts();
-    }
-    let (before, after) = touched.irregular_before_after(map, &firsts);
+    let (before, after) = touched.irregular_before_after(map);
     if before != after {
         return Err(ZipError::NotGridPreserving {
             before: before.len(),
             after: after.len(),
         });
     }
-    // A vertex that carries valence k because of this edit: born here, or changed to k.
-    // Looked up by binary search in the first touches sorted by vertex.
-    let mut by_vertex: Vec<(Vert, usize, bool)> = firsts
-        .iter()
-        .map(|&(i, born)| (touched.seen[i].0, i, born))
-        .collect();
-    by_vertex.sort_unstable_by_key(|x| x.0);
-    let changed_to = |v: Vert, k: usize| {
-        map.is_live_vertex(v)
-            && map.valence(v) == k
-            && by_vertex
-                .binary_search_by_key(&v, |x| x.0)
-                .is_ok_and(|j| by_vertex[j].2 || touched.seen[by_vertex[j].1].1 != Some(k))
-    };
+    let changed_to = |v: Vert, k: usize| touched.changed_to(map, v, k);
     let touched_order = |forward: bool| {
-        let it = firsts.iter().map(|&(i, _)| touched.seen[i].0);
+        let it = touched.list.iter().map(|s| s.v);
         let v: Vec<Vert> = if forward {
             it.collect()
         } else {
@@ -688,4 +703,41 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
         scar_faces,
         scar_edges,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The touch index keeps first touches in order through its growth: every vertex once,
+    /// its first valence kept, `born` sticking, lookups agreeing with a plain scan.
+    #[test]
+    fn touched_keeps_first_touches_in_order() {
+        let map = crate::gen::torus_grid(40, 40).map;
+        let mut t = Touched::default();
+        let mut order: Vec<Vert> = Vec::new();
+        let mut rng = crate::rng::Rng::new(7);
+        for _ in 0..5000 {
+            let v = Vert::new(rng.below(1600) as u32);
+            if !order.contains(&v) {
+                order.push(v);
+            }
+            if rng.chance(1, 10) {
+                t.born(v);
+            } else {
+                t.touch(&map, v);
+            }
+        }
+        let listed: Vec<Vert> = t.list.iter().map(|s| s.v).collect();
+        assert_eq!(listed, order);
+        for s in &t.list {
+            assert_eq!(t.find(s.v).map(|x| x.v), Some(s.v));
+            assert!(s.before.is_none() || s.before == Some(4));
+        }
+        assert!(t.list.iter().any(|s| s.born) && t.list.iter().any(|s| !s.born));
+        let absent = (0..1600).map(Vert::new).find(|v| !order.contains(v));
+        if let Some(v) = absent {
+            assert!(t.find(v).is_none());
+        }
+    }
 }
