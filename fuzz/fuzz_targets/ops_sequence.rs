@@ -5,9 +5,10 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::quad::{self, Rotation};
+use zipmesh::ops::quad::{QuadOp, Rotation};
+use zipmesh::ops::tri::TriOp;
 use zipmesh::ops::Refusal;
-use zipmesh::ops::{tri, Undo};
+use zipmesh::ops::Undo;
 use zipmesh::{gen, Dart, Map};
 
 /// The mesh the bytes ask for: small, so that sequences run into every refusal rule.
@@ -49,67 +50,24 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
     let second = |m: &Map| (0..=usize::from(e % 8)).fold(d, |x, _| m.rotate_cw(x));
     let before = map.clone();
     let (can, done): (Result<(), Refusal>, Result<Record, Refusal>) = if is_quad {
-        match op % 6 {
-            0 => (
-                quad::can_quad_collapse(map, d),
-                quad::quad_collapse(map, d).map(|r| Box::new(r) as Record),
-            ),
-            1 => {
-                let s = second(map);
-                (
-                    quad::can_vertex_split(map, d, s),
-                    quad::vertex_split(map, d, s).map(|r| Box::new(r) as Record),
-                )
-            }
-            2 => (
-                quad::can_remove_valence2(map, d),
-                quad::remove_valence2(map, d).map(|r| Box::new(r) as Record),
-            ),
-            3 => (
-                quad::can_insert_doublet(map, d),
-                quad::insert_doublet(map, d).map(|r| Box::new(r) as Record),
-            ),
-            4 => {
-                let dir = if e & 1 == 0 {
-                    Rotation::Clockwise
-                } else {
-                    Rotation::CounterClockwise
-                };
-                (
-                    quad::can_rotate_edge(map, d, dir),
-                    quad::rotate_edge(map, d, dir).map(|r| Box::new(r) as Record),
-                )
-            }
-            _ => {
-                let v = map.origin(d);
-                (
-                    quad::can_split_high_valence(map, v, d),
-                    quad::split_high_valence(map, v, d).map(|r| Box::new(r) as Record),
-                )
-            }
-        }
+        let op = match op % 6 {
+            0 => QuadOp::Collapse(d),
+            1 => QuadOp::Split(d, second(map)),
+            2 => QuadOp::RemoveValence2(d),
+            3 => QuadOp::InsertDoublet(d),
+            4 if e & 1 == 0 => QuadOp::Rotate(d, Rotation::Clockwise),
+            4 => QuadOp::Rotate(d, Rotation::CounterClockwise),
+            _ => QuadOp::HighValence(d),
+        };
+        (op.can(map), op.apply(map).map(|r| Box::new(r) as Record))
     } else {
-        match op % 4 {
-            0 => (
-                tri::can_flip(map, d),
-                tri::flip(map, d).map(|r| Box::new(r) as Record),
-            ),
-            1 => (
-                tri::can_collapse(map, d),
-                tri::collapse(map, d).map(|r| Box::new(r) as Record),
-            ),
-            2 => (
-                tri::can_split_edge(map, d),
-                tri::split_edge(map, d).map(|r| Box::new(r) as Record),
-            ),
-            _ => {
-                let s = second(map);
-                (
-                    tri::can_split_vertex(map, d, s),
-                    tri::split_vertex(map, d, s).map(|r| Box::new(r) as Record),
-                )
-            }
-        }
+        let op = match op % 4 {
+            0 => TriOp::Flip(d),
+            1 => TriOp::Collapse(d),
+            2 => TriOp::SplitEdge(d),
+            _ => TriOp::SplitVertex(d, second(map)),
+        };
+        (op.can(map), op.apply(map).map(|r| Box::new(r) as Record))
     };
     match done {
         Ok(r) => {

@@ -5,55 +5,18 @@
 #![allow(dead_code)]
 
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::tri::{self, CollapseRecord, EdgeSplitRecord, FlipRecord, VertexSplitRecord};
 use zipmesh::ops::Refusal;
 use zipmesh::{Dart, Face, Map, Vert};
 
-/// One operator with its arguments.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Op {
-    Flip(Dart),
-    Collapse(Dart),
-    SplitVertex(Dart, Dart),
-    SplitEdge(Dart),
-}
-
-/// The record of an applied operator.
-#[derive(Clone, Copy, Debug)]
-pub enum Rec {
-    Flip(FlipRecord),
-    Collapse(CollapseRecord),
-    SplitVertex(VertexSplitRecord),
-    SplitEdge(EdgeSplitRecord),
-}
-
-impl Rec {
-    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        match self {
-            Rec::Flip(r) => r.undo(map),
-            Rec::Collapse(r) => r.undo(map),
-            Rec::SplitVertex(r) => r.undo(map),
-            Rec::SplitEdge(r) => r.undo(map),
-        }
-    }
-}
+/// One operator with its arguments, and the record of an applied one: the library's.
+pub use zipmesh::ops::tri::{TriOp as Op, TriRecord as Rec};
 
 pub fn can(map: &Map, op: Op) -> Result<(), Refusal> {
-    match op {
-        Op::Flip(h) => tri::can_flip(map, h),
-        Op::Collapse(h) => tri::can_collapse(map, h),
-        Op::SplitVertex(a, b) => tri::can_split_vertex(map, a, b),
-        Op::SplitEdge(h) => tri::can_split_edge(map, h),
-    }
+    op.can(map)
 }
 
 pub fn run(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
-    Ok(match op {
-        Op::Flip(h) => Rec::Flip(tri::flip(map, h)?),
-        Op::Collapse(h) => Rec::Collapse(tri::collapse(map, h)?),
-        Op::SplitVertex(a, b) => Rec::SplitVertex(tri::split_vertex(map, a, b)?),
-        Op::SplitEdge(h) => Rec::SplitEdge(tri::split_edge(map, h)?),
-    })
+    op.apply(map)
 }
 
 /// Per vertex slot: its valence if live.

@@ -68,6 +68,104 @@ pub use flip::{can_flip, flip, FlipRecord};
 
 pub use super::Undo;
 
+/// One triangle operator with its arguments, as a value: for sequences, fuzzing and
+/// replays (the triangle counterpart of [`crate::ops::quad::QuadOp`]).
+///
+/// ```
+/// use zipmesh::{gen, ops::tri::TriOp};
+/// let mut map = gen::random_triangle(200, 0, 0, 3).map;
+/// let before = map.clone();
+/// let d = map.darts().find(|&d| TriOp::Flip(d).can(&map).is_ok()).unwrap();
+/// let record = TriOp::Flip(d).apply(&mut map).unwrap();
+/// record.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// assert_eq!(TriOp::Flip(d).name(), "flip");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TriOp {
+    /// [`flip`] of the dart's edge.
+    Flip(Dart),
+    /// [`collapse`] of the dart's origin into its destination.
+    Collapse(Dart),
+    /// [`split_vertex`] along the two darts.
+    SplitVertex(Dart, Dart),
+    /// [`split_edge`] of the dart's edge.
+    SplitEdge(Dart),
+}
+
+impl TriOp {
+    /// A short name for reports.
+    ///
+    /// See [`TriOp`] for an example.
+    pub fn name(self) -> &'static str {
+        match self {
+            TriOp::Flip(_) => "flip",
+            TriOp::Collapse(_) => "collapse",
+            TriOp::SplitVertex(..) => "vertex split",
+            TriOp::SplitEdge(_) => "edge split",
+        }
+    }
+
+    /// The operator's `can_*` check.
+    ///
+    /// See [`TriOp`] for an example.
+    pub fn can(self, m: &Map) -> Result<(), Refusal> {
+        match self {
+            TriOp::Flip(d) => can_flip(m, d),
+            TriOp::Collapse(d) => can_collapse(m, d),
+            TriOp::SplitVertex(a, b) => can_split_vertex(m, a, b),
+            TriOp::SplitEdge(d) => can_split_edge(m, d),
+        }
+    }
+
+    /// Applies the operator: the record, or the refusal with the map untouched.
+    ///
+    /// See [`TriOp`] for an example.
+    pub fn apply(self, m: &mut Map) -> Result<TriRecord, Refusal> {
+        Ok(match self {
+            TriOp::Flip(d) => TriRecord::Flip(flip(m, d)?),
+            TriOp::Collapse(d) => TriRecord::Collapse(collapse(m, d)?),
+            TriOp::SplitVertex(a, b) => TriRecord::SplitVertex(split_vertex(m, a, b)?),
+            TriOp::SplitEdge(d) => TriRecord::SplitEdge(split_edge(m, d)?),
+        })
+    }
+}
+
+/// The record of any triangle operator (see [`TriOp::apply`]).
+///
+/// See [`TriOp`] for an example.
+#[derive(Clone, Copy, Debug)]
+pub enum TriRecord {
+    /// A [`flip`].
+    Flip(FlipRecord),
+    /// A [`collapse`].
+    Collapse(CollapseRecord),
+    /// A [`split_vertex`].
+    SplitVertex(VertexSplitRecord),
+    /// A [`split_edge`].
+    SplitEdge(EdgeSplitRecord),
+}
+
+impl TriRecord {
+    /// Undoes the recorded operation; see each record's `undo`.
+    ///
+    /// See [`TriOp`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        match self {
+            TriRecord::Flip(r) => r.undo(map),
+            TriRecord::Collapse(r) => r.undo(map),
+            TriRecord::SplitVertex(r) => r.undo(map),
+            TriRecord::SplitEdge(r) => r.undo(map),
+        }
+    }
+}
+
+impl Undo for TriRecord {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        TriRecord::undo(self, map)
+    }
+}
+
 /// Minimum valence of a vertex after an operation: 3 inside, 2 on the boundary.
 #[inline]
 pub(crate) fn min_valence(boundary: bool) -> usize {
