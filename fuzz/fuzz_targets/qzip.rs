@@ -1,151 +1,31 @@
 //! Q-zip on generated quad meshes with singularities, between fuzzer-chosen vertices (any
 //! vertices: irregular, regular, on the boundary), with a fuzzer-chosen initial tag, along
-//! the shortest path or a fuzzer-perturbed one. The library must never panic; these
-//! assertions are the oracle: a refusal leaves the map `==` the original; a done edit leaves
-//! a valid pure-quad map with the same Euler characteristic, boundary loops and multiset of
-//! irregular (valence, boundary) pairs, V changed by the report's delta, the pair's valences
-//! on the moved vertices, and an exact undo.
+//! the shortest path or a fuzzer-perturbed one (`common/qzip_case.rs`). The library must
+//! never panic; these assertions are the oracle: a refusal leaves the map `==` the original;
+//! a done edit leaves a valid pure-quad map with the same Euler characteristic, boundary
+//! loops and multiset of irregular (valence, boundary) pairs, V changed by the report's
+//! delta, the pair's valences on the moved vertices, and an exact undo.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use zipmesh::invariants::{irregular_vertices, MeshKind};
-use zipmesh::ops::quad;
-use zipmesh::qzip::{sketch, validate_path, verify_edit, zip_along, Path, SketchOptions, Tag};
-use zipmesh::{gen, Dart, Map, Vert};
+use zipmesh::qzip::{verify_edit, zip_along};
 
-/// Reads the input a byte at a time; zeros once it runs out, so every input is usable.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn u8(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-
-    fn u16(&mut self) -> u16 {
-        u16::from_le_bytes([self.u8(), self.u8()])
-    }
-}
-
-/// Vertex splits along opposite edges at fuzzer-chosen darts: each split of a regular vertex
-/// makes a cluster of two v3s and two v5s. Refused splits are skipped.
-fn with_splits(mut map: Map, k: u8, bytes: &mut Bytes) -> Map {
-    for _ in 0..k {
-        let d = Dart::new(u32::from(bytes.u16()) % map.dart_slots().max(1) as u32);
-        if map.is_live_dart(d) {
-            let d2 = map.rotate_cw(map.rotate_cw(d));
-            let _ = quad::vertex_split(&mut map, d, d2);
-        }
-    }
-    map
-}
-
-/// The mesh the bytes ask for: small, with isolated or clustered singularities, closed or
-/// with boundary.
-fn mesh(bytes: &mut Bytes) -> Map {
-    let (pick, a, b) = (bytes.u8(), bytes.u8(), bytes.u8());
-    let (na, nb) = (3 + usize::from(a % 8), 3 + usize::from(b % 8));
-    match pick % 6 {
-        0 => gen::subdivided_icosahedron(1).map,
-        1 => gen::subdivided_icosahedron(2).map,
-        2 => gen::cube(1 + usize::from(a % 5)).map,
-        3 => with_splits(gen::torus_grid(na, nb).map, 1 + b % 3, bytes),
-        4 => with_splits(gen::grid(na, nb).map, a % 3, bytes),
-        _ => {
-            let seed = u64::from(bytes.u16());
-            gen::random_quad(
-                40 + 8 * usize::from(a % 20),
-                usize::from(b % 3),
-                usize::from(a % 2),
-                seed,
-            )
-            .map
-        }
-    }
-}
-
-/// A vertex: with the low bit set one of the irregular ones, else any slot (dead slots
-/// give `None`).
-fn vertex(map: &Map, irregular: &[Vert], bytes: &mut Bytes) -> Option<Vert> {
-    let x = bytes.u16();
-    if x & 1 == 1 && !irregular.is_empty() {
-        return Some(irregular[usize::from(x >> 1) % irregular.len()]);
-    }
-    let v = Vert::new(u32::from(x >> 1) % map.vertex_slots().max(1) as u32);
-    map.is_live_vertex(v).then_some(v)
-}
-
-/// A path from `from` to `to`: the shortest one, or a fuzzer-driven walk from `from` followed
-/// by the shortest path from the walk's end that avoids the walk (its edges are forbidden),
-/// validated as a caller's path.
-fn path(map: &Map, from: Vert, to: Vert, bytes: &mut Bytes) -> Option<Path> {
-    let mode = bytes.u8();
-    let mut opts = SketchOptions {
-        avoid_boundary: mode & 2 != 0,
-        ..SketchOptions::default()
-    };
-    let walk_len = usize::from(mode >> 4);
-    if mode & 1 == 0 || walk_len == 0 {
-        return sketch(map, from, to, &opts).ok();
-    }
-    let mut walk = vec![from];
-    let mut v = from;
-    for _ in 0..walk_len {
-        if v == to {
-            break;
-        }
-        let spokes: Vec<Dart> = map.vertex_darts(v).collect();
-        if spokes.is_empty() {
-            return None;
-        }
-        v = map.dest(spokes[usize::from(bytes.u8()) % spokes.len()]);
-        walk.push(v);
-    }
-    let last = *walk.last()?;
-    if last != to {
-        // The rest of the path may not come back to a walk vertex before the last.
-        for &w in &walk[..walk.len() - 1] {
-            opts.forbidden_edges
-                .extend(map.vertex_darts(w).map(|d| d.index() as u32 / 2));
-        }
-        let tail = sketch(map, last, to, &opts).ok()?;
-        walk.extend_from_slice(&tail.vertices()[1..]);
-    }
-    // The walk may repeat vertices: then validation refuses it, which is fine (no panic).
-    validate_path(map, from, to, &walk, &SketchOptions::default()).ok()
-}
+#[path = "common/qzip_case.rs"]
+mod qzip_case;
 
 fuzz_target!(|data: &[u8]| {
-    let mut bytes = Bytes(data);
-    let original = mesh(&mut bytes);
-    if original.check().is_err() || original.num_vertices() == 0 {
-        return;
-    }
-    let irregular = irregular_vertices(&original, MeshKind::Quad);
-    let tag = Tag::CCW[usize::from(bytes.u8() % 4)];
-    let (Some(from), Some(to)) = (
-        vertex(&original, &irregular, &mut bytes),
-        vertex(&original, &irregular, &mut bytes),
-    ) else {
+    let Some(c) = qzip_case::case(data) else {
         return;
     };
-    let Some(path) = path(&original, from, to, &mut bytes) else {
-        return;
-    };
-    let mut map = original.clone();
-    let report = match zip_along(&mut map, &path, tag) {
+    let mut map = c.original.clone();
+    let report = match zip_along(&mut map, &c.path, c.tag) {
         Ok(r) => r,
         Err(e) => {
-            assert!(map == original, "a refused Q-zip changed the map: {e}");
+            assert!(map == c.original, "a refused Q-zip changed the map: {e}");
             return;
         }
     };
-    if let Err(b) = verify_edit(&original, &map, &path, &report) {
+    if let Err(b) = verify_edit(&c.original, &map, &c.path, &report) {
         panic!("{b}\n{}", report.surgery());
     }
 });
