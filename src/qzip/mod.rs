@@ -42,5 +42,5 @@ pub use sketch::{
 pub use verify::{verify_edit, Broken};
 pub use zip::{
     find_reverse, mesh_preprocess, mesh_zip_along, moves, one_quad_sweeps, preprocess, start_turn,
-    zip, zip_along, MeshZip, Move, Preprocessed, QzipError, ReverseRun,
+    zip, zip_along, zip_with, MeshZip, Move, Preprocessed, QzipError, ReverseRun,
 };

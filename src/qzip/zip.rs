@@ -5,7 +5,7 @@ use core::fmt;
 use super::compass::{plan, PlanError, Tag};
 use super::execute::{execute, ZipError, ZipReport};
 use super::prepare::{prepare, PrepareError};
-use super::sketch::{sketch, Path, SketchError, SketchOptions};
+use super::sketch::{sketch, Path, SketchError, SketchOptions, SketchWorkspace};
 use alloc::vec::Vec;
 use glam::DVec3;
 
@@ -90,6 +90,34 @@ pub fn zip(
     opts: &SketchOptions,
 ) -> Result<ZipReport, QzipError> {
     let path = sketch(map, from, to, opts).map_err(QzipError::Sketch)?;
+    zip_along(map, &path, initial)
+}
+
+/// [`zip`] with the sketch done in a reusable [`SketchWorkspace`] (the same path, without
+/// per-call allocation proportional to the explored region): for many Q-zips on one large
+/// map. With a [`super::Guide`] in `opts` the sketch explores about O(path length) vertices.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{zip, zip_with, SketchOptions, SketchWorkspace, Tag};
+/// let mut ws = SketchWorkspace::new();
+/// let mut a = gen::subdivided_icosahedron(2).map;
+/// let mut b = a.clone();
+/// let (v5, v3) = (Vert::new(0), Vert::new(42));
+/// let o = SketchOptions::default();
+/// let ra = zip_with(&mut ws, &mut a, v3, v5, Tag::LC, &o).unwrap();
+/// let rb = zip(&mut b, v3, v5, Tag::LC, &o).unwrap();
+/// assert_eq!((a, ra), (b, rb));
+/// ```
+pub fn zip_with(
+    ws: &mut SketchWorkspace,
+    map: &mut Map,
+    from: Vert,
+    to: Vert,
+    initial: Tag,
+    opts: &SketchOptions<'_>,
+) -> Result<ZipReport, QzipError> {
+    let path = ws.sketch(map, from, to, opts).map_err(QzipError::Sketch)?;
     zip_along(map, &path, initial)
 }
 
