@@ -278,9 +278,6 @@ fn strip_quad(map: &Map, e: Dart, tag: Tag) -> (Dart, Vert) {
     }
 }
 
-/// Sorted (valence, on the boundary) of some irregular vertices.
-type Irregulars = Vec<(usize, bool)>;
-
 /// A vertex the chain touched: its valence and boundary flag at the first touch (`None` if
 /// the surgery made it), and whether its handle was (re)born during the surgery.
 #[derive(Clone, Copy)]
@@ -362,28 +359,45 @@ impl Touched {
         .born = true;
     }
 
-    /// Irregular valences (with the boundary flag) of the touched vertices before the
-    /// surgery and now, each sorted: equal when no singularity was made or lost.
-    fn irregular_before_after(&self, map: &Map) -> (Irregulars, Irregulars) {
+    /// Whether the touched vertices carry the same multiset of irregular (valence,
+    /// boundary) pairs before the surgery and now; else the two counts. Counted in a fixed
+    /// table (valences below 32; higher ones in a list, which is then the only allocation).
+    fn irregulars_kept(&self, map: &Map) -> Result<(), (usize, usize)> {
         let irregular = |k: usize, b: bool| k != regular_valence(MeshKind::Quad, b);
-        let mut before = Vec::new();
-        let mut after = Vec::new();
+        let mut table = [0i32; 64];
+        let mut high: Vec<(usize, bool, i32)> = Vec::new();
+        let (mut n_before, mut n_after) = (0, 0);
+        let mut add = |k: usize, b: bool, x: i32| {
+            if k < 32 {
+                table[2 * k + usize::from(b)] += x;
+            } else {
+                high.push((k, b, x));
+            }
+        };
         for s in &self.list {
             if let Some(k) = s.before {
                 if irregular(k, s.boundary) {
-                    before.push((k, s.boundary));
+                    add(k, s.boundary, 1);
+                    n_before += 1;
                 }
             }
             if map.is_live_vertex(s.v) {
                 let (k, b) = (map.valence(s.v), map.is_boundary_vertex(s.v));
                 if irregular(k, b) {
-                    after.push((k, b));
+                    add(k, b, -1);
+                    n_after += 1;
                 }
             }
         }
-        before.sort_unstable();
-        after.sort_unstable();
-        (before, after)
+        high.sort_unstable_by_key(|&(k, b, _)| (k, b));
+        let high_kept = high
+            .chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
+            .all(|c| c.iter().map(|x| x.2).sum::<i32>() == 0);
+        if table.iter().all(|&x| x == 0) && high_kept {
+            Ok(())
+        } else {
+            Err((n_before, n_after))
+        }
     }
 
     /// Vertices the surgery left at valence 2 or 6 that were not so before, in order of
@@ -412,6 +426,9 @@ impl Touched {
             && self.find(v).is_some_and(|s| s.born || s.before != Some(k))
     }
 }
+
+/// Surgeries of at most this many vertices look path vertices up by a scan.
+const SCAN_LIMIT: usize = 24;
 
 /// Undoes records made in order on `map`, last first; stops at the first refusal.
 pub(crate) fn undo_records(records: &[QuadRecord], map: &mut Map) -> Result<(), Refusal> {
@@ -471,8 +488,12 @@ fn v6_first_dart(map: &Map, v: Vert, order: &[Seen]) -> Dart {
 /// assert_eq!(map, before);
 /// ```
 pub fn execute(map: &mut Map, surgery: &Surgery) -> Result<ZipReport, ZipError> {
-    let steps = surgery.steps();
-    let mut records: Vec<QuadRecord> = Vec::with_capacity(steps.len() + 2);
+    execute_owned(map, surgery.clone())
+}
+
+/// [`execute`] taking the surgery by value (it goes into the report without a copy).
+pub(crate) fn execute_owned(map: &mut Map, surgery: Surgery) -> Result<ZipReport, ZipError> {
+    let mut records: Vec<QuadRecord> = Vec::with_capacity(surgery.steps().len() + 2);
     match run(map, surgery, &mut records) {
         Ok(r) => Ok(r),
         Err(e) => {
@@ -482,7 +503,7 @@ pub fn execute(map: &mut Map, surgery: &Surgery) -> Result<ZipReport, ZipError> 
     }
 }
 
-fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipReport, ZipError> {
+fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipReport, ZipError> {
     let steps = s.steps();
     let m = steps.len() - 1;
     let original_faces = map.face_slots();
@@ -507,12 +528,16 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
     let mut index = 0;
     let mut cur = steps[0].vertex;
     // Path vertices sorted, with their positions: a collapse asks whether it removes one.
-    let mut position: Vec<(Vert, usize)> = steps
-        .iter()
-        .enumerate()
-        .map(|(i, x)| (x.vertex, i))
-        .collect();
-    position.sort_unstable();
+    // Short surgeries scan instead (no allocation).
+    let mut position: Vec<(Vert, usize)> = Vec::new();
+    if steps.len() > SCAN_LIMIT {
+        position = steps
+            .iter()
+            .enumerate()
+            .map(|(i, x)| (x.vertex, i))
+            .collect();
+        position.sort_unstable();
+    }
     while index < m {
         let (p, n) = (cur, steps[index + 1].vertex);
         let Some(tag) = steps[index].op else {
@@ -568,10 +593,14 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             // back to the merged vertex, and that pair of edges cancels (like a fold of the
             // preparation, with the compass unchanged). Anything else would lose the vertex.
             let mut next = index + 1;
-            let at = position
-                .binary_search_by_key(&removed, |x| x.0)
-                .ok()
-                .map(|k| position[k].1);
+            let at = if steps.len() > SCAN_LIMIT {
+                position
+                    .binary_search_by_key(&removed, |x| x.0)
+                    .ok()
+                    .map(|k| position[k].1)
+            } else {
+                steps.iter().position(|x| x.vertex == removed)
+            };
             // Merging with the path vertex four steps ahead makes a loop n -> .. -> n:
             // cancelled like the loops of the preparation when it goes round one quad
             // (checked after the collapse, which is undone with the rest if not).
@@ -650,12 +679,8 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
             records.push(r.into());
         }
     }
-    let (before, after) = touched.irregular_before_after(map);
-    if before != after {
-        return Err(ZipError::NotGridPreserving {
-            before: before.len(),
-            after: after.len(),
-        });
+    if let Err((before, after)) = touched.irregulars_kept(map) {
+        return Err(ZipError::NotGridPreserving { before, after });
     }
     let changed_to = |v: Vert, k: usize| touched.changed_to(map, v, k);
     let touched_order = |forward: bool| {
@@ -690,7 +715,7 @@ fn run(map: &mut Map, s: &Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipR
     scar_edges.retain(|&e| map.is_live_dart(Dart::new(2 * e as u32)));
     scar_faces.retain(|&f| map.is_live_face(f));
     Ok(ZipReport {
-        surgery: s.clone(),
+        surgery: s,
         records: core::mem::take(records),
         splits,
         collapses,
@@ -739,5 +764,32 @@ mod tests {
         if let Some(v) = absent {
             assert!(t.find(v).is_none());
         }
+    }
+
+    /// A closed fan: `k` quads round vertex 0, each `(0, r_i, o_i, r_i+1)`, capped by one
+    /// big face, so vertex 0 has valence `k`.
+    fn fan(k: u32) -> Map {
+        let mut faces: Vec<Vec<u32>> = (0..k)
+            .map(|i| alloc::vec![0, 1 + i, 1 + k + i, 1 + (i + 1) % k])
+            .collect();
+        let mut cap: Vec<u32> = (0..k).flat_map(|i| [1 + i, 1 + k + i]).collect();
+        cap.reverse();
+        faces.push(cap);
+        Map::from_polygons((1 + 2 * k) as usize, &faces).unwrap()
+    }
+
+    /// The guard's count compares valences of 32 and more too (kept outside the table).
+    #[test]
+    fn irregulars_kept_counts_high_valences() {
+        let (a, b) = (fan(40), fan(41));
+        assert_eq!((a.valence(Vert::new(0)), b.valence(Vert::new(0))), (40, 41));
+        let mut t = Touched::default();
+        t.touch(&a, Vert::new(0));
+        assert_eq!(t.irregulars_kept(&a), Ok(()));
+        assert_eq!(t.irregulars_kept(&b), Err((1, 1)));
+        let mut u = Touched::default();
+        u.touch(&fan(6), Vert::new(0));
+        assert_eq!(u.irregulars_kept(&fan(6)), Ok(()));
+        assert_eq!(u.irregulars_kept(&fan(7)), Err((1, 1)));
     }
 }

@@ -391,6 +391,17 @@ fn end_valence(map: &Map, index: usize, v: Vert) -> Result<usize, PrepareError> 
     }
 }
 
+/// A vertex that occurs twice in `v`, if any: short lists by a scan (no allocation),
+/// long ones by sorting a copy.
+fn repeated(v: &[Vert]) -> Option<Vert> {
+    if v.len() <= 24 {
+        return (1..v.len()).find_map(|i| v[..i].contains(&v[i]).then_some(v[i]));
+    }
+    let mut sorted = v.to_vec();
+    sorted.sort_unstable();
+    sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+}
+
 /// Cuts the closed walk of `len` edges that starts at position `i` (`v[i] == v[i + len]`):
 /// the surviving `v[i]` takes the hand of the edge leaving the walk, so the compass after it
 /// is unchanged.
@@ -569,10 +580,8 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
         hand.insert(0, hand[0]);
         noop.insert(0, true);
     }
-    let mut sorted = v.clone();
-    sorted.sort_unstable();
-    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-        return Err(PrepareError::NotSimple { vertex: w[0] });
+    if let Some(w) = repeated(&v) {
+        return Err(PrepareError::NotSimple { vertex: w });
     }
     let mut out: Vec<SurgeryStep> = v
         .iter()

@@ -3,7 +3,7 @@
 use core::fmt;
 
 use super::compass::{plan, PlanError, Tag};
-use super::execute::{execute, ZipError, ZipReport};
+use super::execute::{execute_owned, ZipError, ZipReport};
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{sketch, Path, SketchError, SketchOptions, SketchWorkspace};
 use alloc::vec::Vec;
@@ -68,7 +68,7 @@ impl std::error::Error for QzipError {}
 pub fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {
     let p = plan(map, path, initial).map_err(QzipError::Plan)?;
     let s = prepare(map, &p).map_err(QzipError::Prepare)?;
-    execute(map, &s).map_err(QzipError::Execute)
+    execute_owned(map, s).map_err(QzipError::Execute)
 }
 
 /// Runs the four stages: the path from `from` to `to` sketched with `opts`, then
