@@ -508,7 +508,13 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
     let m = steps.len() - 1;
     let original_faces = map.face_slots();
     let original_edges = map.dart_slots() / 2;
-    let mut touched = Touched::default();
+    // Sized for the usual counts (a few touches and merged edges per operation) so nothing
+    // regrows mid-chain.
+    let expected = 4 * steps.len() + 8;
+    let mut touched = Touched {
+        list: Vec::with_capacity(expected),
+        table: alloc::vec![0; (2 * expected).next_power_of_two()],
+    };
     let (mut splits, mut collapses) = (0, 0);
     let mut guide: Option<Vert> = None;
     // Where the pair went: the vertices of the first and of the last operation, the one the
@@ -521,7 +527,7 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
     let mut footprint_faces = Vec::new();
     let mut footprint_edges = Vec::new();
     let mut scar_faces: Vec<Face> = Vec::new();
-    let mut scar_edges: Vec<usize> = Vec::new();
+    let mut scar_edges: Vec<usize> = Vec::with_capacity(2 * steps.len());
     let mut born_faces: Vec<Face> = Vec::new();
     // `cur` is the handle of the vertex at position `index`: a merge can fold the path onto
     // itself, and then the position jumps ahead while the handle stays the merged vertex.
