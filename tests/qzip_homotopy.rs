@@ -188,3 +188,29 @@ fn a_loop_round_one_quad_is_cut() {
     zip_along(&mut y, &q, Tag::RC).unwrap();
     assert_eq!(canonical_hash(&x), canonical_hash(&y));
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+    /// Random pairs within 8 edges on the icosahedron subdivided two or three times, a random
+    /// one-quad sweep of their path and a random movement: the matching movement along the
+    /// swept path gives an isomorphic map, both realizable.
+    #[test]
+    fn random_sweeps_give_the_same_movement(levels in 2usize..4, i in 0usize..64,
+                                            j in 0usize..64, s in 0usize..64, t in 0usize..4) {
+        let map = ico_cc(levels);
+        let sing = singular(&map);
+        let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
+        proptest::prop_assume!(a != b);
+        let p = sketch(&map, a, b, &SketchOptions::default()).unwrap();
+        proptest::prop_assume!(p.len() <= 8);
+        let sweeps = one_quad_sweeps(&map, &p);
+        proptest::prop_assume!(!sweeps.is_empty());
+        let (_, q) = &sweeps[s % sweeps.len()];
+        let k = start_turn(&map, &p, q).unwrap();
+        let tag = Tag::CCW[t];
+        let (mut x, mut y) = (map.clone(), map.clone());
+        zip_along(&mut x, &p, tag).unwrap();
+        zip_along(&mut y, q, tag.turned(k)).unwrap();
+        proptest::prop_assert_eq!(canonical_hash(&x), canonical_hash(&y));
+    }
+}

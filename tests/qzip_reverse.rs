@@ -82,3 +82,25 @@ fn icosahedron_moves_reverse() {
     assert!(t.forward >= 900, "{t:?}");
     eprintln!("{t:?}");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+    /// Random pairs within 10 edges on the icosahedron subdivided two or three times, any
+    /// initial operation: the reverse run is found, and re-running it restores the original.
+    #[test]
+    fn random_icosahedron_pairs_reverse(levels in 2usize..4, i in 0usize..64, j in 0usize..64,
+                                        t in 0usize..4) {
+        let map = ico_cc(levels);
+        let sing = common::singular(&map);
+        let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
+        proptest::prop_assume!(a != b);
+        let opts = zipmesh::qzip::SketchOptions::default();
+        let path = zipmesh::qzip::sketch(&map, a, b, &opts).unwrap();
+        proptest::prop_assume!(path.len() <= 10);
+        let (edited, r) = check_zip(&map, &path, Tag::CCW[t]).unwrap();
+        let back = find_reverse(&edited, &r, &map).expect("a reverse run");
+        let mut m = edited.clone();
+        zip_along(&mut m, &back.path, back.tag).unwrap();
+        proptest::prop_assert!(CanonicalCode::of(&m) == CanonicalCode::of(&map));
+    }
+}
