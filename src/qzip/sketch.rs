@@ -559,6 +559,8 @@ trait Store {
     fn get(&self, v: Vert) -> Slot;
     /// The record of `v`, created empty on first touch.
     fn get_mut(&mut self, v: Vert) -> &mut Slot;
+    /// Forgets every record: the start of a new search pass.
+    fn next_pass(&mut self);
 }
 
 /// One-off records: the search costs what it explores, with no O(V) set-up.
@@ -571,20 +573,23 @@ impl Store for HashStore {
     fn get_mut(&mut self, v: Vert) -> &mut Slot {
         self.0.entry(v.index() as u32).or_default()
     }
+    fn next_pass(&mut self) {
+        self.0.clear();
+    }
 }
 
 /// Records in a reused array: a slot is valid when its stamp is the current epoch, so a new
 /// pass costs one increment, not an O(V) clear.
 struct ArrayStore<'w> {
     slots: &'w mut Vec<Slot>,
-    epoch: u32,
+    epoch: &'w mut u32,
     touched: &'w mut usize,
 }
 
 impl Store for ArrayStore<'_> {
     fn get(&self, v: Vert) -> Slot {
         match self.slots.get(v.index()) {
-            Some(s) if s.tag >> 8 == self.epoch => *s,
+            Some(s) if s.tag >> 8 == *self.epoch => *s,
             _ => Slot::default(),
         }
     }
@@ -595,14 +600,22 @@ impl Store for ArrayStore<'_> {
             self.slots.resize(i + 1, Slot::default());
         }
         let s = &mut self.slots[i];
-        if s.tag >> 8 != self.epoch {
+        if s.tag >> 8 != *self.epoch {
             *s = Slot {
-                tag: self.epoch << 8,
+                tag: *self.epoch << 8,
                 ..Slot::default()
             };
             *self.touched += 1;
         }
         s
+    }
+    fn next_pass(&mut self) {
+        // A fresh epoch; on wrap-around, clear once so no old stamp matches.
+        *self.epoch += 1;
+        if *self.epoch >= EPOCHS {
+            self.slots.fill(Slot::default());
+            *self.epoch = 1;
+        }
     }
 }
 
@@ -690,31 +703,12 @@ impl SketchWorkspace {
             self.slots.resize(map.vertex_slots(), Slot::default());
         }
         let rules = Rules::new(map, opts, core::mem::take(&mut self.forbidden))?;
-        let mut found = None;
-        for &avoid in passes(opts) {
-            // A fresh epoch per pass; on wrap-around, clear once so no old stamp matches.
-            self.epoch += 1;
-            if self.epoch >= EPOCHS {
-                self.slots.fill(Slot::default());
-                self.epoch = 1;
-            }
-            let mut store = ArrayStore {
-                slots: &mut self.slots,
-                epoch: self.epoch,
-                touched: &mut self.explored,
-            };
-            let cx = Ctx {
-                map,
-                from,
-                to,
-                rules: &rules,
-                avoid,
-            };
-            found = search(&cx, opts.guide.as_ref(), &mut store, &mut self.bufs);
-            if found.is_some() {
-                break;
-            }
-        }
+        let mut store = ArrayStore {
+            slots: &mut self.slots,
+            epoch: &mut self.epoch,
+            touched: &mut self.explored,
+        };
+        let found = run_passes(map, from, to, opts, &rules, &mut store, &mut self.bufs);
         self.forbidden = rules.forbidden;
         found.ok_or(SketchError::NoPath { from, to })
     }
@@ -790,21 +784,41 @@ pub fn sketch(
 ) -> Result<Path, SketchError> {
     check_ends(map, from, to)?;
     let rules = Rules::new(map, opts, Vec::new())?;
-    let mut bufs = Buffers::default();
-    for &avoid in passes(opts) {
-        let mut store = HashStore(HashMap::with_capacity(256));
+    let mut store = HashStore(HashMap::with_capacity(256));
+    run_passes(
+        map,
+        from,
+        to,
+        opts,
+        &rules,
+        &mut store,
+        &mut Buffers::default(),
+    )
+    .ok_or(SketchError::NoPath { from, to })
+}
+
+/// The search passes of one sketch (avoiding the boundary first when asked), each on a
+/// fresh pass of `store`: the first path found.
+fn run_passes<S: Store>(
+    map: &Map,
+    from: Vert,
+    to: Vert,
+    opts: &SketchOptions<'_>,
+    rules: &Rules<'_>,
+    store: &mut S,
+    bufs: &mut Buffers,
+) -> Option<Path> {
+    passes(opts).iter().find_map(|&avoid| {
+        store.next_pass();
         let cx = Ctx {
             map,
             from,
             to,
-            rules: &rules,
+            rules,
             avoid,
         };
-        if let Some(p) = search(&cx, opts.guide.as_ref(), &mut store, &mut bufs) {
-            return Ok(p);
-        }
-    }
-    Err(SketchError::NoPath { from, to })
+        search(&cx, opts.guide.as_ref(), store, bufs)
+    })
 }
 
 /// Dijkstra heap entry: smallest (distance, vertex) first.
