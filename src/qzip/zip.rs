@@ -220,6 +220,11 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
     };
     let (from, to) = (report.moved_to(), report.moved_from());
     let image = image_options(edited, report, from, to);
+    // The first image restores in most cases: the others are built only when it does not.
+    let first = sketch(edited, from, to, &image).ok();
+    if let Some(r) = first.clone().and_then(&mut try_path) {
+        return Some(r);
+    }
     // Singularities other than the pair: the forward path passed them on one side; a
     // reverse path through one (where the forward path did not run) reads the compass
     // there by the counting rule and may take the other side.
@@ -233,21 +238,24 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
         ..o.clone()
     };
     let plain = SketchOptions::default();
-    let candidates = [
-        sketch(edited, from, to, &image).ok(),
-        sketch(edited, from, to, &block(&image)).ok(),
-        literal_image(edited, report, &plain),
-        sketch(edited, from, to, &block(&plain)).ok(),
-        literal_image(edited, report, &block(&image)),
-        sketch(edited, from, to, &plain).ok(),
+    let others: [&dyn Fn() -> Option<Path>; 5] = [
+        &|| sketch(edited, from, to, &block(&image)).ok(),
+        &|| literal_image(edited, report, &plain),
+        &|| sketch(edited, from, to, &block(&plain)).ok(),
+        &|| literal_image(edited, report, &block(&image)),
+        &|| sketch(edited, from, to, &plain).ok(),
     ];
-    for c in candidates.iter().flatten() {
-        if let Some(r) = try_path(c.clone()) {
-            return Some(r);
+    let mut candidates: Vec<Path> = first.into_iter().collect();
+    for make in others {
+        if let Some(c) = make() {
+            if let Some(r) = try_path(c.clone()) {
+                return Some(r);
+            }
+            candidates.push(c);
         }
     }
     // Then each candidate with the singularities it runs through passed on either side.
-    for c in candidates.iter().flatten() {
+    for c in &candidates {
         for p in pushed_off(edited, c) {
             if let Some(r) = try_path(p) {
                 return Some(r);
@@ -257,7 +265,7 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
     // Last, a bounded search near the image: simple paths inside the scar, the surviving
     // path vertices and their one-rings, at most two edges longer than the shortest
     // candidate (or as long as the surgery), those keeping most to the surviving path first.
-    let shortest = candidates.iter().flatten().map(Path::len).min()?;
+    let shortest = candidates.iter().map(Path::len).min()?;
     let forward = report.surgery().steps().len().saturating_sub(1);
     near_paths(edited, report, (shortest + 2).max(forward), 256)
         .into_iter()
