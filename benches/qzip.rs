@@ -14,6 +14,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use zipmesh::qzip::{self, SketchOptions, Tag};
+use zipmesh::Map;
 
 fn qzip_torus(c: &mut Criterion) {
     let mut g = c.benchmark_group("qzip (torus 1000, 16 pairs)");
@@ -48,15 +49,10 @@ fn qzip_torus(c: &mut Criterion) {
             format!("zip {len} edges (sketch+plan+prepare+execute)"),
             |b| {
                 b.iter_custom(|iters| {
-                    let mut total = Duration::ZERO;
-                    for i in 0..iters as usize {
+                    timed_zips(iters, &mut map, |m, i| {
                         let (a, v) = ends[i % ends.len()];
-                        let t = Instant::now();
-                        let r = qzip::zip(&mut map, a, v, Tag::LC, &opts).expect("realizable");
-                        total += t.elapsed();
-                        r.undo(&mut map).expect("undo");
-                    }
-                    total
+                        qzip::zip(m, a, v, Tag::LC, &opts)
+                    })
                 })
             },
         );
@@ -64,15 +60,9 @@ fn qzip_torus(c: &mut Criterion) {
             format!("zip_along {len} edges (plan+prepare+execute)"),
             |b| {
                 b.iter_custom(|iters| {
-                    let mut total = Duration::ZERO;
-                    for i in 0..iters as usize {
-                        let p = &paths[i % paths.len()];
-                        let t = Instant::now();
-                        let r = qzip::zip_along(&mut map, p, Tag::LC).expect("realizable");
-                        total += t.elapsed();
-                        r.undo(&mut map).expect("undo");
-                    }
-                    total
+                    timed_zips(iters, &mut map, |m, i| {
+                        qzip::zip_along(m, &paths[i % paths.len()], Tag::LC)
+                    })
                 })
             },
         );
@@ -110,22 +100,33 @@ fn qzip_torus(c: &mut Criterion) {
                 format!("zip {name} {len} edges (workspace sketch+plan+prepare+execute)"),
                 |b| {
                     b.iter_custom(|iters| {
-                        let mut total = Duration::ZERO;
-                        for i in 0..iters as usize {
+                        timed_zips(iters, &mut map, |m, i| {
                             let (a, v) = ends[i % ends.len()];
-                            let t = Instant::now();
-                            let p = ws.sketch(&map, a, v, o).expect("a path");
-                            let r = qzip::zip_along(&mut map, &p, Tag::LC).expect("realizable");
-                            total += t.elapsed();
-                            r.undo(&mut map).expect("undo");
-                        }
-                        total
+                            qzip::zip_with(&mut ws, m, a, v, Tag::LC, o)
+                        })
                     })
                 },
             );
         }
     }
     g.finish();
+}
+
+/// Runs `iters` Q-zips (`zip(map, i)`), timing only the Q-zip; each is undone outside the
+/// clock so every call sees the same map.
+fn timed_zips(
+    iters: u64,
+    map: &mut Map,
+    mut zip: impl FnMut(&mut Map, usize) -> Result<qzip::ZipReport, qzip::QzipError>,
+) -> Duration {
+    let mut total = Duration::ZERO;
+    for i in 0..iters as usize {
+        let t = Instant::now();
+        let r = zip(map, i).expect("realizable");
+        total += t.elapsed();
+        r.undo(map).expect("undo");
+    }
+    total
 }
 
 criterion_group!(benches, qzip_torus);

@@ -9,7 +9,7 @@
 //! Peer programs print the same format so that one run can compare them. Operator rows
 //! (issue 3) give ns per attempted operation on 100,000 random darts, refusals included;
 //! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
-//! on the same N x N torus (at least 128 x 128) and on a real mesh; see `qzip_rows`. With the
+//! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths) and on a real mesh; see `qzip_rows`. With the
 //! third argument `qzip`, only the Q-zip rows are run.
 
 use std::time::Instant;
@@ -119,6 +119,29 @@ fn measure_zips<C>(
     (times[times.len() / 2], times[0], times[times.len() - 1])
 }
 
+/// Times `sketch` over every pair, `rounds` times over, and prints its row (microseconds per
+/// sketch).
+fn sketch_row(
+    name: &str,
+    reps: usize,
+    rounds: usize,
+    ends: &[(Vert, Vert)],
+    mut sketch: impl FnMut(Vert, Vert) -> qzip::Path,
+) {
+    let t = measure(
+        reps,
+        || (),
+        |_| {
+            for _ in 0..rounds {
+                for &(a, b) in ends {
+                    std::hint::black_box(sketch(a, b));
+                }
+            }
+        },
+    );
+    report("quad", name, t, "us/qzip", ends.len() * rounds, reps);
+}
+
 /// Q-zip rows (issue 4), microseconds per Q-zip, undo not timed (see `measure_zips`):
 ///
 /// * `qzip{L}_{TAG}`: the full Q-zip (`qzip::zip`: sketch, plan, prepare, execute) of a v5
@@ -141,9 +164,11 @@ fn measure_zips<C>(
 fn qzip_rows(n: usize, reps: usize) {
     let opts = SketchOptions::default();
     for (len, rounds) in [(7usize, 32usize), (100, 2)] {
-        let (mesh, ends) = qzip_torus::torus_mesh_with_pairs(n.max(128), 16, len);
+        // At least 128, and wide enough that the row is the one shortest way round.
+        let n = n.max(128).max(2 * len + 21);
+        let (mesh, ends) = qzip_torus::torus_mesh_with_pairs(n, 16, len);
         let bound = qzip::max_edge_length(&mesh);
-        let (flat, flat_bound) = qzip_torus::flat_layout(n.max(128), &mesh);
+        let (flat, flat_bound) = qzip_torus::flat_layout(n, &mesh);
         let zipmesh::Mesh { mut map, positions } = mesh;
         let guided = SketchOptions {
             guide: Some(qzip::Guide::new(&positions, bound)),
@@ -191,25 +216,9 @@ fn qzip_rows(n: usize, reps: usize) {
                 reps,
             );
         }
-        let t = measure(
-            reps,
-            || (),
-            |_| {
-                for _ in 0..rounds {
-                    for &(a, b) in &ends {
-                        std::hint::black_box(qzip::sketch(&map, a, b, &opts).expect("a path"));
-                    }
-                }
-            },
-        );
-        report(
-            "quad",
-            &format!("qzip{len}_sketch"),
-            t,
-            "us/qzip",
-            ends.len() * rounds,
-            reps,
-        );
+        sketch_row(&format!("qzip{len}_sketch"), reps, rounds, &ends, |a, b| {
+            qzip::sketch(&map, a, b, &opts).expect("a path")
+        });
         // The fast sketches give the same paths; count what each explores.
         let mut explored = [0usize; 3];
         for (&(a, b), p) in ends.iter().zip(&paths) {
@@ -220,24 +229,12 @@ fn qzip_rows(n: usize, reps: usize) {
         }
         let fast = [(&opts, "ws"), (&guided, "guided"), (&layout, "layout")];
         for (k, &(o, name)) in fast.iter().enumerate() {
-            let t = measure(
-                reps,
-                || (),
-                |_| {
-                    for _ in 0..rounds {
-                        for &(a, b) in &ends {
-                            std::hint::black_box(ws.sketch(&map, a, b, o).expect("a path"));
-                        }
-                    }
-                },
-            );
-            report(
-                "quad",
+            sketch_row(
                 &format!("qzip{len}_sketch_{name}"),
-                t,
-                "us/qzip",
-                ends.len() * rounds,
                 reps,
+                rounds,
+                &ends,
+                |a, b| ws.sketch(&map, a, b, o).expect("a path"),
             );
             println!(
                 "# qzip{len}_sketch_{name}: {:.0} vertices explored per sketch",
@@ -249,8 +246,7 @@ fn qzip_rows(n: usize, reps: usize) {
             .flat_map(|t| [(t, (&guided, "guided")), (t, (&layout, "layout"))])
         {
             let t = measure_zips(reps, &mut map, &ends, rounds, |m, &(a, b)| {
-                let p = ws.sketch(m, a, b, o).expect("a path");
-                qzip::zip_along(m, &p, tag).expect("realizable")
+                qzip::zip_with(&mut ws, m, a, b, tag, o).expect("realizable")
             });
             report(
                 "quad",

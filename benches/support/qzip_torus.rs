@@ -26,7 +26,8 @@ fn split(map: &mut Map, v: Vert, a: Vert, b: Vert) {
 /// and the two far ends of the split edges v5s (a cluster of four). Cluster A is the split of
 /// `(x, y)`, cluster B the split of `(x + len + 1, y)`; the pair is A's east v5 `(x + 1, y)`
 /// and B's v3 that keeps the handle of `(x + len + 1, y)`. The shortest path between them is
-/// the straight row, `len` edges, passing through B's west v5 just before its end.
+/// the straight row, `len` edges, passing through B's west v5 just before its end (needs
+/// `n > 2 len + 20`, so the way round the other side is longer).
 #[allow(dead_code)] // each includer uses one of the two forms
 pub fn torus_with_pairs(n: usize, pairs: usize, len: usize) -> (Map, Vec<(Vert, Vert)>) {
     let (mesh, ends) = torus_mesh_with_pairs(n, pairs, len);
@@ -38,8 +39,9 @@ pub fn torus_with_pairs(n: usize, pairs: usize, len: usize) -> (Map, Vec<(Vert, 
 /// edge is longer than on the plain torus).
 #[allow(dead_code)]
 pub fn torus_mesh_with_pairs(n: usize, pairs: usize, len: usize) -> (Mesh, Vec<(Vert, Vert)>) {
+    // The row must be the only shortest way round: the other way is n - len edges.
     assert!(
-        len + 20 < n && pairs > 0 && pairs * 8 <= n,
+        2 * len + 20 < n && pairs > 0 && pairs * 8 <= n,
         "torus too small"
     );
     let mut mesh = gen::torus_grid(n, n);
