@@ -9,8 +9,9 @@
 //! Peer programs print the same format so that one run can compare them. Operator rows
 //! (issue 3) give ns per attempted operation on 100,000 random darts, refusals included;
 //! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
-//! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths) and on a real mesh; see `qzip_rows`. With the
-//! third argument `qzip`, only the Q-zip rows are run.
+//! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
+//! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
+//! are run.
 
 use std::time::Instant;
 use zipmesh::invariants::canonical::CanonicalCode;
