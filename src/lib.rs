@@ -47,7 +47,9 @@ pub mod qzip;
 pub mod rng;
 
 pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
-pub use map::{BuildError, BuildReport, Compaction, Dart, Face, Map, RawError, Vert, Violation};
+pub use map::{
+    BuildError, BuildReport, Compaction, Dart, Edge, Face, Map, RawError, Vert, Violation,
+};
 pub use mesh::Mesh;
 
 /// The README's Rust examples, compiled and run as doctests.

@@ -281,7 +281,7 @@ proptest! {
         }
         for d in m.map.darts().filter(|d| d.index() % 2 == 0) {
             let sides = usize::from(m.map.face(d).is_some()) + usize::from(m.map.face(d.twin()).is_some());
-            prop_assert_eq!(s.map.valence(Vert::new((vs + d.edge()) as u32)), 2 + sides);
+            prop_assert_eq!(s.map.valence(Vert::new((vs + d.edge().index()) as u32)), 2 + sides);
         }
         for f in m.map.faces() {
             let c = Vert::new((vs + es + f.index()) as u32);

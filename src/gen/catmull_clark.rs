@@ -79,7 +79,7 @@ impl Points {
         let mut edge = vec![DVec3::ZERO; map.dart_slots() / 2];
         for d in map.darts().filter(|d| d.index() % 2 == 0) {
             let (a, b) = (pos(d), pos(d.twin()));
-            edge[d.edge()] = match (fp(map.face(d)), fp(map.face(d.twin()))) {
+            edge[d.edge().index()] = match (fp(map.face(d)), fp(map.face(d.twin()))) {
                 (Some(f), Some(g)) => (a + b + f + g) / 4.0,
                 _ => (a + b) / 2.0,
             };
@@ -137,7 +137,12 @@ fn by_polygons(map: &Map, points: &Points) -> Mesh {
         let mut p = darts.last().copied().unwrap_or(Dart::new(0));
         for &d in &darts {
             let v = map.origin(d).index() as u32;
-            quads.push([v, (vs + d.edge()) as u32, center, (vs + p.edge()) as u32]);
+            quads.push([
+                v,
+                (vs + d.edge().index()) as u32,
+                center,
+                (vs + p.edge().index()) as u32,
+            ]);
             p = d;
         }
     }
@@ -171,8 +176,8 @@ fn by_darts(map: &Map, points: &Points) -> Mesh {
         return Mesh::default();
     }
     let base = 2 * g as u32;
-    let a = |d: Dart| base + 4 * (d.edge() as u32) + 3 * (d.index() as u32 & 1);
-    let b = |d: Dart| base + 4 * (d.edge() as u32) + 2 - (d.index() as u32 & 1);
+    let a = |d: Dart| base + 4 * (d.edge().index() as u32) + 3 * (d.index() as u32 & 1);
+    let b = |d: Dart| base + 4 * (d.edge().index() as u32) + 2 - (d.index() as u32 & 1);
     let s = |d: Dart| 2 * g_of[d.index()];
     let t = |d: Dart| 2 * g_of[d.index()] + 1;
     let mut next = vec![0u32; new_darts];

@@ -1,4 +1,4 @@
-//! Typed 32-bit handles for darts, vertices and faces.
+//! Typed 32-bit handles for darts, edges, vertices and faces.
 
 use core::fmt;
 
@@ -58,6 +58,12 @@ handle!(
     "d"
 );
 handle!(
+    /// An edge: the pair of darts `2e` and `2e + 1` (see [`Edge::dart`]). Per-edge data
+    /// (weights, marks) is indexed by [`Edge::index`], from 0 to [`crate::Map::edge_slots`].
+    Edge,
+    "e"
+);
+handle!(
     /// A vertex.
     Vert,
     "v"
@@ -81,13 +87,31 @@ impl Dart {
         Dart(self.0 ^ 1)
     }
 
-    /// The edge number of this dart (`index / 2`).
+    /// The edge of this dart (its index halved).
     ///
     /// ```
-    /// assert_eq!(zipmesh::Dart::new(5).edge(), 2);
+    /// use zipmesh::{Dart, Edge};
+    /// assert_eq!(Dart::new(5).edge(), Edge::new(2));
+    /// assert_eq!(Dart::new(4).edge(), Dart::new(5).edge());
     /// ```
     #[inline]
-    pub const fn edge(self) -> usize {
-        (self.0 >> 1) as usize
+    pub const fn edge(self) -> Edge {
+        Edge(self.0 >> 1)
+    }
+}
+
+impl Edge {
+    /// The edge's dart on `side` 0 (`2e`) or 1 (`2e + 1`); only the lowest bit of `side`
+    /// counts.
+    ///
+    /// ```
+    /// use zipmesh::{Dart, Edge};
+    /// let e = Edge::new(3);
+    /// assert_eq!((e.dart(0), e.dart(1)), (Dart::new(6), Dart::new(7)));
+    /// assert_eq!(e.dart(1).edge(), e);
+    /// ```
+    #[inline]
+    pub const fn dart(self, side: u32) -> Dart {
+        Dart((self.0 << 1) | (side & 1))
     }
 }

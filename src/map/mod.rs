@@ -15,7 +15,7 @@ mod walk;
 pub use build::{BuildError, BuildReport, MAX_CORNERS};
 pub use check::Violation;
 pub(crate) use handle::NONE;
-pub use handle::{Dart, Face, Vert};
+pub use handle::{Dart, Edge, Face, Vert};
 pub use raw::RawError;
 pub use store::Compaction;
 pub use walk::{FaceDarts, Orbit, VertexDarts};
@@ -122,6 +122,18 @@ impl Map {
         self.next.len()
     }
 
+    /// Number of edge slots, live or dead: every live edge has an index below this, so
+    /// per-edge data of this length covers the map.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert_eq!(map.edge_slots(), 3);
+    /// ```
+    #[inline]
+    pub fn edge_slots(&self) -> usize {
+        self.next.len() / 2
+    }
+
     /// Number of vertex slots, live or dead.
     ///
     /// ```
@@ -156,6 +168,19 @@ impl Map {
     #[inline]
     pub fn is_live_dart(&self, d: Dart) -> bool {
         self.next.get(d.index()).is_some_and(|&n| n != NONE)
+    }
+
+    /// Whether `e` names a live edge of this map.
+    ///
+    /// ```
+    /// use zipmesh::{Edge, Map};
+    /// let map = Map::from_polygons(3, &[[0u32, 1, 2]]).unwrap();
+    /// assert!(map.is_live_edge(Edge::new(2)));
+    /// assert!(!map.is_live_edge(Edge::new(3)));
+    /// ```
+    #[inline]
+    pub fn is_live_edge(&self, e: Edge) -> bool {
+        self.is_live_dart(e.dart(0))
     }
 
     /// Whether `v` names a live vertex of this map.

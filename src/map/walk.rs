@@ -3,7 +3,7 @@
 //! Every walk is bounded by the number of dart slots, so even a foreign or dead handle
 //! cannot make one loop forever.
 
-use super::{Dart, Face, Map, Vert, NONE};
+use super::{Dart, Edge, Face, Map, Vert, NONE};
 
 impl Map {
     /// The dart before `d` around its face or boundary loop.
@@ -155,6 +155,45 @@ impl Map {
         (0..self.next.len() as u32)
             .filter(|&i| self.next[i as usize] != NONE)
             .map(Dart)
+    }
+
+    /// The live edges, in slot order.
+    ///
+    /// ```
+    /// let map = zipmesh::Map::from_polygons(4, &[[0u32, 1, 2, 3]]).unwrap();
+    /// assert_eq!(map.edges().count(), 4);
+    /// ```
+    pub fn edges(&self) -> impl Iterator<Item = Edge> + '_ {
+        (0..self.edge_slots() as u32)
+            .map(Edge)
+            .filter(|&e| self.is_live_edge(e))
+    }
+
+    /// The dart from `p` to `n` when exactly one edge joins them; `None` when there is no
+    /// such edge, several (a multi-edge), or either vertex is not live. The kernel's
+    /// "find half-edge" query; O(valence of `p`).
+    ///
+    /// ```
+    /// use zipmesh::{Map, Vert};
+    /// let map = Map::from_polygons(4, &[[0u32, 1, 2, 3]]).unwrap();
+    /// let d = map.dart_between(Vert::new(1), Vert::new(2)).unwrap();
+    /// assert_eq!((map.origin(d), map.dest(d)), (Vert::new(1), Vert::new(2)));
+    /// assert_eq!(map.dart_between(Vert::new(0), Vert::new(2)), None);
+    /// ```
+    pub fn dart_between(&self, p: Vert, n: Vert) -> Option<Dart> {
+        if !self.is_live_vertex(p) || !self.is_live_vertex(n) {
+            return None;
+        }
+        let mut found = None;
+        for d in self.vertex_darts(p) {
+            if self.dest(d) == n {
+                if found.is_some() {
+                    return None;
+                }
+                found = Some(d);
+            }
+        }
+        found
     }
 
     /// The live vertices, in slot order.

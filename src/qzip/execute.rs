@@ -32,7 +32,7 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::Tag;
-use super::prepare::{bounds_one_quad, dart_between, EndRule, StartRule, Surgery};
+use super::prepare::{bounds_one_quad, EndRule, StartRule, Surgery};
 use crate::invariants::{regular_valence, MeshKind};
 use crate::ops::quad::{
     quad_collapse, remove_valence2, split_high_valence, vertex_split, QuadRecord,
@@ -552,7 +552,9 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
             cur = steps[index].vertex;
             continue;
         };
-        let e = dart_between(map, p, n).ok_or(ZipError::StalePlan { index })?;
+        let e = map
+            .dart_between(p, n)
+            .ok_or(ZipError::StalePlan { index })?;
         let refused = |refusal| ZipError::Refused {
             index,
             vertex: p,
@@ -561,7 +563,9 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
         };
         if tag.is_split() {
             let g = guide.ok_or(ZipError::StalePlan { index })?;
-            let sg = dart_between(map, p, g).ok_or(ZipError::StalePlan { index })?;
+            let sg = map
+                .dart_between(p, g)
+                .ok_or(ZipError::StalePlan { index })?;
             for x in [p, g, n] {
                 touched.touch(map, x);
             }

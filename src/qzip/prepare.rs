@@ -332,30 +332,13 @@ pub(crate) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regul
             && (!regular || (map.valence(w) == 4 && !map.is_boundary_vertex(w)))
     };
     ring[1..].iter().all(|&w| ok(w))
-        && dart_between(map, ring[0], ring[1]).is_some_and(|d| {
+        && map.dart_between(ring[0], ring[1]).is_some_and(|d| {
             [d, d.twin()].iter().any(|&x| {
                 map.face(x).is_some_and(|f| {
                     map.degree(f) == 4 && map.face_darts(f).all(|y| ring.contains(&map.origin(y)))
                 })
             })
         })
-}
-
-/// The unique dart from `p` to `n`, if there is exactly one.
-pub(crate) fn dart_between(map: &Map, p: Vert, n: Vert) -> Option<Dart> {
-    if !map.is_live_vertex(p) || !map.is_live_vertex(n) {
-        return None;
-    }
-    let mut found = None;
-    for d in map.vertex_darts(p) {
-        if map.dest(d) == n {
-            if found.is_some() {
-                return None;
-            }
-            found = Some(d);
-        }
-    }
-    found
 }
 
 /// The two corners of the quad on the `left` (or right) of `d: a -> b` other than `a` and
@@ -450,7 +433,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     let mut noop: Vec<bool> = alloc::vec![false; hand.len()];
     let initial = plan.initial();
     let (from, to) = (v[0], v[v.len() - 1]);
-    let edge = |a: Vert, b: Vert| dart_between(map, a, b).ok_or(PrepareError::StalePlan);
+    let edge = |a: Vert, b: Vert| map.dart_between(a, b).ok_or(PrepareError::StalePlan);
 
     let start = match (end_valence(map, 0, from)?, initial.is_split()) {
         (3, true) => {
@@ -492,7 +475,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     if v.len() >= 4 {
         let m = v.len() - 1;
         let (a, b, c, e) = (v[m - 3], v[m - 2], v[m - 1], v[m]);
-        let quad = dart_between(map, a, e).is_some_and(|d| {
+        let quad = map.dart_between(a, e).is_some_and(|d| {
             [d, d.twin()].iter().any(|&x| {
                 map.face(x).is_some_and(|f| {
                     map.degree(f) == 4
@@ -574,7 +557,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
         && hand.first().is_some_and(|h| h.is_split())
         && noop.first() == Some(&false)
         && !v.contains(&from)
-        && dart_between(map, from, v[0]).is_some()
+        && map.dart_between(from, v[0]).is_some()
     {
         v.insert(0, from);
         hand.insert(0, hand[0]);

@@ -6,7 +6,7 @@
 
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::ops::Refusal;
-use zipmesh::{Dart, Face, Map, Vert};
+use zipmesh::{Dart, Edge, Face, Map, Vert};
 
 /// One operator with its arguments, and the record of an applied one: the library's.
 pub use zipmesh::ops::tri::{TriOp as Op, TriRecord as Rec};
@@ -81,7 +81,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
     };
     let val = |v: Vert| vb[v.index()].expect("live") as i64;
     // Elements that the operator removes (checked dead after; all others stay live).
-    let mut dead_edges: Vec<usize> = Vec::new();
+    let mut dead_edges: Vec<Edge> = Vec::new();
     let mut dead_verts: Vec<Vert> = Vec::new();
     let mut dead_faces: Vec<Face> = Vec::new();
     let dc: [i64; 3];

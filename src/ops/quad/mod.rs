@@ -397,8 +397,8 @@ impl Slots {
         let fe = &map.free_edges;
         let n = fe.len();
         if n < 2
-            || fe[n - 2] as usize != edges[0].edge()
-            || fe[n - 1] as usize != edges[1].edge()
+            || fe[n - 2] as usize != edges[0].edge().index()
+            || fe[n - 1] as usize != edges[1].edge().index()
             || map.free_verts.last() != Some(&vert.0)
             || map.free_faces.last() != Some(&face.0)
         {
@@ -414,7 +414,7 @@ impl Slots {
     /// last slots of their arrays.
     fn releasable(&self, map: &Map) -> bool {
         let last_edge = map.next.len() / 2;
-        let e = [self.edges[0].edge(), self.edges[1].edge()];
+        let e = [self.edges[0].edge().index(), self.edges[1].edge().index()];
         let edges_ok = match (self.appended[0], self.appended[1]) {
             (true, true) => e[0] + 2 == last_edge && e[1] + 1 == last_edge,
             (false, true) => e[1] + 1 == last_edge,
