@@ -55,13 +55,13 @@ fn operators(c: &mut Criterion) {
     });
     let mut q = torus(1000, false);
     g.bench_function("quad collapse", |b| {
-        b.iter(|| quad::quad_collapse(&mut q, next()).map(|r| r.undo(&mut q)))
+        b.iter(|| quad::collapse_quad(&mut q, next()).map(|r| r.undo(&mut q)))
     });
     g.bench_function("quad vertex split", |b| {
         b.iter(|| {
             let d = next();
             let d2 = q.rotate_cw(q.rotate_cw(d));
-            quad::vertex_split(&mut q, d, d2).map(|r| r.undo(&mut q))
+            quad::split_vertex(&mut q, d, d2).map(|r| r.undo(&mut q))
         })
     });
     g.bench_function("quad edge rotation", |b| {
@@ -85,7 +85,7 @@ fn operators(c: &mut Criterion) {
                             .face_darts(f)
                             .find(|&d| q.origin(d) == corner)
                             .expect("corner");
-                        records.push(quad::quad_collapse(&mut q, d).expect("chain collapse"));
+                        records.push(quad::collapse_quad(&mut q, d).expect("chain collapse"));
                     }
                     for r in records.iter().rev() {
                         r.undo(&mut q).expect("restoring split");

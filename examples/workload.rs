@@ -454,10 +454,10 @@ fn main() {
         }),
     ];
     let quad_ops: [(&str, Op); 4] = [
-        ("op_quad_collapse", |m, d| quad::quad_collapse(m, d).is_ok()),
+        ("op_quad_collapse", |m, d| quad::collapse_quad(m, d).is_ok()),
         ("op_vertex_split", |m, d| {
             let d2 = m.rotate_cw(m.rotate_cw(d));
-            quad::vertex_split(m, d, d2).is_ok()
+            quad::split_vertex(m, d, d2).is_ok()
         }),
         ("op_rotate_edge", |m, d| {
             quad::rotate_edge(m, d, quad::Rotation::Clockwise).is_ok()
@@ -497,7 +497,7 @@ fn main() {
                 let Some(d) = m.face_darts(f).find(|&d| m.origin(d) == corner) else {
                     return false;
                 };
-                match quad::quad_collapse(m, d) {
+                match quad::collapse_quad(m, d) {
                     Ok(r) => records.push(r),
                     Err(_) => return false,
                 }

@@ -25,7 +25,7 @@ impl Undo for BrokenCollapse {
 }
 
 fn broken_collapse(map: &mut Map, d: Dart) -> Result<BrokenCollapse, Refusal> {
-    let record = quad::quad_collapse(map, d)?;
+    let record = quad::collapse_quad(map, d)?;
     // The merged vertex keeps the handle of `origin(d)`.
     if map.valence(map.origin(d)) >= 7 {
         Ok(BrokenCollapse(None))

@@ -352,18 +352,18 @@ proptest! {
             let d = random_dart(m, &mut rng, &[]);
             let k = rng.below(m.valence(m.origin(d)));
             let s2 = (0..k).fold(d, |x, _| m.rotate_cw(x));
-            if quad::can_vertex_split(m, d, s2).is_ok() {
+            if quad::can_split_vertex(m, d, s2).is_ok() {
                 let mut x = m.clone();
-                quad::vertex_split(&mut x, d, s2).unwrap();
-                quad::quad_collapse(&mut x, d).unwrap();
+                quad::split_vertex(&mut x, d, s2).unwrap();
+                quad::collapse_quad(&mut x, d).unwrap();
                 prop_assert_eq!(&CanonicalCode::of(&x), &code);
                 splits += 1;
             }
-            if quad::can_quad_collapse(m, d).is_ok() {
+            if quad::can_collapse_quad(m, d).is_ok() {
                 let mut x = m.clone();
-                let r = quad::quad_collapse(&mut x, d).unwrap();
+                let r = quad::collapse_quad(&mut x, d).unwrap();
                 let [to_b, to_d] = r.merged_edges();
-                quad::vertex_split(&mut x, to_b, to_d).unwrap();
+                quad::split_vertex(&mut x, to_b, to_d).unwrap();
                 prop_assert_eq!(x.check(), Ok(()));
                 prop_assert_eq!(&CanonicalCode::of(&x), &code);
                 collapses += 1;

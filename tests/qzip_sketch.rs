@@ -336,7 +336,7 @@ fn workspace_reuse_across_maps_and_edits() {
         let (v, e, w) = (at(i, j), at(i + 1, j), at(i - 1, j));
         let s1 = map.vertex_darts(v).find(|&d| map.dest(d) == e).unwrap();
         let s2 = map.vertex_darts(v).find(|&d| map.dest(d) == w).unwrap();
-        quad::vertex_split(&mut map, s1, s2).unwrap();
+        quad::split_vertex(&mut map, s1, s2).unwrap();
         for t in 0..map.vertex_slots() as u32 {
             let (a, b) = (at(1, 1), Vert::new(t));
             if a == b || !map.is_live_vertex(b) {

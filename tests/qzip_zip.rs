@@ -168,7 +168,7 @@ fn refusals_leave_the_map_untouched() {
     let mut map = ico_cc(2);
     let v = map.vertices().find(|&v| map.valence(v) == 4).unwrap();
     let d = map.vertex_dart(v);
-    zipmesh::ops::quad::quad_collapse(&mut map, d).unwrap();
+    zipmesh::ops::quad::collapse_quad(&mut map, d).unwrap();
     assert_eq!(map.valence(v), 6);
     let before = map.clone();
     let (x, y) = (
@@ -206,7 +206,7 @@ proptest! {
         let s1 = map2.vertex_dart(Vert::new(a2));
         let s2 = map2.rotate_cw(map2.rotate_cw(s1));
         prop_assume!(map2.valence(Vert::new(a2)) == 4);
-        prop_assume!(zipmesh::ops::quad::vertex_split(&mut map2, s1, s2).is_ok());
+        prop_assume!(zipmesh::ops::quad::split_vertex(&mut map2, s1, s2).is_ok());
         let sing = singular(&map2);
         let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
         prop_assume!(a != b);

@@ -16,7 +16,7 @@ fn split(map: &mut Map, v: Vert, a: Vert, b: Vert) {
     let (Some(s1), Some(s2)) = (s1, s2) else {
         panic!("({}) is not next to both neighbours", v.index());
     };
-    quad::vertex_split(map, s1, s2).expect("split of a regular vertex along opposite edges");
+    quad::split_vertex(map, s1, s2).expect("split of a regular vertex along opposite edges");
 }
 
 /// The `n` x `n` torus with `pairs` singularity pairs, each on its own row (rows `n / pairs`

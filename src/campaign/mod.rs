@@ -23,7 +23,7 @@
 //!     let mut map = case.mesh.map.clone();
 //!     let mut checks = 0;
 //!     for d in case.sites(4) {
-//!         if let Ok(rec) = zipmesh::ops::quad::quad_collapse(&mut map, d) {
+//!         if let Ok(rec) = zipmesh::ops::quad::collapse_quad(&mut map, d) {
 //!             if rec.undo(&mut map).is_err() || map != case.mesh.map {
 //!                 return Outcome::fail("undo differs", Some(case.mesh.map.origin(d)));
 //!             }

@@ -231,7 +231,7 @@ pub fn operators() -> Vec<Property> {
         Property::new(
             "quad-collapse",
             "quad collapse: V-1 E-2 F-1, merged valence val(a)+val(c)-2, b and d -1; exact undo",
-            quad_collapse
+            collapse_quad
         ),
         Property::new(
             "quad-vertex-split",
@@ -583,7 +583,7 @@ fn cw(map: &Map, d: Dart, k: usize) -> Dart {
     (0..k).fold(d, |x, _| map.rotate_cw(x))
 }
 
-fn quad_collapse(case: &Case) -> Outcome {
+fn collapse_quad(case: &Case) -> Outcome {
     at_sites(case, 1, 4, |before, work, d, _| {
         let (a, b) = (before.origin(d), before.dest(d));
         let h2 = before.next(before.next(d));
@@ -595,8 +595,8 @@ fn quad_collapse(case: &Case) -> Outcome {
             before.valence(dd),
         );
         let counts = vef(before);
-        let can = quad::can_quad_collapse(work, d);
-        let res = quad::quad_collapse(work, d);
+        let can = quad::can_collapse_quad(work, d);
+        let res = quad::collapse_quad(work, d);
         settle(before, work, can, res, |m| {
             deltas(counts, m, [-1, -2, -1])?;
             valence_is(m, a, (va + vc).saturating_sub(2), "the merged vertex")?;
@@ -618,8 +618,8 @@ fn quad_vertex_split(case: &Case) -> Outcome {
         let (a, b) = (before.dest(s1), before.dest(s2));
         let (va, vb) = (before.valence(a), before.valence(b));
         let counts = vef(before);
-        let can = quad::can_vertex_split(work, s1, s2);
-        let res = quad::vertex_split(work, s1, s2);
+        let can = quad::can_split_vertex(work, s1, s2);
+        let res = quad::split_vertex(work, s1, s2);
         settle(before, work, can, res, |m| {
             deltas(counts, m, [1, 2, 1])?;
             valence_is(m, w, k + 1, "the split vertex")?;

@@ -100,7 +100,7 @@ impl std::error::Error for Refusal {}
 /// let mut map = gen::torus_grid(5, 5).map;
 /// let before = map.clone();
 /// let mut stack: Vec<Box<dyn Undo>> = Vec::new();
-/// stack.push(Box::new(quad::quad_collapse(&mut map, Dart::new(0)).unwrap()));
+/// stack.push(Box::new(quad::collapse_quad(&mut map, Dart::new(0)).unwrap()));
 /// stack.push(Box::new(quad::insert_doublet(&mut map, Dart::new(40)).unwrap()));
 /// while let Some(r) = stack.pop() {
 ///     r.undo(&mut map).unwrap();

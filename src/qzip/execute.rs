@@ -35,7 +35,7 @@ use super::compass::Tag;
 use super::prepare::{bounds_one_quad, EndRule, StartRule, Surgery};
 use crate::invariants::{regular_valence, MeshKind};
 use crate::ops::quad::{
-    quad_collapse, remove_valence2, split_high_valence, vertex_split, QuadRecord,
+    collapse_quad, remove_valence2, split_high_valence, split_vertex, QuadRecord,
 };
 use crate::ops::Refusal;
 use crate::{Dart, Face, Map, Vert};
@@ -569,7 +569,7 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
             for x in [p, g, n] {
                 touched.touch(map, x);
             }
-            let r = vertex_split(map, sg, e).map_err(refused)?;
+            let r = split_vertex(map, sg, e).map_err(refused)?;
             splits += 1;
             let (left, right) = (r.kept(), r.created());
             touched.born(right);
@@ -629,7 +629,7 @@ fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipRe
             for x in [p, n, far, removed] {
                 touched.touch(map, x);
             }
-            let r = quad_collapse(map, d).map_err(refused)?;
+            let r = collapse_quad(map, d).map_err(refused)?;
             collapses += 1;
             if from_cands.is_none() {
                 from_cands = Some(match s.start_rule() {

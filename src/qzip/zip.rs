@@ -640,7 +640,7 @@ fn place_created(mesh: &mut Mesh, records: &[QuadRecord], old_len: usize) -> Vec
 /// use zipmesh::{gen, ops::quad, Dart};
 /// use zipmesh::qzip::mesh_preprocess;
 /// let mut mesh = gen::torus_grid(8, 8);
-/// quad::quad_collapse(&mut mesh.map, Dart::new(0)).unwrap();
+/// quad::collapse_quad(&mut mesh.map, Dart::new(0)).unwrap();
 /// mesh_preprocess(&mut mesh).unwrap();
 /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
 /// ```
@@ -713,7 +713,7 @@ impl Preprocessed {
 /// use zipmesh::{gen, ops::quad, Dart};
 /// use zipmesh::qzip::preprocess;
 /// let mut map = gen::torus_grid(8, 8).map;
-/// quad::quad_collapse(&mut map, Dart::new(0)).unwrap(); // makes a valence 6
+/// quad::collapse_quad(&mut map, Dart::new(0)).unwrap(); // makes a valence 6
 /// let before = map.clone();
 /// let p = preprocess(&mut map).unwrap();
 /// assert!(map.vertices().all(|v| (3..=5).contains(&map.valence(v))));

@@ -28,7 +28,7 @@ pub fn torus_with_splits(n: usize, at: &[u32]) -> Map {
     for &a in at {
         let s1 = map.vertex_dart(Vert::new(a));
         let s2 = map.rotate_cw(map.rotate_cw(s1));
-        quad::vertex_split(&mut map, s1, s2).expect("split of a regular vertex");
+        quad::split_vertex(&mut map, s1, s2).expect("split of a regular vertex");
     }
     map
 }

@@ -34,7 +34,7 @@ fn with_splits(mut map: Map, k: u8, bytes: &mut Bytes) -> Map {
         let d = Dart::new(u32::from(bytes.u16()) % map.dart_slots().max(1) as u32);
         if map.is_live_dart(d) {
             let d2 = map.rotate_cw(map.rotate_cw(d));
-            let _ = quad::vertex_split(&mut map, d, d2);
+            let _ = quad::split_vertex(&mut map, d, d2);
         }
     }
     map

@@ -120,18 +120,18 @@ fn collapse_raw(map: &mut Map, p: &CollapsePlan) {
     replace_fdart(map, g3, o3, h2);
 }
 
-/// Checks whether [`quad_collapse`] applies to `d`; changes nothing.
+/// Checks whether [`collapse_quad`] applies to `d`; changes nothing.
 ///
 /// ```
 /// use zipmesh::{gen, ops::{quad, Refusal}, Dart};
 /// let torus = gen::torus_grid(4, 4).map;
-/// assert_eq!(quad::can_quad_collapse(&torus, Dart::new(0)), Ok(()));
+/// assert_eq!(quad::can_collapse_quad(&torus, Dart::new(0)), Ok(()));
 /// // On a 1 x 1 grid every corner is on the boundary.
 /// let square = gen::grid(1, 1).map;
 /// let d = square.face_dart(zipmesh::Face::new(0));
-/// assert_eq!(quad::can_quad_collapse(&square, d), Err(Refusal::BoundaryPinch));
+/// assert_eq!(quad::can_collapse_quad(&square, d), Err(Refusal::BoundaryPinch));
 /// ```
-pub fn can_quad_collapse(map: &Map, d: Dart) -> Result<(), Refusal> {
+pub fn can_collapse_quad(map: &Map, d: Dart) -> Result<(), Refusal> {
     plan_collapse(map, d).map(|_| ())
 }
 
@@ -184,14 +184,14 @@ pub fn can_quad_collapse(map: &Map, d: Dart) -> Result<(), Refusal> {
 /// let before = map.clone();
 /// let d = Dart::new(0);
 /// let (a, c) = (map.origin(d), map.origin(map.next(map.next(d))));
-/// let rec = quad::quad_collapse(&mut map, d).unwrap();
+/// let rec = quad::collapse_quad(&mut map, d).unwrap();
 /// assert_eq!((rec.kept(), rec.removed()), (a, c));
 /// assert_eq!(map.valence(a), 4 + 4 - 2);
 /// assert_eq!(map.num_vertices(), before.num_vertices() - 1);
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn quad_collapse(map: &mut Map, d: Dart) -> Result<QuadCollapse, Refusal> {
+pub fn collapse_quad(map: &mut Map, d: Dart) -> Result<QuadCollapse, Refusal> {
     let p = plan_collapse(map, d)?;
     let [h0, h1, _, h3] = p.h;
     let face = map.face(h0).unwrap_or(Face(NONE));
@@ -215,7 +215,7 @@ pub fn quad_collapse(map: &mut Map, d: Dart) -> Result<QuadCollapse, Refusal> {
     Ok(rec)
 }
 
-/// The record of a [`quad_collapse`]: what was merged, and everything its exact undo needs.
+/// The record of a [`collapse_quad`]: what was merged, and everything its exact undo needs.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct QuadCollapse {
     h: [Dart; 4],
@@ -234,7 +234,7 @@ impl QuadCollapse {
     /// use zipmesh::{gen, ops::quad, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let a = map.origin(Dart::new(0));
-    /// assert_eq!(quad::quad_collapse(&mut map, Dart::new(0)).unwrap().kept(), a);
+    /// assert_eq!(quad::collapse_quad(&mut map, Dart::new(0)).unwrap().kept(), a);
     /// ```
     pub fn kept(&self) -> Vert {
         self.v[0]
@@ -245,7 +245,7 @@ impl QuadCollapse {
     /// ```
     /// use zipmesh::{gen, ops::quad, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
-    /// let r = quad::quad_collapse(&mut map, Dart::new(0)).unwrap();
+    /// let r = quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
     /// assert!(!map.is_live_vertex(r.removed()));
     /// ```
     pub fn removed(&self) -> Vert {
@@ -258,7 +258,7 @@ impl QuadCollapse {
     /// ```
     /// use zipmesh::{gen, ops::quad, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
-    /// let r = quad::quad_collapse(&mut map, Dart::new(0)).unwrap();
+    /// let r = quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
     /// let [to_b, to_d] = r.merged_edges();
     /// assert_eq!((map.origin(to_b), map.origin(to_d)), (r.kept(), r.kept()));
     /// ```
@@ -272,7 +272,7 @@ impl QuadCollapse {
     /// use zipmesh::{gen, ops::quad, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let f = map.face(Dart::new(0)).unwrap();
-    /// assert_eq!(quad::quad_collapse(&mut map, Dart::new(0)).unwrap().face(), f);
+    /// assert_eq!(quad::collapse_quad(&mut map, Dart::new(0)).unwrap().face(), f);
     /// ```
     pub fn face(&self) -> Face {
         self.face
@@ -291,7 +291,7 @@ impl QuadCollapse {
     /// use zipmesh::{gen, ops::{quad, Refusal}, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let before = map.clone();
-    /// let r = quad::quad_collapse(&mut map, Dart::new(0)).unwrap();
+    /// let r = quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
     /// r.clone().undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// assert_eq!(r.undo(&mut map), Err(Refusal::StaleRecord));
@@ -422,22 +422,22 @@ fn split_raw(map: &mut Map, p: &SplitPlan, h1: Dart, h3: Dart, c: Vert, f: Face)
     map.vdart[c.index()] = rc.0;
 }
 
-/// Checks whether [`vertex_split`] applies to the separators `s1`, `s2`; changes nothing.
+/// Checks whether [`split_vertex`] applies to the separators `s1`, `s2`; changes nothing.
 ///
 /// ```
 /// use zipmesh::{gen, ops::{quad, Refusal}, Vert};
 /// let map = gen::torus_grid(4, 4).map;
 /// let s1 = map.vertex_dart(Vert::new(5));
 /// let s2 = map.rotate_cw(map.rotate_cw(s1));
-/// assert_eq!(quad::can_vertex_split(&map, s1, s2), Ok(()));
-/// assert_eq!(quad::can_vertex_split(&map, s1, s1), Err(Refusal::BadArguments));
+/// assert_eq!(quad::can_split_vertex(&map, s1, s2), Ok(()));
+/// assert_eq!(quad::can_split_vertex(&map, s1, s1), Err(Refusal::BadArguments));
 /// ```
-pub fn can_vertex_split(map: &Map, s1: Dart, s2: Dart) -> Result<(), Refusal> {
+pub fn can_split_vertex(map: &Map, s1: Dart, s2: Dart) -> Result<(), Refusal> {
     plan_split(map, s1, s2).map(|_| ())
 }
 
 /// Vertex split: splits `w = origin(s1) = origin(s2)` along its edges `s1: w→a` and
-/// `s2: w→b` into two vertices joined by a new quad; the exact inverse of [`quad_collapse`].
+/// `s2: w→b` into two vertices joined by a new quad; the exact inverse of [`collapse_quad`].
 ///
 /// ```text
 ///           a                       a
@@ -451,7 +451,7 @@ pub fn can_vertex_split(map: &Map, s1: Dart, s2: Dart) -> Result<(), Refusal> {
 /// strictly between `s2` and `s1`. **Which copy keeps the handle:** `w` keeps `s1` and arc₁
 /// and gets a new edge to `b`; the new vertex `w'` gets `s2` and arc₂ and a new edge to `a`.
 /// The new quad, counter-clockwise, is `s1: w→a`, `a→w'`, `s2: w'→b`, `b→w`. This is what
-/// makes the two operators exact inverses: [`quad_collapse`] at `s1` merges `w'` back into
+/// makes the two operators exact inverses: [`collapse_quad`] at `s1` merges `w'` back into
 /// `w`, and a collapse's [`QuadCollapse::merged_edges`] are its inverse split's separators.
 ///
 /// **Deltas:** V +1, E +2, F +1; `val(w) = |arc₁| + 2`, `val(w') = |arc₂| + 2`; `a` and `b`
@@ -481,14 +481,14 @@ pub fn can_vertex_split(map: &Map, s1: Dart, s2: Dart) -> Result<(), Refusal> {
 /// let before = map.clone();
 /// let s1 = map.vertex_dart(Vert::new(5));
 /// let s2 = map.rotate_cw(map.rotate_cw(s1)); // the opposite edge
-/// let rec = quad::vertex_split(&mut map, s1, s2).unwrap();
+/// let rec = quad::split_vertex(&mut map, s1, s2).unwrap();
 /// assert_eq!((map.valence(rec.kept()), map.valence(rec.created())), (3, 3));
 /// assert_eq!(map.num_faces(), before.num_faces() + 1);
 /// assert_eq!(map.check(), Ok(()));
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn vertex_split(map: &mut Map, s1: Dart, s2: Dart) -> Result<VertexSplit, Refusal> {
+pub fn split_vertex(map: &mut Map, s1: Dart, s2: Dart) -> Result<VertexSplit, Refusal> {
     let p = plan_split(map, s1, s2)?;
     Ok(split_with_plan(map, &p))
 }
@@ -512,7 +512,7 @@ fn split_with_plan(map: &mut Map, p: &SplitPlan) -> VertexSplit {
     }
 }
 
-/// The record of a [`vertex_split`] or [`split_high_valence`]: the new elements, and what its
+/// The record of a [`split_vertex`] or [`split_high_valence`]: the new elements, and what its
 /// exact undo needs.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VertexSplit {
@@ -536,7 +536,7 @@ impl VertexSplit {
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let s1 = map.vertex_dart(Vert::new(5));
     /// let s2 = map.rotate_cw(s1);
-    /// assert_eq!(quad::vertex_split(&mut map, s1, s2).unwrap().kept(), Vert::new(5));
+    /// assert_eq!(quad::split_vertex(&mut map, s1, s2).unwrap().kept(), Vert::new(5));
     /// ```
     pub fn kept(&self) -> Vert {
         self.v[0]
@@ -549,7 +549,7 @@ impl VertexSplit {
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let s1 = map.vertex_dart(Vert::new(5));
     /// let s2 = map.rotate_cw(s1);
-    /// let r = quad::vertex_split(&mut map, s1, s2).unwrap();
+    /// let r = quad::split_vertex(&mut map, s1, s2).unwrap();
     /// assert_eq!(map.origin(s2), r.created());
     /// ```
     pub fn created(&self) -> Vert {
@@ -563,7 +563,7 @@ impl VertexSplit {
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let s1 = map.vertex_dart(Vert::new(5));
     /// let s2 = map.rotate_cw(s1);
-    /// let r = quad::vertex_split(&mut map, s1, s2).unwrap();
+    /// let r = quad::split_vertex(&mut map, s1, s2).unwrap();
     /// assert_eq!(map.degree(r.face()), 4);
     /// assert_eq!(map.face(s1), Some(r.face()));
     /// ```
@@ -579,7 +579,7 @@ impl VertexSplit {
     /// let mut map = gen::torus_grid(4, 4).map;
     /// let s1 = map.vertex_dart(Vert::new(5));
     /// let s2 = map.rotate_cw(s1);
-    /// let r = quad::vertex_split(&mut map, s1, s2).unwrap();
+    /// let r = quad::split_vertex(&mut map, s1, s2).unwrap();
     /// let q = r.quad();
     /// assert_eq!(map.next(q[0]), q[1]);
     /// assert_eq!(map.origin(q[1]), map.dest(s1));
@@ -602,7 +602,7 @@ impl VertexSplit {
     /// let before = map.clone();
     /// let s1 = map.vertex_dart(Vert::new(5));
     /// let s2 = map.rotate_cw(map.rotate_cw(s1));
-    /// let r = quad::vertex_split(&mut map, s1, s2).unwrap();
+    /// let r = quad::split_vertex(&mut map, s1, s2).unwrap();
     /// r.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
@@ -658,7 +658,7 @@ pub fn can_split_high_valence(map: &Map, v: Vert, first: Dart) -> Result<(), Ref
 }
 
 /// Splits a vertex `v` of valence `k >= 6` ([`MIN_HIGH_VALENCE`]) into two of lower valence:
-/// the [`vertex_split`] with separators `first` and the dart `k / 2` steps clockwise from it
+/// the [`split_vertex`] with separators `first` and the dart `k / 2` steps clockwise from it
 /// (the "opposite" edge; for odd `k` the one just before the middle).
 ///
 /// **Deltas:** those of the vertex split with `|arc₁| = k/2 − 1` and `|arc₂| = k − k/2 − 1`:
@@ -666,14 +666,14 @@ pub fn can_split_high_valence(map: &Map, v: Vert, first: Dart) -> Result<(), Ref
 /// 4s, a 7 a 4 and a 5), and the two separators' far ends gain one each. V +1, E +2, F +1.
 ///
 /// **Refusals:** [`Refusal::DeadHandle`]; [`Refusal::BadArguments`] if `first` does not
-/// leave `v`; [`Refusal::WrongValence`] if `k < 6`; then those of [`vertex_split`].
+/// leave `v`; [`Refusal::WrongValence`] if `k < 6`; then those of [`split_vertex`].
 /// Cost: O(k).
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart, Vert};
 /// // One collapse on a regular torus makes a valence 6 (4 + 4 - 2); split it again.
 /// let mut map = gen::torus_grid(5, 5).map;
-/// let c = quad::quad_collapse(&mut map, Dart::new(0)).unwrap();
+/// let c = quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
 /// let v = c.kept();
 /// assert_eq!(map.valence(v), 6);
 /// let first = map.vertex_dart(v);

@@ -2,7 +2,7 @@
 //! vertices placed by a stated rule, and undo restoring the old positions exactly.
 
 use super::{
-    insert_doublet, quad_collapse, remove_valence2, rotate_edge, split_high_valence, vertex_split,
+    collapse_quad, insert_doublet, remove_valence2, rotate_edge, split_high_valence, split_vertex,
     QuadRecord, Rotation, VertexSplit,
 };
 use crate::map::{Dart, Vert};
@@ -50,7 +50,7 @@ impl MeshEdit {
     /// ```
     /// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
     /// let mut mesh = gen::torus_grid(4, 4);
-    /// let e = quad::mesh_quad_collapse(&mut mesh, Dart::new(0)).unwrap();
+    /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
     /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
     /// ```
     pub fn record(&self) -> &QuadRecord {
@@ -87,7 +87,7 @@ fn pos(mesh: &Mesh, v: Vert) -> DVec3 {
         .unwrap_or(DVec3::ZERO)
 }
 
-/// [`quad_collapse`] on a mesh; the merged vertex is placed at the midpoint of the two merged
+/// [`collapse_quad`] on a mesh; the merged vertex is placed at the midpoint of the two merged
 /// corners.
 ///
 /// ```
@@ -98,14 +98,14 @@ fn pos(mesh: &Mesh, v: Vert) -> DVec3 {
 /// let d = mesh.map.vertex_dart(zipmesh::Vert::new(5)); // an interior vertex
 /// let (a, c) = (mesh.map.origin(d), mesh.map.origin(mesh.map.next(mesh.map.next(d))));
 /// let mid = (mesh.positions[a.index()] + mesh.positions[c.index()]) / 2.0;
-/// let e = quad::mesh_quad_collapse(&mut mesh, d).unwrap();
+/// let e = quad::mesh_collapse_quad(&mut mesh, d).unwrap();
 /// assert_eq!(mesh.positions[a.index()], mid);
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_quad_collapse(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
+pub fn mesh_collapse_quad(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
     let old_len = mesh.positions.len();
-    let r = quad_collapse(&mut mesh.map, d)?;
+    let r = collapse_quad(&mut mesh.map, d)?;
     let mid = (pos(mesh, r.kept()) + pos(mesh, r.removed())) * 0.5;
     let kept = r.kept();
     let mut e = MeshEdit::new(r.into(), old_len);
@@ -130,7 +130,7 @@ fn place_split(mesh: &mut Mesh, r: VertexSplit, old_len: usize) -> MeshEdit {
     e
 }
 
-/// [`vertex_split`] on a mesh; the kept vertex stays where it was and the new vertex is placed
+/// [`split_vertex`] on a mesh; the kept vertex stays where it was and the new vertex is placed
 /// halfway between it and the centroid of the new vertex's neighbours.
 ///
 /// ```
@@ -139,23 +139,23 @@ fn place_split(mesh: &mut Mesh, r: VertexSplit, old_len: usize) -> MeshEdit {
 /// let before = mesh.clone();
 /// let s1 = mesh.map.vertex_dart(Vert::new(5));
 /// let s2 = mesh.map.rotate_cw(mesh.map.rotate_cw(s1));
-/// let e = quad::mesh_vertex_split(&mut mesh, s1, s2).unwrap();
+/// let e = quad::mesh_split_vertex(&mut mesh, s1, s2).unwrap();
 /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_vertex_split(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit, Refusal> {
+pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit, Refusal> {
     let old_len = mesh.positions.len();
-    let r = vertex_split(&mut mesh.map, s1, s2)?;
+    let r = split_vertex(&mut mesh.map, s1, s2)?;
     Ok(place_split(mesh, r, old_len))
 }
 
-/// [`split_high_valence`] on a mesh, placing the new vertex as [`mesh_vertex_split`] does.
+/// [`split_high_valence`] on a mesh, placing the new vertex as [`mesh_split_vertex`] does.
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart};
 /// let mut mesh = gen::torus_grid(5, 5);
-/// quad::mesh_quad_collapse(&mut mesh, Dart::new(0)).unwrap();
+/// quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
 /// let v = mesh.map.origin(Dart::new(0));
 /// let before = mesh.clone();
 /// let x = mesh.map.vertex_dart(v);

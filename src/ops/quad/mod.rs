@@ -9,8 +9,8 @@
 //!
 //! | operator | V | E | F | valences |
 //! |---|---|---|---|---|
-//! | [`quad_collapse`] | −1 | −2 | −1 | merged `val(a) + val(c) − 2`; `b`, `d` −1 |
-//! | [`vertex_split`] | +1 | +2 | +1 | copies `arc₁ + 2`, `arc₂ + 2`; both ends +1 |
+//! | [`collapse_quad`] | −1 | −2 | −1 | merged `val(a) + val(c) − 2`; `b`, `d` −1 |
+//! | [`split_vertex`] | +1 | +2 | +1 | copies `arc₁ + 2`, `arc₂ + 2`; both ends +1 |
 //! | [`split_high_valence`] | +1 | +2 | +1 | `k` → `⌊k/2⌋ + 1` and `⌈k/2⌉ + 1`; ends +1 |
 //! | [`remove_valence2`] | −1 | −2 | −1 | the two neighbours −1 |
 //! | [`insert_doublet`] | +1 | +2 | +1 | new vertex 2; the diagonal's ends +1 |
@@ -31,7 +31,7 @@
 //! let mut map = gen::torus_grid(4, 4).map;
 //! let before = map.clone();
 //! let d = Dart::new(0);
-//! let rec = quad::quad_collapse(&mut map, d).unwrap();
+//! let rec = quad::collapse_quad(&mut map, d).unwrap();
 //! assert_eq!(map.num_faces(), before.num_faces() - 1);
 //! assert_eq!(map.check(), Ok(()));
 //! rec.undo(&mut map).unwrap();
@@ -50,16 +50,16 @@ mod rotate;
 mod tests;
 
 pub use collapse::{
-    can_quad_collapse, can_split_high_valence, can_vertex_split, quad_collapse, split_high_valence,
-    vertex_split, QuadCollapse, VertexSplit, MIN_HIGH_VALENCE,
+    can_collapse_quad, can_split_high_valence, can_split_vertex, collapse_quad, split_high_valence,
+    split_vertex, QuadCollapse, VertexSplit, MIN_HIGH_VALENCE,
 };
 pub use doublet::{
     can_insert_doublet, can_remove_valence2, insert_doublet, remove_valence2, DoubletInsertion,
     Valence2Removal,
 };
 pub use mesh::{
-    mesh_insert_doublet, mesh_quad_collapse, mesh_remove_valence2, mesh_rotate_edge,
-    mesh_split_high_valence, mesh_vertex_split, MeshEdit,
+    mesh_collapse_quad, mesh_insert_doublet, mesh_remove_valence2, mesh_rotate_edge,
+    mesh_split_high_valence, mesh_split_vertex, MeshEdit,
 };
 pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
 
@@ -79,9 +79,9 @@ pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum QuadOp {
-    /// [`quad_collapse`] at the dart.
+    /// [`collapse_quad`] at the dart.
     Collapse(Dart),
-    /// [`vertex_split`] along the two separators.
+    /// [`split_vertex`] along the two separators.
     Split(Dart, Dart),
     /// [`split_high_valence`] of the dart's origin, from the dart.
     HighValence(Dart),
@@ -114,8 +114,8 @@ impl QuadOp {
     /// See [`QuadOp`] for an example.
     pub fn can(self, m: &Map) -> Result<(), Refusal> {
         match self {
-            QuadOp::Collapse(d) => can_quad_collapse(m, d),
-            QuadOp::Split(a, b) => can_vertex_split(m, a, b),
+            QuadOp::Collapse(d) => can_collapse_quad(m, d),
+            QuadOp::Split(a, b) => can_split_vertex(m, a, b),
             QuadOp::HighValence(d) => can_split_high_valence(m, m.origin(d), d),
             QuadOp::RemoveValence2(d) => can_remove_valence2(m, d),
             QuadOp::InsertDoublet(d) => can_insert_doublet(m, d),
@@ -128,8 +128,8 @@ impl QuadOp {
     /// See [`QuadOp`] for an example.
     pub fn apply(self, m: &mut Map) -> Result<QuadRecord, Refusal> {
         Ok(match self {
-            QuadOp::Collapse(d) => quad_collapse(m, d)?.into(),
-            QuadOp::Split(a, b) => vertex_split(m, a, b)?.into(),
+            QuadOp::Collapse(d) => collapse_quad(m, d)?.into(),
+            QuadOp::Split(a, b) => split_vertex(m, a, b)?.into(),
             QuadOp::HighValence(d) => split_high_valence(m, m.origin(d), d)?.into(),
             QuadOp::RemoveValence2(d) => remove_valence2(m, d)?.into(),
             QuadOp::InsertDoublet(d) => insert_doublet(m, d)?.into(),
@@ -150,8 +150,8 @@ impl QuadOp {
     /// ```
     pub fn apply_mesh(self, mesh: &mut crate::Mesh) -> Result<MeshEdit, Refusal> {
         match self {
-            QuadOp::Collapse(d) => mesh_quad_collapse(mesh, d),
-            QuadOp::Split(a, b) => mesh_vertex_split(mesh, a, b),
+            QuadOp::Collapse(d) => mesh_collapse_quad(mesh, d),
+            QuadOp::Split(a, b) => mesh_split_vertex(mesh, a, b),
             QuadOp::HighValence(d) => {
                 let v = mesh.map.origin(d);
                 mesh_split_high_valence(mesh, v, d)
@@ -170,7 +170,7 @@ impl QuadOp {
 /// let mut map = gen::torus_grid(5, 5).map;
 /// let before = map.clone();
 /// let mut stack: Vec<QuadRecord> = Vec::new();
-/// stack.push(quad::quad_collapse(&mut map, Dart::new(0)).unwrap().into());
+/// stack.push(quad::collapse_quad(&mut map, Dart::new(0)).unwrap().into());
 /// stack.push(quad::rotate_edge(&mut map, Dart::new(20), quad::Rotation::Clockwise).unwrap().into());
 /// while let Some(r) = stack.pop() {
 ///     r.undo(&mut map).unwrap();
@@ -179,9 +179,9 @@ impl QuadOp {
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum QuadRecord {
-    /// A [`quad_collapse`].
+    /// A [`collapse_quad`].
     Collapse(QuadCollapse),
-    /// A [`vertex_split`] or [`split_high_valence`].
+    /// A [`split_vertex`] or [`split_high_valence`].
     Split(VertexSplit),
     /// A [`remove_valence2`].
     RemoveValence2(Valence2Removal),

@@ -87,8 +87,8 @@ fn refused<R: core::fmt::Debug>(
 fn collapse_refusals() {
     let torus = gen::torus_grid(4, 4).map;
     let c = |m: &Map, d: Dart| {
-        let r = refused(m, |m| quad_collapse(m, d));
-        assert_eq!(can_quad_collapse(m, d), Err(r));
+        let r = refused(m, |m| collapse_quad(m, d));
+        assert_eq!(can_collapse_quad(m, d), Err(r));
         r
     };
     assert_eq!(c(&torus, Dart(10_000)), Refusal::DeadHandle);
@@ -163,7 +163,7 @@ fn collapse_on_torus_grid_and_cube() {
     ] {
         let mut n = 0;
         for d in m.darts() {
-            if can_quad_collapse(&m, d).is_err() {
+            if can_collapse_quad(&m, d).is_err() {
                 continue;
             }
             n += 1;
@@ -175,7 +175,7 @@ fn collapse_on_torus_grid_and_cube() {
                 m.origin(x)
             });
             let before = valences(&m);
-            let after = applied(&m, |m| quad_collapse(m, d).map(Into::into));
+            let after = applied(&m, |m| collapse_quad(m, d).map(Into::into));
             let (v, e0, f) = counts(&m);
             assert_eq!(counts(&after), (v - 1, e0 - 2, f - 1));
             let now = valences(&after);
@@ -202,7 +202,7 @@ fn collapse_boundary_rule_from_both_corners() {
     // Corner quad (0, 1, 5, 4): 0 is a boundary corner, 5 interior.
     for (u, v) in [(0, 1), (5, 4)] {
         let d = dart(&g, u, v);
-        let after = applied(&g, |m| quad_collapse(m, d).map(Into::into));
+        let after = applied(&g, |m| collapse_quad(m, d).map(Into::into));
         let kept = g.origin(d);
         assert!(after.is_boundary_vertex(kept));
         assert!(after.is_boundary_dart(after.vertex_dart(kept)));
@@ -212,7 +212,7 @@ fn collapse_boundary_rule_from_both_corners() {
     let strip = gen::grid(3, 1).map;
     for (u, v) in [(1, 2), (6, 5)] {
         let d = dart(&strip, u, v);
-        assert_eq!(can_quad_collapse(&strip, d), Err(Refusal::BoundaryPinch));
+        assert_eq!(can_collapse_quad(&strip, d), Err(Refusal::BoundaryPinch));
     }
 }
 
@@ -229,7 +229,7 @@ fn collapse_leaving_valence_two_then_removal() {
     let d = m.next(m.next(m.next(d0)));
     assert_eq!(m.origin(m.next(d)), corner);
     let mut after = m.clone();
-    let rec = quad_collapse(&mut after, d).unwrap();
+    let rec = collapse_quad(&mut after, d).unwrap();
     assert_eq!(after.valence(corner), 2);
     assert!(!after.is_boundary_vertex(corner));
     assert_eq!(after.check(), Ok(()));
@@ -251,8 +251,8 @@ fn collapse_leaving_valence_two_then_removal() {
 fn split_refusals() {
     let torus = gen::torus_grid(4, 4).map;
     let c = |m: &Map, s1: Dart, s2: Dart| {
-        let r = refused(m, |m| vertex_split(m, s1, s2));
-        assert_eq!(can_vertex_split(m, s1, s2), Err(r));
+        let r = refused(m, |m| split_vertex(m, s1, s2));
+        assert_eq!(can_split_vertex(m, s1, s2), Err(r));
         r
     };
     let s1 = torus.vertex_dart(Vert(5));
@@ -279,7 +279,7 @@ fn split_deltas_every_pair_on_a_torus_vertex() {
             let arc1 = (j + 4 - i) % 4 - 1;
             let arc2 = 4 - 2 - arc1;
             let mut after = m.clone();
-            let r = vertex_split(&mut after, s1, s2).unwrap();
+            let r = split_vertex(&mut after, s1, s2).unwrap();
             assert_eq!(after.check(), Ok(()));
             assert_eq!(r.kept(), w);
             assert_eq!(after.origin(s1), w);
@@ -308,7 +308,7 @@ fn split_boundary_vertex_every_pair() {
                     continue;
                 }
                 let mut after = m.clone();
-                let r = vertex_split(&mut after, s1, s2).unwrap();
+                let r = split_vertex(&mut after, s1, s2).unwrap();
                 assert_eq!(after.check(), Ok(()));
                 let on_boundary = [r.kept(), r.created()]
                     .iter()
@@ -316,7 +316,7 @@ fn split_boundary_vertex_every_pair() {
                     .count();
                 assert_eq!(on_boundary, 1);
                 // The inverse collapse is allowed (one merged corner on the boundary).
-                assert_eq!(can_quad_collapse(&after, s1), Ok(()));
+                assert_eq!(can_collapse_quad(&after, s1), Ok(()));
                 r.undo(&mut after).unwrap();
                 assert_eq!(after, m);
             }
@@ -332,14 +332,14 @@ fn split_then_collapse_and_collapse_then_split_restore_the_code() {
     let s1 = m.vertex_dart(Vert(7));
     let s2 = m.rotate_cw(m.rotate_cw(s1));
     let mut x = m.clone();
-    vertex_split(&mut x, s1, s2).unwrap();
-    quad_collapse(&mut x, s1).unwrap();
+    split_vertex(&mut x, s1, s2).unwrap();
+    collapse_quad(&mut x, s1).unwrap();
     assert_eq!(CanonicalCode::of(&x), code);
     assert_eq!(x.check(), Ok(()));
     let mut y = m.clone();
-    let c = quad_collapse(&mut y, Dart(0)).unwrap();
+    let c = collapse_quad(&mut y, Dart(0)).unwrap();
     let [to_b, to_d] = c.merged_edges();
-    vertex_split(&mut y, to_b, to_d).unwrap();
+    split_vertex(&mut y, to_b, to_d).unwrap();
     assert_eq!(CanonicalCode::of(&y), code);
 }
 
@@ -383,7 +383,7 @@ fn high_valence_refusals_and_deltas() {
     assert_eq!(c(&bouquet, b, bouquet.vertex_dart(b)), Refusal::Loop);
     // Valences 6 to 9 made by collapses on a torus; each split gives floor/ceil halves + 1.
     let mut m = torus.clone();
-    quad_collapse(&mut m, Dart(0)).unwrap();
+    collapse_quad(&mut m, Dart(0)).unwrap();
     for k in 6..=9 {
         let w = m.origin(Dart(0));
         assert_eq!(m.valence(w), k);
@@ -580,10 +580,10 @@ fn high_valence_fan() {
     assert_eq!(m.valence(c), n as usize);
     let s1 = m.vertex_dart(c);
     let s2 = m.rotate_cw(m.rotate_cw(s1));
-    applied(&m, |m| vertex_split(m, s1, s2).map(Into::into));
+    applied(&m, |m| split_vertex(m, s1, s2).map(Into::into));
     applied(&m, |m| split_high_valence(m, c, s1).map(Into::into));
     // Merge the centre with an outer corner: valence 40 + 2 - 2.
-    let after = applied(&m, |m| quad_collapse(m, s1).map(Into::into));
+    let after = applied(&m, |m| collapse_quad(m, s1).map(Into::into));
     assert_eq!(after.valence(c), 40);
 }
 
@@ -591,12 +591,12 @@ fn high_valence_fan() {
 fn stale_records_are_refused_without_change() {
     let m = gen::torus_grid(4, 4).map;
     let mut x = m.clone();
-    let r1 = quad_collapse(&mut x, Dart(0)).unwrap();
+    let r1 = collapse_quad(&mut x, Dart(0)).unwrap();
     let d2 = x
         .darts()
-        .find(|&d| can_quad_collapse(&x, d).is_ok())
+        .find(|&d| can_collapse_quad(&x, d).is_ok())
         .unwrap();
-    let r2 = quad_collapse(&mut x, d2).unwrap();
+    let r2 = collapse_quad(&mut x, d2).unwrap();
     // Undoing the first before the second: its slots are not on top of the free lists.
     let snapshot = x.clone();
     assert_eq!(r1.clone().undo(&mut x), Err(Refusal::StaleRecord));
@@ -608,8 +608,8 @@ fn stale_records_are_refused_without_change() {
     let mut y = m.clone();
     let s1 = y.vertex_dart(Vert(5));
     let s2 = y.rotate_cw(s1);
-    let r = vertex_split(&mut y, s1, s2).unwrap();
-    quad_collapse(&mut y, s1).unwrap();
+    let r = split_vertex(&mut y, s1, s2).unwrap();
+    collapse_quad(&mut y, s1).unwrap();
     let snapshot = y.clone();
     assert_eq!(r.undo(&mut y), Err(Refusal::StaleRecord));
     assert_eq!(y, snapshot);
@@ -650,11 +650,11 @@ fn mesh_wrappers_place_and_restore() {
     // A split placing its new vertex into a reused slot: undo puts the old position back.
     let mut t = gen::torus_grid(4, 4);
     let t0 = t.clone();
-    let c = mesh_quad_collapse(&mut t, Dart(0)).unwrap();
+    let c = mesh_collapse_quad(&mut t, Dart(0)).unwrap();
     let t1 = t.clone();
     let s1 = t.map.vertex_dart(Vert(9));
     let s2 = t.map.rotate_cw(t.map.rotate_cw(s1));
-    let s = mesh_vertex_split(&mut t, s1, s2).unwrap();
+    let s = mesh_split_vertex(&mut t, s1, s2).unwrap();
     assert_ne!(t.positions, t1.positions);
     assert!(t.positions.iter().all(|p| p.is_finite()));
     s.undo(&mut t).unwrap();
