@@ -11,5 +11,6 @@ mod valence;
 pub use counts::{euler_characteristic, non_simple_edges, Counts};
 pub use gauss_bonnet::{gauss_bonnet, GaussBonnet};
 pub use valence::{
-    irregular_valences, irregular_vertices, is_irregular, regular_valence, Histograms, MeshKind,
+    irregular_valences, irregular_vertices, is_irregular, is_regular_interior, regular_valence,
+    Histograms, MeshKind,
 };

@@ -68,6 +68,21 @@ pub fn is_irregular(map: &Map, kind: MeshKind, v: Vert) -> bool {
     map.is_live_vertex(v) && map.valence(v) != regular_valence(kind, map.is_boundary_vertex(v))
 }
 
+/// Whether `v` is a live interior vertex of regular valence under the rule of `kind`: the
+/// vertices a quad sweep or a grid-preserving edit may pass through unchanged.
+///
+/// ```
+/// use zipmesh::{gen, invariants::{is_regular_interior, MeshKind}, Vert};
+/// let grid = gen::grid(2, 2).map;
+/// assert!(is_regular_interior(&grid, MeshKind::Quad, Vert::new(4))); // the centre
+/// assert!(!is_regular_interior(&grid, MeshKind::Quad, Vert::new(1))); // on the boundary
+/// ```
+pub fn is_regular_interior(map: &Map, kind: MeshKind, v: Vert) -> bool {
+    map.is_live_vertex(v)
+        && !map.is_boundary_vertex(v)
+        && map.valence(v) == regular_valence(kind, false)
+}
+
 /// Every irregular vertex of `map` under the rule of `kind`, in slot order.
 ///
 /// ```

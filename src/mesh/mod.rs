@@ -1,4 +1,13 @@
-//! A map with vertex positions: what mesh files hold and generators make.
+//! A map with vertex positions (what mesh files hold and generators make), and the one
+//! attribute layer that keeps per-vertex data in step with every edit and its undo:
+//! [`VertexAttributes`] (the data), [`Rule`] (where a new vertex takes it from), [`Journal`]
+//! (what an edit overwrote) and [`Edited`] (an edit's record with its journal).
+
+mod attributes;
+mod edited;
+
+pub use attributes::{Blend, Positions, VertexAttributes};
+pub use edited::{Edited, Journal, Rule};
 
 use crate::map::{BuildError, BuildReport, Map};
 use alloc::vec::Vec;
