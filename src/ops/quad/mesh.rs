@@ -6,85 +6,26 @@ use super::{
     QuadRecord, Rotation, VertexSplit,
 };
 use crate::map::{Dart, Vert};
-use crate::mesh::Mesh;
+use crate::mesh::{Edited, Journal, Mesh, Rule};
 use crate::ops::Refusal;
-use glam::DVec3;
 
-/// A quad operator applied to a [`Mesh`]: the topological record and the positions it
-/// overwrote.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MeshEdit {
-    record: QuadRecord,
-    /// Old positions of overwritten slots (at most two), restored in reverse order.
-    saved: [(Vert, DVec3); 2],
-    n_saved: usize,
-    /// `positions.len()` before; undo cuts the vector back to it.
-    old_len: usize,
-}
+/// A quad operator applied to a [`Mesh`]: the record and the positions it overwrote; its
+/// `undo` restores the mesh `==` (see [`Edited`]).
+pub type MeshEdit = Edited<QuadRecord>;
 
-impl MeshEdit {
-    fn new(record: QuadRecord, old_len: usize) -> MeshEdit {
-        MeshEdit {
-            record,
-            saved: [(Vert(0), DVec3::ZERO); 2],
-            n_saved: 0,
-            old_len,
-        }
+/// Applies `op` to the mesh's map, then places `v` by the rule `place` gives for the
+/// record (if any): the one path every wrapper below takes.
+fn edit<R: Into<QuadRecord>>(
+    mesh: &mut Mesh,
+    op: impl FnOnce(&mut crate::Map) -> Result<R, Refusal>,
+    place: impl FnOnce(&R) -> Option<(Vert, Rule)>,
+) -> Result<MeshEdit, Refusal> {
+    let mut journal = Journal::start(&mesh.positions);
+    let record = op(&mut mesh.map)?;
+    if let Some((v, rule)) = place(&record) {
+        journal.place(&mesh.map, &mut mesh.positions, v, rule);
     }
-
-    /// Writes `p` at slot `v`, growing the vector if needed and remembering the old value.
-    fn place(&mut self, mesh: &mut Mesh, v: Vert, p: DVec3) {
-        let i = v.index();
-        if i < self.old_len && self.n_saved < 2 {
-            self.saved[self.n_saved] = (v, mesh.positions[i]);
-            self.n_saved += 1;
-        }
-        if mesh.positions.len() <= i {
-            mesh.positions.resize(i + 1, DVec3::ZERO);
-        }
-        mesh.positions[i] = p;
-    }
-
-    /// The topological record.
-    ///
-    /// ```
-    /// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
-    /// let mut mesh = gen::torus_grid(4, 4);
-    /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
-    /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
-    /// ```
-    pub fn record(&self) -> &QuadRecord {
-        &self.record
-    }
-
-    /// Undoes the topology (see [`QuadRecord::undo`]) and then the positions: the result is
-    /// `==` the mesh before the edit, with the mesh as the edit left it.
-    ///
-    /// ```
-    /// use zipmesh::{gen, ops::quad, Dart};
-    /// let mut mesh = gen::cube(3);
-    /// let before = mesh.clone();
-    /// let e = quad::mesh_insert_doublet(&mut mesh, Dart::new(0)).unwrap();
-    /// e.undo(&mut mesh).unwrap();
-    /// assert_eq!(mesh, before);
-    /// ```
-    pub fn undo(self, mesh: &mut Mesh) -> Result<(), Refusal> {
-        self.record.undo(&mut mesh.map)?;
-        for &(v, p) in self.saved[..self.n_saved].iter().rev() {
-            if let Some(x) = mesh.positions.get_mut(v.index()) {
-                *x = p;
-            }
-        }
-        mesh.positions.truncate(self.old_len);
-        Ok(())
-    }
-}
-
-fn pos(mesh: &Mesh, v: Vert) -> DVec3 {
-    mesh.positions
-        .get(v.index())
-        .copied()
-        .unwrap_or(DVec3::ZERO)
+    Ok(Edited::new(record.into(), journal))
 }
 
 /// [`collapse_quad`] on a mesh; the merged vertex is placed at the midpoint of the two merged
@@ -104,30 +45,22 @@ fn pos(mesh: &Mesh, v: Vert) -> DVec3 {
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_collapse_quad(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
-    let r = collapse_quad(&mut mesh.map, d)?;
-    let mid = (pos(mesh, r.kept()) + pos(mesh, r.removed())) * 0.5;
-    let kept = r.kept();
-    let mut e = MeshEdit::new(r.into(), old_len);
-    e.place(mesh, kept, mid);
-    Ok(e)
+    edit(
+        mesh,
+        |m| collapse_quad(m, d),
+        |r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed()))),
+    )
 }
 
-/// Places a split's new vertex halfway between the old vertex and the centroid of the new
+/// A split's new vertex goes halfway between the kept vertex and the centroid of the new
 /// vertex's neighbours; the kept vertex does not move.
-fn place_split(mesh: &mut Mesh, r: VertexSplit, old_len: usize) -> MeshEdit {
-    let (w, w2) = (r.kept(), r.created());
-    let mut sum = DVec3::ZERO;
-    let mut n = 0.0;
-    for d in mesh.map.vertex_darts(w2) {
-        sum += pos(mesh, mesh.map.dest(d));
-        n += 1.0;
-    }
-    let centroid = if n > 0.0 { sum / n } else { pos(mesh, w) };
-    let p = (pos(mesh, w) + centroid) * 0.5;
-    let mut e = MeshEdit::new(r.into(), old_len);
-    e.place(mesh, w2, p);
-    e
+fn split_rule(r: &VertexSplit) -> Option<(Vert, Rule)> {
+    let rule = Rule::TowardNeighbours {
+        from: r.kept(),
+        of: r.created(),
+        skip_from: false,
+    };
+    Some((r.created(), rule))
 }
 
 /// [`split_vertex`] on a mesh; the kept vertex stays where it was and the new vertex is placed
@@ -145,9 +78,7 @@ fn place_split(mesh: &mut Mesh, r: VertexSplit, old_len: usize) -> MeshEdit {
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
-    let r = split_vertex(&mut mesh.map, s1, s2)?;
-    Ok(place_split(mesh, r, old_len))
+    edit(mesh, |m| split_vertex(m, s1, s2), split_rule)
 }
 
 /// [`split_high_valence`] on a mesh, placing the new vertex as [`mesh_split_vertex`] does.
@@ -164,9 +95,7 @@ pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
-    let r = split_high_valence(&mut mesh.map, v, first)?;
-    Ok(place_split(mesh, r, old_len))
+    edit(mesh, |m| split_high_valence(m, v, first), split_rule)
 }
 
 /// [`remove_valence2`] on a mesh; no position changes (the deleted vertex's slot keeps its
@@ -184,9 +113,7 @@ pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
-    let r = remove_valence2(&mut mesh.map, x)?;
-    Ok(MeshEdit::new(r.into(), old_len))
+    edit(mesh, |m| remove_valence2(m, x), |_| None)
 }
 
 /// [`insert_doublet`] on a mesh; the new vertex is placed at the midpoint of the diagonal it
@@ -201,15 +128,13 @@ pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusa
 /// assert_eq!(mesh.positions[v], glam::DVec3::new(0.5, 0.5, 0.0));
 /// ```
 pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
     let p = mesh.map.origin(d);
     let q = mesh.map.origin(mesh.map.next(mesh.map.next(d)));
-    let r = insert_doublet(&mut mesh.map, d)?;
-    let v = r.vertex();
-    let mid = (pos(mesh, p) + pos(mesh, q)) * 0.5;
-    let mut e = MeshEdit::new(r.into(), old_len);
-    e.place(mesh, v, mid);
-    Ok(e)
+    edit(
+        mesh,
+        |m| insert_doublet(m, d),
+        |r| Some((r.vertex(), Rule::Midpoint(p, q))),
+    )
 }
 
 /// [`rotate_edge`] on a mesh; no position changes.
@@ -224,7 +149,5 @@ pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_rotate_edge(mesh: &mut Mesh, h: Dart, dir: Rotation) -> Result<MeshEdit, Refusal> {
-    let old_len = mesh.positions.len();
-    let r = rotate_edge(&mut mesh.map, h, dir)?;
-    Ok(MeshEdit::new(r.into(), old_len))
+    edit(mesh, |m| rotate_edge(m, h, dir), |_| None)
 }
