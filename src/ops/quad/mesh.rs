@@ -3,27 +3,74 @@
 
 use super::{
     collapse_quad, insert_doublet, remove_valence2, rotate_edge, split_high_valence, split_vertex,
-    QuadRecord, Rotation, VertexSplit,
+    QuadOp, QuadRecord, Rotation, VertexSplit,
 };
-use crate::map::{Dart, Vert};
-use crate::mesh::{Edited, Journal, Mesh, Rule};
+use crate::map::{Dart, Map, Vert};
+use crate::mesh::{Edited, Journal, Mesh, Rule, VertexAttributes};
 use crate::ops::Refusal;
 
 /// A quad operator applied to a [`Mesh`]: the record and the positions it overwrote; its
 /// `undo` restores the mesh `==` (see [`Edited`]).
 pub type MeshEdit = Edited<QuadRecord>;
 
-/// Applies `op` to the mesh's map, then places `v` by the rule `place` gives for the
-/// record (if any): the one path every wrapper below takes.
-fn edit<R: Into<QuadRecord>>(
-    mesh: &mut Mesh,
-    op: impl FnOnce(&mut crate::Map) -> Result<R, Refusal>,
+impl QuadOp {
+    /// Applies the operator to a map and its per-vertex data: each operator's placement
+    /// rule is stated here once (the `mesh_*` wrappers below apply it to positions).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+    /// let mut mesh = gen::torus_grid(5, 5);
+    /// let mut layers = (mesh.positions.clone(), vec![true; mesh.map.vertex_slots()]);
+    /// let before = (mesh.map.clone(), layers.clone());
+    /// let e = QuadOp::InsertDoublet(Dart::new(0)).apply_with(&mut mesh.map, &mut layers).unwrap();
+    /// assert_eq!(layers.1.len(), mesh.map.vertex_slots()); // the new vertex is marked too
+    /// e.undo_with(&mut mesh.map, &mut layers).unwrap();
+    /// assert_eq!((mesh.map, layers), before);
+    /// ```
+    pub fn apply_with<A: VertexAttributes>(
+        self,
+        map: &mut Map,
+        attrs: &mut A,
+    ) -> Result<Edited<QuadRecord, A>, Refusal> {
+        match self {
+            QuadOp::Collapse(d) => edit(
+                map,
+                attrs,
+                |m| collapse_quad(m, d),
+                |r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed()))),
+            ),
+            QuadOp::Split(s1, s2) => edit(map, attrs, |m| split_vertex(m, s1, s2), split_rule),
+            QuadOp::HighValence(d) => {
+                let v = map.origin(d);
+                edit(map, attrs, |m| split_high_valence(m, v, d), split_rule)
+            }
+            QuadOp::RemoveValence2(x) => edit(map, attrs, |m| remove_valence2(m, x), |_| None),
+            QuadOp::InsertDoublet(d) => {
+                // The diagonal the new vertex sits on, read before the edit.
+                let (p, q) = (map.origin(d), map.origin(map.next(map.next(d))));
+                edit(
+                    map,
+                    attrs,
+                    |m| insert_doublet(m, d),
+                    |r| Some((r.vertex(), Rule::Midpoint(p, q))),
+                )
+            }
+            QuadOp::Rotate(h, dir) => edit(map, attrs, |m| rotate_edge(m, h, dir), |_| None),
+        }
+    }
+}
+
+/// Applies `op` to the map, then places the vertex `place` names for the record (if any).
+fn edit<R: Into<QuadRecord>, A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    op: impl FnOnce(&mut Map) -> Result<R, Refusal>,
     place: impl FnOnce(&R) -> Option<(Vert, Rule)>,
-) -> Result<MeshEdit, Refusal> {
-    let mut journal = Journal::start(&mesh.positions);
-    let record = op(&mut mesh.map)?;
+) -> Result<Edited<QuadRecord, A>, Refusal> {
+    let mut journal = Journal::start(attrs);
+    let record = op(map)?;
     if let Some((v, rule)) = place(&record) {
-        journal.place(&mesh.map, &mut mesh.positions, v, rule);
+        journal.place(map, attrs, v, rule);
     }
     Ok(Edited::new(record.into(), journal))
 }
@@ -45,11 +92,7 @@ fn edit<R: Into<QuadRecord>>(
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_collapse_quad(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    edit(
-        mesh,
-        |m| collapse_quad(m, d),
-        |r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed()))),
-    )
+    QuadOp::Collapse(d).apply_mesh(mesh)
 }
 
 /// A split's new vertex goes halfway between the kept vertex and the centroid of the new
@@ -78,7 +121,7 @@ fn split_rule(r: &VertexSplit) -> Option<(Vert, Rule)> {
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit, Refusal> {
-    edit(mesh, |m| split_vertex(m, s1, s2), split_rule)
+    QuadOp::Split(s1, s2).apply_mesh(mesh)
 }
 
 /// [`split_high_valence`] on a mesh, placing the new vertex as [`mesh_split_vertex`] does.
@@ -95,7 +138,8 @@ pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<MeshEdit, Refusal> {
-    edit(mesh, |m| split_high_valence(m, v, first), split_rule)
+    let op = |m: &mut Map| split_high_valence(m, v, first);
+    edit(&mut mesh.map, &mut mesh.positions, op, split_rule)
 }
 
 /// [`remove_valence2`] on a mesh; no position changes (the deleted vertex's slot keeps its
@@ -113,7 +157,7 @@ pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusal> {
-    edit(mesh, |m| remove_valence2(m, x), |_| None)
+    QuadOp::RemoveValence2(x).apply_mesh(mesh)
 }
 
 /// [`insert_doublet`] on a mesh; the new vertex is placed at the midpoint of the diagonal it
@@ -128,13 +172,7 @@ pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusa
 /// assert_eq!(mesh.positions[v], glam::DVec3::new(0.5, 0.5, 0.0));
 /// ```
 pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    let p = mesh.map.origin(d);
-    let q = mesh.map.origin(mesh.map.next(mesh.map.next(d)));
-    edit(
-        mesh,
-        |m| insert_doublet(m, d),
-        |r| Some((r.vertex(), Rule::Midpoint(p, q))),
-    )
+    QuadOp::InsertDoublet(d).apply_mesh(mesh)
 }
 
 /// [`rotate_edge`] on a mesh; no position changes.
@@ -149,5 +187,5 @@ pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal
 /// assert_eq!(mesh, before);
 /// ```
 pub fn mesh_rotate_edge(mesh: &mut Mesh, h: Dart, dir: Rotation) -> Result<MeshEdit, Refusal> {
-    edit(mesh, |m| rotate_edge(m, h, dir), |_| None)
+    QuadOp::Rotate(h, dir).apply_mesh(mesh)
 }

@@ -149,17 +149,7 @@ impl QuadOp {
     /// assert_eq!(mesh.map, before.map);
     /// ```
     pub fn apply_mesh(self, mesh: &mut crate::Mesh) -> Result<MeshEdit, Refusal> {
-        match self {
-            QuadOp::Collapse(d) => mesh_collapse_quad(mesh, d),
-            QuadOp::Split(a, b) => mesh_split_vertex(mesh, a, b),
-            QuadOp::HighValence(d) => {
-                let v = mesh.map.origin(d);
-                mesh_split_high_valence(mesh, v, d)
-            }
-            QuadOp::RemoveValence2(d) => mesh_remove_valence2(mesh, d),
-            QuadOp::InsertDoublet(d) => mesh_insert_doublet(mesh, d),
-            QuadOp::Rotate(d, r) => mesh_rotate_edge(mesh, d, r),
-        }
+        self.apply_with(&mut mesh.map, &mut mesh.positions)
     }
 }
 

@@ -1,0 +1,175 @@
+//! The attribute layer (`zipmesh::mesh`): per-vertex data kept in step with every edit.
+//!
+//! For random operator sequences on generated meshes, with two layers travelling together
+//! (positions and a mark per vertex): an edit writes at most the one vertex its rule places,
+//! leaves every other value bit for bit, places by its stated rule, and its undo restores
+//! map and layers `==`; a refusal changes neither.
+
+use glam::DVec3;
+use proptest::prelude::*;
+use zipmesh::mesh::{Blend, Journal, Rule, VertexAttributes};
+use zipmesh::ops::quad::{QuadOp, QuadRecord, Rotation};
+use zipmesh::rng::Rng;
+use zipmesh::{gen, Dart, Map, Mesh, Vert};
+
+type Layers = (Vec<DVec3>, Vec<bool>);
+
+fn random_op(m: &Map, rng: &mut Rng) -> QuadOp {
+    let d = Dart::new(rng.below(m.dart_slots().max(1)) as u32);
+    let around = |k: usize| (0..k).fold(d, |x, _| m.rotate_cw(x));
+    match rng.below(7) {
+        0 | 1 => QuadOp::Collapse(d),
+        2 => QuadOp::Split(d, around(1 + rng.below(4))),
+        3 => QuadOp::HighValence(d),
+        4 => QuadOp::RemoveValence2(d),
+        5 => QuadOp::InsertDoublet(d),
+        _ => QuadOp::Rotate(d, Rotation::Clockwise),
+    }
+}
+
+/// The vertex an applied quad operator places, if any.
+fn placed(r: &QuadRecord) -> Option<Vert> {
+    match r {
+        QuadRecord::Collapse(c) => Some(c.kept()),
+        QuadRecord::Split(s) => Some(s.created()),
+        QuadRecord::InsertDoublet(i) => Some(i.vertex()),
+        QuadRecord::RemoveValence2(_) | QuadRecord::Rotate(_) => None,
+    }
+}
+
+/// Old slots whose values differ between `before` and `after`.
+fn changed(before: &Layers, after: &Layers) -> Vec<Vert> {
+    (0..before.0.len().max(before.1.len()))
+        .map(|i| Vert::new(i as u32))
+        .filter(|&v| before.value(v) != after.value(v))
+        .collect()
+}
+
+/// Runs `steps` random operators with both layers; returns how many applied.
+fn run(mesh: &Mesh, seed: u64, steps: usize) -> usize {
+    let mut rng = Rng::new(seed);
+    let mut map = mesh.map.clone();
+    let marks = (0..map.vertex_slots()).map(|_| rng.chance(1, 3)).collect();
+    let mut layers: Layers = (mesh.positions.clone(), marks);
+    let mut applied = 0;
+    for _ in 0..steps {
+        let op = random_op(&map, &mut rng);
+        let before = (map.clone(), layers.clone());
+        match op.apply_with(&mut map, &mut layers) {
+            Err(r) => assert_eq!((&map, &layers), (&before.0, &before.1), "{op:?}: {r}"),
+            Ok(edit) => {
+                applied += 1;
+                let diff = changed(&before.1, &layers);
+                let target = placed(edit.record());
+                assert!(
+                    diff.iter().all(|&v| Some(v) == target),
+                    "{op:?} changed {diff:?}, placed {target:?}"
+                );
+                // A placed vertex that existed before (a kept or reused slot) is saved once.
+                let reused = target.is_some_and(|v| v.index() < before.1 .0.len());
+                assert_eq!(edit.journal().overwritten(), usize::from(reused), "{op:?}");
+                if let Some(v) = target {
+                    assert!(layers.0.len() > v.index() && layers.1.len() > v.index());
+                }
+                // Every edit undoes exactly on its own; redo it to go on.
+                edit.undo_with(&mut map, &mut layers).unwrap();
+                assert_eq!((&map, &layers), (&before.0, &before.1), "{op:?} undo");
+                op.apply_with(&mut map, &mut layers).unwrap();
+            }
+        }
+    }
+    applied
+}
+
+fn generated(kind: usize, a: usize, seed: u64) -> Mesh {
+    match kind {
+        0 => gen::torus_grid(3 + a % 12, 4 + a % 9),
+        1 => gen::cube(1 + a % 6),
+        2 => gen::grid(1 + a % 10, 2 + a % 7),
+        _ => gen::random_quad(100 + 20 * a, a % 3, a % 2, seed),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    #[test]
+    fn quad_edits_keep_both_layers_in_step(kind in 0usize..4, a in 0usize..40, seed in any::<u64>()) {
+        let mesh = generated(kind, a, seed);
+        run(&mesh, seed, 60);
+    }
+}
+
+#[test]
+fn sequences_apply_often_enough_to_mean_something() {
+    let applied: usize = (0..8)
+        .map(|s| run(&gen::random_quad(300, 1, 1, s), s, 80))
+        .sum();
+    // Random darts refuse often (wrong valence, boundary); a quarter applying is plenty.
+    assert!(
+        applied > 8 * 80 / 4,
+        "only {applied} of {} edits applied",
+        8 * 80
+    );
+}
+
+#[test]
+fn rules_place_where_they_say() {
+    let mesh = gen::grid(2, 2);
+    let at = |v: u32| mesh.positions[v as usize];
+    let value = |v: Vert| mesh.positions[v.index()];
+    let (a, b, centre) = (Vert::new(0), Vert::new(1), Vert::new(4));
+    assert_eq!(
+        Rule::Midpoint(a, b).evaluate(&mesh.map, value),
+        Some((at(0) + at(1)) / 2.0)
+    );
+    let ring: Vec<DVec3> = mesh
+        .map
+        .vertex_darts(centre)
+        .map(|d| value(mesh.map.dest(d)))
+        .collect();
+    let mean = DVec3::mean(&ring).unwrap();
+    assert_eq!(
+        Rule::NeighbourMean(centre).evaluate(&mesh.map, value),
+        Some(mean)
+    );
+    let toward = Rule::TowardNeighbours {
+        from: a,
+        of: centre,
+        skip_from: false,
+    };
+    assert_eq!(
+        toward.evaluate(&mesh.map, value),
+        Some((at(0) + mean) / 2.0)
+    );
+    // Leaving `from` out changes the pull when `from` is a neighbour of `of`.
+    let ring_b: Vec<DVec3> = mesh
+        .map
+        .vertex_darts(centre)
+        .map(|d| mesh.map.dest(d))
+        .filter(|&n| n != b)
+        .map(value)
+        .collect();
+    let skip = Rule::TowardNeighbours {
+        from: b,
+        of: centre,
+        skip_from: true,
+    };
+    assert_eq!(
+        skip.evaluate(&mesh.map, value),
+        Some((at(1) + DVec3::mean(&ring_b).unwrap()) / 2.0)
+    );
+}
+
+#[test]
+fn a_journal_saves_each_vertex_once_and_rewinds_in_order() {
+    let mut marks = vec![false, true, false];
+    let mut j = Journal::start(&marks);
+    j.set(&mut marks, Vert::new(0), true);
+    j.set(&mut marks, Vert::new(0), false); // a second write keeps the first saved value
+    j.set(&mut marks, Vert::new(5), true); // beyond the layer: grows, nothing to save
+    assert_eq!(j.overwritten(), 1);
+    assert_eq!(marks.len(), 6);
+    j.rewind(&mut marks);
+    assert_eq!(marks, vec![false, true, false]);
+}
