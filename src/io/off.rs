@@ -18,10 +18,10 @@
 //! assert_eq!(mesh.polygons().len(), 1);
 //! ```
 
-use super::{
-    for_each_line, live_vertices, parse_int, parse_position, write_face, Coord, ErrorKind,
-    MeshFileError, Soup, Tokens,
-};
+use super::lex::{bad_number, for_each_line, missing_number, parse_int, parse_position, Tokens};
+use super::soup::Soup;
+use super::write::{live_vertices, write_face, Coord};
+use super::{ErrorKind, MeshFileError};
 use crate::map::BuildReport;
 use crate::mesh::Mesh;
 use std::io::{self, Write};
@@ -93,12 +93,11 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                 const K: &str = "a corner count";
                 let k = parse_int(first)
                     .filter(|&k| k >= 0)
-                    .ok_or_else(|| super::bad_number(no, K, first))?
-                    as usize;
+                    .ok_or_else(|| bad_number(no, K, first))? as usize;
                 for _ in 0..k {
                     const I: &str = "a vertex index";
-                    let tok = toks.next().ok_or_else(|| super::missing_number(no, I))?;
-                    let i = parse_int(tok).ok_or_else(|| super::bad_number(no, I, tok))?;
+                    let tok = toks.next().ok_or_else(|| missing_number(no, I))?;
+                    let i = parse_int(tok).ok_or_else(|| bad_number(no, I, tok))?;
                     if i < 0 || i as usize >= nv {
                         return Err(MeshFileError::new(
                             Some(no),
@@ -169,10 +168,10 @@ fn read_counts(
         parse_int(tok)
             .filter(|&n| n >= 0)
             .map(|n| n as usize)
-            .ok_or_else(|| super::bad_number(no, what, tok))
+            .ok_or_else(|| bad_number(no, what, tok))
     };
     *nv = count(first, V)?;
-    let tok = toks.next().ok_or_else(|| super::missing_number(no, F))?;
+    let tok = toks.next().ok_or_else(|| missing_number(no, F))?;
     *nf = count(tok, F)?;
     if let Some(tok) = toks.next() {
         count(tok, "the number of edges")?;

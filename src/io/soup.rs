@@ -1,0 +1,94 @@
+//! The polygons a reader collects, and building the map from them with errors traced back
+//! to the lines of the faces.
+
+use super::{ErrorKind, MeshFileError};
+use crate::map::{BuildError, BuildReport};
+use crate::mesh::Mesh;
+use alloc::vec::Vec;
+use glam::DVec3;
+
+/// Polygons as parsed, with the line of every face, before the topology is built.
+#[derive(Default)]
+pub(super) struct Soup {
+    pub(super) positions: Vec<DVec3>,
+    pub(super) corners: Vec<u32>,
+    pub(super) offsets: Vec<u32>,
+    pub(super) face_lines: Vec<u32>,
+}
+
+/// The builder needs fewer than 2^31 corners; checked while parsing so offsets fit in u32.
+const MAX_CORNERS: usize = (u32::MAX / 2 - 1) as usize;
+
+impl Soup {
+    pub(super) fn new() -> Self {
+        Soup {
+            offsets: alloc::vec![0],
+            ..Soup::default()
+        }
+    }
+
+    /// Closes the face whose corners were pushed since the last call.
+    pub(super) fn end_face(&mut self, line: usize) -> Result<(), MeshFileError> {
+        if self.corners.len() > MAX_CORNERS {
+            return Err(MeshFileError::new(Some(line), ErrorKind::TooLarge));
+        }
+        self.offsets.push(self.corners.len() as u32);
+        self.face_lines
+            .push(u32::try_from(line).unwrap_or(u32::MAX));
+        Ok(())
+    }
+
+    /// Builds the map; `base` is the file's number of the first vertex (1 for OBJ).
+    pub(super) fn finish(self, base: u64) -> Result<(Mesh, BuildReport), MeshFileError> {
+        let built =
+            crate::map::Map::from_flat_polygons(self.positions.len(), &self.corners, &self.offsets);
+        match built {
+            Ok((map, report)) => Ok((
+                Mesh {
+                    map,
+                    positions: self.positions,
+                },
+                report,
+            )),
+            Err(e) => Err(self.locate(&e, base)),
+        }
+    }
+
+    fn line_of(&self, face: usize) -> usize {
+        self.face_lines.get(face).map_or(0, |&l| l as usize)
+    }
+
+    /// Turns a build error into a file error at the line of its face.
+    fn locate(&self, e: &BuildError, base: u64) -> MeshFileError {
+        let v = |x: u32| u64::from(x) + base;
+        let kind = match *e {
+            BuildError::FaceTooSmall { corners, .. } => ErrorKind::FaceTooSmall { corners },
+            BuildError::RepeatedCorner { vertex, .. } => {
+                ErrorKind::RepeatedCorner { vertex: v(vertex) }
+            }
+            BuildError::IndexOutOfRange {
+                vertex, n_vertices, ..
+            } => ErrorKind::IndexOutOfRange {
+                index: v(vertex) as i64,
+                vertices: n_vertices,
+            },
+            BuildError::NonManifoldEdge { a, b, faces } => ErrorKind::NonManifoldEdge {
+                a: v(a),
+                b: v(b),
+                lines: faces.map(|f| self.line_of(f)),
+            },
+            BuildError::InconsistentOrientation { a, b, faces } => {
+                ErrorKind::InconsistentOrientation {
+                    a: v(a),
+                    b: v(b),
+                    lines: faces.map(|f| self.line_of(f)),
+                }
+            }
+            BuildError::NonManifoldVertex { vertex, .. } => {
+                ErrorKind::NonManifoldVertex { vertex: v(vertex) }
+            }
+            BuildError::TooLarge { .. } => ErrorKind::TooLarge,
+        };
+        MeshFileError::new(e.face().map(|f| self.line_of(f)), kind)
+    }
+}
