@@ -1,20 +1,37 @@
 //! The error type of mesh files: where (path, line) and what ([`ErrorKind`]).
 
+use super::Format;
+use crate::map::BuildError;
 use alloc::string::String;
+use alloc::vec::Vec;
 use core::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
 /// What is wrong with a mesh file.
 ///
-/// Vertex numbers are given as the file writes them: 1-based for OBJ, 0-based for OFF.
+/// Defects the readers find while parsing have their own variants, with numbers as the
+/// file writes them. Defects of the surface that the faces describe are the kernel's
+/// [`BuildError`], wrapped in [`ErrorKind::Topology`] with the file's format; the message
+/// gives vertex numbers as the file writes them: 1-based for OBJ, 0-based for OFF.
 ///
 /// ```
-/// use zipmesh::io::{obj, off, ErrorKind};
+/// use zipmesh::io::{obj, off, ErrorKind, Format};
+/// use zipmesh::BuildError;
 /// let e = obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1\n").unwrap_err();
-/// assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 1 }));
+/// let ErrorKind::Topology { error: BuildError::RepeatedCorner { vertex, .. }, format, .. } =
+///     e.kind()
+/// else {
+///     panic!("{e}");
+/// };
+/// assert_eq!((*vertex, format.vertex_number(*vertex)), (0, 1)); // slot 0 is OBJ's vertex 1
+/// assert_eq!(e.to_string(), "line 4: face uses vertex 1 twice: repeated corner");
 /// let e = off::parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 0\n").unwrap_err();
-/// assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 0 }));
+/// assert!(matches!(
+///     e.kind(),
+///     ErrorKind::Topology { error: BuildError::RepeatedCorner { vertex: 0, .. }, format: Format::Off, .. }
+/// ));
+/// assert_eq!(e.to_string(), "line 6: face uses vertex 0 twice: repeated corner");
 /// ```
 #[derive(Debug)]
 #[non_exhaustive]
@@ -52,6 +69,12 @@ pub enum ErrorKind {
         declared_faces: usize,
     },
     /// A face refers to a vertex that does not exist.
+    ///
+    /// A file-level variant rather than the kernel's `IndexOutOfRange`: the index is the
+    /// text of the file (OBJ's may be zero or negative, and any may exceed `u32`), which the
+    /// kernel's numbering cannot hold. OBJ's positive indices may refer forward, so their
+    /// range is checked by the kernel once every vertex is read; the readers report that
+    /// as this variant too, so one defect has one variant.
     IndexOutOfRange {
         /// The index as written in the file.
         index: i64,
@@ -59,40 +82,21 @@ pub enum ErrorKind {
         /// vertices defined before the face).
         vertices: usize,
     },
-    /// A face has fewer than three corners.
-    FaceTooSmall {
-        /// Its number of corners.
-        corners: usize,
+    /// The faces do not describe an oriented surface, as
+    /// [`Map::from_flat_polygons`](crate::Map::from_flat_polygons) found: a face with fewer
+    /// than three corners or a repeated one, a non-manifold edge or vertex, or two faces
+    /// whose orientations disagree.
+    Topology {
+        /// The kernel's error, in its numbering: vertex slots from 0, faces counted from 0
+        /// in the order of the file.
+        error: BuildError,
+        /// The file's format, which says how it numbers vertices ([`Format::vertex_number`]).
+        format: Format,
+        /// The lines of the faces `error` names, in its order.
+        lines: Vec<usize>,
     },
-    /// A face uses the same vertex twice.
-    RepeatedCorner {
-        /// The vertex.
-        vertex: u64,
-    },
-    /// An edge is used by three or more faces.
-    NonManifoldEdge {
-        /// One end.
-        a: u64,
-        /// The other end.
-        b: u64,
-        /// The lines of three faces using it.
-        lines: [usize; 3],
-    },
-    /// Two faces run along an edge in the same direction: their orientations disagree.
-    InconsistentOrientation {
-        /// Origin of both half-edges.
-        a: u64,
-        /// Destination of both half-edges.
-        b: u64,
-        /// The lines of the two faces.
-        lines: [usize; 2],
-    },
-    /// The faces around a vertex form more than one fan (a pinched vertex).
-    NonManifoldVertex {
-        /// The vertex.
-        vertex: u64,
-    },
-    /// More vertices or corners than 32-bit handles can address.
+    /// More vertices or corners than 32-bit handles can address (whether the reader or the
+    /// kernel found it).
     TooLarge,
 }
 
@@ -122,39 +126,81 @@ impl fmt::Display for ErrorKind {
                 f,
                 "vertex index {index} is out of range for {vertices} vertices: index out of range"
             ),
-            ErrorKind::FaceTooSmall { corners } => write!(
-                f,
-                "face has {corners} corners, at least 3 are needed: face too small"
-            ),
-            ErrorKind::RepeatedCorner { vertex } => {
-                write!(f, "face uses vertex {vertex} twice: repeated corner")
-            }
-            ErrorKind::NonManifoldEdge { a, b, lines } => write!(
-                f,
-                "edge {a}-{b} is used by three or more faces (lines {}, {} and {}): non-manifold edge",
-                lines[0], lines[1], lines[2]
-            ),
-            ErrorKind::InconsistentOrientation { a, b, lines } => write!(
-                f,
-                "the faces on lines {} and {} both run from vertex {a} to vertex {b}: inconsistent orientation",
-                lines[0], lines[1]
-            ),
-            ErrorKind::NonManifoldVertex { vertex } => write!(
-                f,
-                "the faces around vertex {vertex} form more than one fan: non-manifold vertex"
-            ),
+            ErrorKind::Topology {
+                error,
+                format,
+                lines,
+            } => fmt_topology(f, error, *format, lines),
             ErrorKind::TooLarge => f.write_str("the mesh is too large for 32-bit handles"),
         }
+    }
+}
+
+/// A kernel error in the file's terms: vertices numbered as the file numbers them, faces
+/// named by their lines (the kernel's face numbers mean little to someone editing the file).
+fn fmt_topology(
+    f: &mut fmt::Formatter<'_>,
+    error: &BuildError,
+    format: Format,
+    lines: &[usize],
+) -> fmt::Result {
+    let v = |x: u32| format.vertex_number(x);
+    // `lines` is public, so it may be shorter than the error needs; never panic in Display.
+    let line = |i: usize| lines.get(i).copied().unwrap_or(0);
+    match *error {
+        BuildError::FaceTooSmall { corners, .. } => write!(
+            f,
+            "face has {corners} corners, at least 3 are needed: face too small"
+        ),
+        BuildError::RepeatedCorner { vertex, .. } => {
+            write!(f, "face uses vertex {} twice: repeated corner", v(vertex))
+        }
+        // The readers report these two as the file-level variants; same messages here.
+        BuildError::IndexOutOfRange {
+            vertex, n_vertices, ..
+        } => fmt::Display::fmt(
+            &ErrorKind::IndexOutOfRange {
+                index: v(vertex) as i64,
+                vertices: n_vertices,
+            },
+            f,
+        ),
+        BuildError::TooLarge { .. } => fmt::Display::fmt(&ErrorKind::TooLarge, f),
+        BuildError::NonManifoldEdge { a, b, .. } => write!(
+            f,
+            "edge {}-{} is used by three or more faces (lines {}, {} and {}): non-manifold edge",
+            v(a),
+            v(b),
+            line(0),
+            line(1),
+            line(2)
+        ),
+        BuildError::InconsistentOrientation { a, b, .. } => write!(
+            f,
+            "the faces on lines {} and {} both run from vertex {} to vertex {}: inconsistent orientation",
+            line(0),
+            line(1),
+            v(a),
+            v(b)
+        ),
+        BuildError::NonManifoldVertex { vertex, .. } => write!(
+            f,
+            "the faces around vertex {} form more than one fan: non-manifold vertex",
+            v(vertex)
+        ),
     }
 }
 
 /// An error reading or writing a mesh file: where (path, line) and what ([`ErrorKind`]).
 ///
 /// ```
-/// use zipmesh::io::{obj, ErrorKind};
+/// use zipmesh::{io::{obj, ErrorKind}, BuildError};
 /// let err = obj::parse("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err();
 /// assert_eq!(err.line(), Some(3));
-/// assert!(matches!(err.kind(), ErrorKind::FaceTooSmall { corners: 2 }));
+/// assert!(matches!(
+///     err.kind(),
+///     ErrorKind::Topology { error: BuildError::FaceTooSmall { corners: 2, .. }, .. }
+/// ));
 /// assert!(err.to_string().starts_with("line 3: "));
 /// ```
 #[derive(Debug)]

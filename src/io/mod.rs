@@ -84,6 +84,22 @@ impl Format {
         }
     }
 
+    /// The number a file of this format writes for vertex slot `slot`: OBJ counts from 1,
+    /// OFF from 0. Error messages use it to show the kernel's vertex numbers.
+    ///
+    /// ```
+    /// use zipmesh::io::Format;
+    /// assert_eq!(Format::Obj.vertex_number(0), 1);
+    /// assert_eq!(Format::Off.vertex_number(0), 0);
+    /// ```
+    pub fn vertex_number(self, slot: u32) -> u64 {
+        let first = match self {
+            Format::Obj => 1,
+            Format::Off => 0,
+        };
+        u64::from(slot) + first
+    }
+
     /// Parses a file's bytes in this format (see [`obj::parse_bytes`], [`off::parse_bytes`]).
     ///
     /// ```

@@ -23,7 +23,7 @@
 use super::lex::{bad_number, for_each_line, parse_int, parse_position, Tokens};
 use super::soup::Soup;
 use super::write::{live_vertices, write_face, Coord};
-use super::{ErrorKind, MeshFileError};
+use super::{ErrorKind, Format, MeshFileError};
 use crate::map::BuildReport;
 use crate::mesh::Mesh;
 use std::io::{self, Write};
@@ -85,7 +85,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
         }
         Ok(())
     })?;
-    soup.finish(1)
+    soup.finish(Format::Obj)
 }
 
 /// Writes `mesh` as OBJ: dead slots are dropped and live vertices renumbered in slot order.

@@ -21,7 +21,7 @@
 use super::lex::{bad_number, for_each_line, missing_number, parse_int, parse_position, Tokens};
 use super::soup::Soup;
 use super::write::{live_vertices, write_face, Coord};
-use super::{ErrorKind, MeshFileError};
+use super::{ErrorKind, Format, MeshFileError};
 use crate::map::BuildReport;
 use crate::mesh::Mesh;
 use std::io::{self, Write};
@@ -141,7 +141,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
             Err(missing("vertices", nv, soup.positions.len()))
         }
         Stage::Body if faces_read < nf => Err(missing("faces", nf, faces_read)),
-        Stage::Body => soup.finish(0),
+        Stage::Body => soup.finish(Format::Off),
     }
 }
 

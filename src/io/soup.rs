@@ -1,7 +1,7 @@
 //! The polygons a reader collects, and building the map from them with errors traced back
 //! to the lines of the faces.
 
-use super::{ErrorKind, MeshFileError};
+use super::{ErrorKind, Format, MeshFileError};
 use crate::map::{BuildError, BuildReport};
 use crate::mesh::Mesh;
 use alloc::vec::Vec;
@@ -38,8 +38,8 @@ impl Soup {
         Ok(())
     }
 
-    /// Builds the map; `base` is the file's number of the first vertex (1 for OBJ).
-    pub(super) fn finish(self, base: u64) -> Result<(Mesh, BuildReport), MeshFileError> {
+    /// Builds the map; errors name the lines of their faces and `format` numbers vertices.
+    pub(super) fn finish(self, format: Format) -> Result<(Mesh, BuildReport), MeshFileError> {
         let built =
             crate::map::Map::from_flat_polygons(self.positions.len(), &self.corners, &self.offsets);
         match built {
@@ -50,7 +50,7 @@ impl Soup {
                 },
                 report,
             )),
-            Err(e) => Err(self.locate(&e, base)),
+            Err(e) => Err(self.locate(e, format)),
         }
     }
 
@@ -59,36 +59,40 @@ impl Soup {
     }
 
     /// Turns a build error into a file error at the line of its face.
-    fn locate(&self, e: &BuildError, base: u64) -> MeshFileError {
-        let v = |x: u32| u64::from(x) + base;
-        let kind = match *e {
-            BuildError::FaceTooSmall { corners, .. } => ErrorKind::FaceTooSmall { corners },
-            BuildError::RepeatedCorner { vertex, .. } => {
-                ErrorKind::RepeatedCorner { vertex: v(vertex) }
-            }
+    fn locate(&self, e: BuildError, format: Format) -> MeshFileError {
+        let line = e.face().map(|f| self.line_of(f));
+        let kind = match e {
+            // Defects the parsers also find get the parsers' variants (see
+            // `ErrorKind::IndexOutOfRange`): one defect, one variant, whoever finds it.
             BuildError::IndexOutOfRange {
                 vertex, n_vertices, ..
             } => ErrorKind::IndexOutOfRange {
-                index: v(vertex) as i64,
+                index: format.vertex_number(vertex) as i64,
                 vertices: n_vertices,
             },
-            BuildError::NonManifoldEdge { a, b, faces } => ErrorKind::NonManifoldEdge {
-                a: v(a),
-                b: v(b),
-                lines: faces.map(|f| self.line_of(f)),
-            },
-            BuildError::InconsistentOrientation { a, b, faces } => {
-                ErrorKind::InconsistentOrientation {
-                    a: v(a),
-                    b: v(b),
-                    lines: faces.map(|f| self.line_of(f)),
-                }
-            }
-            BuildError::NonManifoldVertex { vertex, .. } => {
-                ErrorKind::NonManifoldVertex { vertex: v(vertex) }
-            }
             BuildError::TooLarge { .. } => ErrorKind::TooLarge,
+            error => ErrorKind::Topology {
+                lines: named_faces(&error)
+                    .iter()
+                    .map(|&f| self.line_of(f))
+                    .collect(),
+                error,
+                format,
+            },
         };
-        MeshFileError::new(e.face().map(|f| self.line_of(f)), kind)
+        MeshFileError::new(line, kind)
+    }
+}
+
+/// The faces `e` names, in its order.
+fn named_faces(e: &BuildError) -> &[usize] {
+    match e {
+        BuildError::FaceTooSmall { face, .. }
+        | BuildError::RepeatedCorner { face, .. }
+        | BuildError::IndexOutOfRange { face, .. }
+        | BuildError::NonManifoldVertex { face, .. } => core::slice::from_ref(face),
+        BuildError::NonManifoldEdge { faces, .. } => faces,
+        BuildError::InconsistentOrientation { faces, .. } => faces,
+        BuildError::TooLarge { .. } => &[],
     }
 }
