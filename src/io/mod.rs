@@ -6,8 +6,9 @@
 //!   panic, whatever the input; [`obj::write`] and [`off::write`] write to any `std::io::Write`.
 //! * Every error is a [`MeshFileError`]: the file's path when known, the 1-based line, and a
 //!   typed [`ErrorKind`]. Its `Display` reads `path:LINE: problem`. Topology defects found
-//!   by [`Map::from_polygons_with_report`](crate::Map::from_polygons_with_report) are traced
-//!   back to the line of the offending face.
+//!   by [`Map::from_polygons_with_report`](crate::Map::from_polygons_with_report) are the
+//!   kernel's error in [`ErrorKind::Topology`], traced back to the line of the offending
+//!   face, with vertices numbered as the file numbers them.
 //! * Reading returns the [`Mesh`] and the [`BuildReport`]. Vertices that no face uses are
 //!   kept as dead vertex slots (their positions stay in `mesh.positions`), so every other
 //!   vertex keeps its number from the file; the report lists them.
