@@ -321,11 +321,10 @@ fn repeated_corner() {
     assert_eq!(e.line(), Some(7));
     // The kernel's slot 1 is the file's vertex 2 (OBJ numbers vertices from 1).
     let (error, format, _) = topology(&e);
-    assert!(matches!(
-        error,
-        BuildError::RepeatedCorner { vertex: 1, .. }
-    ));
-    assert_eq!(format.vertex_number(1), 2);
+    let &BuildError::RepeatedCorner { vertex, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((vertex, format.vertex_number(vertex)), (1, 2));
     assert!(
         e.to_string().contains("vertex 2 twice: repeated corner"),
         "{e}"
@@ -334,11 +333,10 @@ fn repeated_corner() {
     let e = off_err("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 3 1\n");
     assert_eq!(e.line(), Some(7));
     let (error, format, _) = topology(&e);
-    assert!(matches!(
-        error,
-        BuildError::RepeatedCorner { vertex: 1, .. }
-    ));
-    assert_eq!(format.vertex_number(1), 1);
+    let &BuildError::RepeatedCorner { vertex, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((vertex, format.vertex_number(vertex)), (1, 1));
     assert!(e.to_string().contains("vertex 1 twice"), "{e}");
 }
 
