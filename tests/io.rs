@@ -7,7 +7,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::io::{self, obj, off, ErrorKind, Format, MeshFileError};
-use zipmesh::{gen, Mesh};
+use zipmesh::{gen, BuildError, Mesh};
 
 /// A fresh, empty directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
@@ -192,6 +192,19 @@ fn off_err(src: &str) -> MeshFileError {
 
 const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 2 0\n";
 
+/// The kernel's error in a topology error, the format that numbers its vertices, and the
+/// lines of its faces.
+fn topology(e: &MeshFileError) -> (&BuildError, Format, &[usize]) {
+    match e.kind() {
+        ErrorKind::Topology {
+            error,
+            format,
+            lines,
+        } => (error, *format, lines),
+        kind => panic!("not a topology error: {kind:?} ({e})"),
+    }
+}
+
 #[test]
 fn bad_numbers() {
     let e = obj_err("v 0 0 0\nv 0 x 0\n");
@@ -275,13 +288,30 @@ fn index_out_of_range() {
 fn face_too_small() {
     let e = obj_err(&format!("{TRI}f 1 2 3\nf 3 4\n"));
     assert_eq!(e.line(), Some(7));
-    assert!(matches!(e.kind(), ErrorKind::FaceTooSmall { corners: 2 }));
+    assert!(matches!(
+        topology(&e),
+        (
+            BuildError::FaceTooSmall { corners: 2, .. },
+            Format::Obj,
+            [7]
+        )
+    ));
     let e = obj_err(&format!("{TRI}f\n"));
     assert_eq!(e.line(), Some(6));
-    assert!(matches!(e.kind(), ErrorKind::FaceTooSmall { corners: 0 }));
+    assert!(matches!(
+        topology(&e).0,
+        BuildError::FaceTooSmall { corners: 0, .. }
+    ));
     let e = off_err("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n");
     assert_eq!(e.line(), Some(7));
-    assert!(matches!(e.kind(), ErrorKind::FaceTooSmall { corners: 2 }));
+    assert!(matches!(
+        topology(&e),
+        (
+            BuildError::FaceTooSmall { corners: 2, .. },
+            Format::Off,
+            [7]
+        )
+    ));
     assert!(e.to_string().contains("face too small"), "{e}");
 }
 
@@ -289,12 +319,25 @@ fn face_too_small() {
 fn repeated_corner() {
     let e = obj_err(&format!("{TRI}f 1 2 3\nf 2 4 -4\n"));
     assert_eq!(e.line(), Some(7));
-    assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 2 }));
-    assert!(e.to_string().contains("repeated corner"), "{e}");
+    // The kernel's slot 1 is the file's vertex 2 (OBJ numbers vertices from 1).
+    let (error, format, _) = topology(&e);
+    let &BuildError::RepeatedCorner { vertex, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((vertex, format.vertex_number(vertex)), (1, 2));
+    assert!(
+        e.to_string().contains("vertex 2 twice: repeated corner"),
+        "{e}"
+    );
     // OFF numbers vertices from 0.
     let e = off_err("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 3 1\n");
     assert_eq!(e.line(), Some(7));
-    assert!(matches!(e.kind(), ErrorKind::RepeatedCorner { vertex: 1 }));
+    let (error, format, _) = topology(&e);
+    let &BuildError::RepeatedCorner { vertex, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((vertex, format.vertex_number(vertex)), (1, 1));
+    assert!(e.to_string().contains("vertex 1 twice"), "{e}");
 }
 
 #[test]
@@ -302,15 +345,17 @@ fn non_manifold_edge() {
     // Edge 1-2 in three triangles.
     let e = obj_err(&format!("{TRI}f 1 2 3\n# x\nf 2 1 4\nf 1 2 5\n"));
     assert_eq!(e.line(), Some(9));
-    assert!(matches!(
-        e.kind(),
-        ErrorKind::NonManifoldEdge {
-            a: 1,
-            b: 2,
-            lines: [6, 8, 9]
-        }
-    ));
+    let (error, format, lines) = topology(&e);
+    let &BuildError::NonManifoldEdge { a, b, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((format.vertex_number(a), format.vertex_number(b)), (1, 2));
+    assert_eq!(lines, [6, 8, 9]);
     let msg = e.to_string();
+    assert!(
+        msg.contains("edge 1-2 ") && msg.contains("lines 6, 8 and 9"),
+        "{msg}"
+    );
     assert!(msg.starts_with("line 9: "), "{msg}");
     assert!(msg.contains("non-manifold edge"), "{msg}");
 }
@@ -319,25 +364,27 @@ fn non_manifold_edge() {
 fn inconsistent_orientation() {
     let e = obj_err(&format!("{TRI}f 1 2 3\nf 1 2 4\n"));
     assert_eq!(e.line(), Some(7));
-    assert!(matches!(
-        e.kind(),
-        ErrorKind::InconsistentOrientation {
-            a: 1,
-            b: 2,
-            lines: [6, 7]
-        }
-    ));
-    assert!(e.to_string().contains("inconsistent orientation"), "{e}");
+    let (error, format, lines) = topology(&e);
+    let &BuildError::InconsistentOrientation { a, b, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!((format.vertex_number(a), format.vertex_number(b)), (1, 2));
+    assert_eq!(lines, [6, 7]);
+    assert_eq!(
+        e.to_string(),
+        "line 7: the faces on lines 6 and 7 both run from vertex 1 to vertex 2: inconsistent orientation"
+    );
 }
 
 #[test]
 fn non_manifold_vertex() {
     // Two triangles touching only at vertex 1 (a bow tie).
     let e = obj_err(&format!("{TRI}f 1 2 3\nf 1 4 5\n"));
-    assert!(matches!(
-        e.kind(),
-        ErrorKind::NonManifoldVertex { vertex: 1 }
-    ));
+    let (error, format, _) = topology(&e);
+    let &BuildError::NonManifoldVertex { vertex, .. } = error else {
+        panic!("{e}")
+    };
+    assert_eq!(format.vertex_number(vertex), 1);
     assert_eq!(e.line(), Some(7));
     assert!(e.to_string().contains("non-manifold vertex"), "{e}");
 }

@@ -20,10 +20,10 @@
 //! assert_eq!(corners, vec![0, 1, 2, 3]);
 //! ```
 
-use super::{
-    for_each_line, live_vertices, parse_int, parse_position, write_face, Coord, ErrorKind,
-    MeshFileError, Soup, Tokens,
-};
+use super::lex::{bad_number, for_each_line, parse_int, parse_position, Tokens};
+use super::soup::Soup;
+use super::write::{live_vertices, write_face, Coord};
+use super::{ErrorKind, Format, MeshFileError};
 use crate::map::BuildReport;
 use crate::mesh::Mesh;
 use std::io::{self, Write};
@@ -61,8 +61,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                 let defined = soup.positions.len();
                 for tok in toks {
                     let idx = tok.split(|&b| b == b'/').next().unwrap_or(tok);
-                    let i = parse_int(idx)
-                        .ok_or_else(|| super::bad_number(no, "a vertex index", tok))?;
+                    let i = parse_int(idx).ok_or_else(|| bad_number(no, "a vertex index", tok))?;
                     let out_of_range = || {
                         MeshFileError::new(
                             Some(no),
@@ -86,7 +85,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
         }
         Ok(())
     })?;
-    soup.finish(1)
+    soup.finish(Format::Obj)
 }
 
 /// Writes `mesh` as OBJ: dead slots are dropped and live vertices renumbered in slot order.

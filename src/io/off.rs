@@ -18,10 +18,10 @@
 //! assert_eq!(mesh.polygons().len(), 1);
 //! ```
 
-use super::{
-    for_each_line, live_vertices, parse_int, parse_position, write_face, Coord, ErrorKind,
-    MeshFileError, Soup, Tokens,
-};
+use super::lex::{bad_number, for_each_line, missing_number, parse_int, parse_position, Tokens};
+use super::soup::Soup;
+use super::write::{live_vertices, write_face, Coord};
+use super::{ErrorKind, Format, MeshFileError};
 use crate::map::BuildReport;
 use crate::mesh::Mesh;
 use std::io::{self, Write};
@@ -90,27 +90,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                 Ok(())
             }
             Stage::Body if faces_read < nf => {
-                const K: &str = "a corner count";
-                let k = parse_int(first)
-                    .filter(|&k| k >= 0)
-                    .ok_or_else(|| super::bad_number(no, K, first))?
-                    as usize;
-                for _ in 0..k {
-                    const I: &str = "a vertex index";
-                    let tok = toks.next().ok_or_else(|| super::missing_number(no, I))?;
-                    let i = parse_int(tok).ok_or_else(|| super::bad_number(no, I, tok))?;
-                    if i < 0 || i as usize >= nv {
-                        return Err(MeshFileError::new(
-                            Some(no),
-                            ErrorKind::IndexOutOfRange {
-                                index: i,
-                                vertices: nv,
-                            },
-                        ));
-                    }
-                    soup.corners.push(i as u32);
-                }
-                soup.end_face(no)?;
+                read_face(first, toks, no, nv, &mut soup)?;
                 faces_read += 1;
                 Ok(())
             }
@@ -142,7 +122,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
             Err(missing("vertices", nv, soup.positions.len()))
         }
         Stage::Body if faces_read < nf => Err(missing("faces", nf, faces_read)),
-        Stage::Body => soup.finish(0),
+        Stage::Body => soup.finish(Format::Off),
     }
 }
 
@@ -150,6 +130,37 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
 fn is_header(tok: &[u8]) -> bool {
     tok.strip_suffix(b"OFF")
         .is_some_and(|p| p.iter().all(|b| b"STCN".contains(b)))
+}
+
+/// Reads a face line `k i0 ... ik-1 ...` whose first token is `first`; indices are checked
+/// here because OFF's are 0-based and the vertex count is known from the header.
+fn read_face(
+    first: &[u8],
+    mut toks: Tokens<'_>,
+    no: usize,
+    nv: usize,
+    soup: &mut Soup,
+) -> Result<(), MeshFileError> {
+    const K: &str = "a corner count";
+    const I: &str = "a vertex index";
+    let k = parse_int(first)
+        .filter(|&k| k >= 0)
+        .ok_or_else(|| bad_number(no, K, first))? as usize;
+    for _ in 0..k {
+        let tok = toks.next().ok_or_else(|| missing_number(no, I))?;
+        let i = parse_int(tok).ok_or_else(|| bad_number(no, I, tok))?;
+        if i < 0 || i as usize >= nv {
+            return Err(MeshFileError::new(
+                Some(no),
+                ErrorKind::IndexOutOfRange {
+                    index: i,
+                    vertices: nv,
+                },
+            ));
+        }
+        soup.corners.push(i as u32);
+    }
+    soup.end_face(no)
 }
 
 /// Reads `nv nf [ne]` starting at token `first`; reserves memory no larger than the
@@ -169,10 +180,10 @@ fn read_counts(
         parse_int(tok)
             .filter(|&n| n >= 0)
             .map(|n| n as usize)
-            .ok_or_else(|| super::bad_number(no, what, tok))
+            .ok_or_else(|| bad_number(no, what, tok))
     };
     *nv = count(first, V)?;
-    let tok = toks.next().ok_or_else(|| super::missing_number(no, F))?;
+    let tok = toks.next().ok_or_else(|| missing_number(no, F))?;
     *nf = count(tok, F)?;
     if let Some(tok) = toks.next() {
         count(tok, "the number of edges")?;

@@ -1,0 +1,295 @@
+//! The error type of mesh files: where (path, line) and what ([`ErrorKind`]).
+
+use super::Format;
+use crate::map::BuildError;
+use alloc::string::String;
+use alloc::vec::Vec;
+use core::fmt;
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// What is wrong with a mesh file.
+///
+/// Defects the readers find while parsing have their own variants, with numbers as the
+/// file writes them. Defects of the surface that the faces describe are the kernel's
+/// [`BuildError`], wrapped in [`ErrorKind::Topology`] with the file's format; the message
+/// gives vertex numbers as the file writes them: 1-based for OBJ, 0-based for OFF.
+///
+/// ```
+/// use zipmesh::io::{obj, off, ErrorKind, Format};
+/// use zipmesh::BuildError;
+/// let e = obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1\n").unwrap_err();
+/// let ErrorKind::Topology { error: BuildError::RepeatedCorner { vertex, .. }, format, .. } =
+///     e.kind()
+/// else {
+///     panic!("{e}");
+/// };
+/// assert_eq!((*vertex, format.vertex_number(*vertex)), (0, 1)); // slot 0 is OBJ's vertex 1
+/// assert_eq!(e.to_string(), "line 4: face uses vertex 1 twice: repeated corner");
+/// let e = off::parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 0\n").unwrap_err();
+/// assert!(matches!(
+///     e.kind(),
+///     ErrorKind::Topology { error: BuildError::RepeatedCorner { vertex: 0, .. }, format: Format::Off, .. }
+/// ));
+/// assert_eq!(e.to_string(), "line 6: face uses vertex 0 twice: repeated corner");
+/// ```
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// Reading or writing the file failed.
+    Io(io::Error),
+    /// The file name's extension is neither `.obj` nor `.off`.
+    UnknownFormat,
+    /// An OFF file does not start with an `OFF` header.
+    MissingHeader,
+    /// A token is not the number that was expected there.
+    BadNumber {
+        /// What was expected, e.g. "a vertex coordinate".
+        expected: &'static str,
+        /// The token found (cut to 40 bytes).
+        found: String,
+    },
+    /// A line ends where a number was expected.
+    MissingNumber {
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// An OFF file ends before the vertices or faces its header declares.
+    CountsMismatch {
+        /// "vertices" or "faces".
+        what: &'static str,
+        /// The number the header declares.
+        declared: usize,
+        /// The number the file holds.
+        found: usize,
+    },
+    /// An OFF file has more lines after the faces its header declares.
+    ExtraData {
+        /// The number of faces the header declares.
+        declared_faces: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    ///
+    /// A file-level variant rather than the kernel's `IndexOutOfRange`: the index is the
+    /// text of the file (OBJ's may be zero or negative, and any may exceed `u32`), which the
+    /// kernel's numbering cannot hold. OBJ's positive indices may refer forward, so their
+    /// range is checked by the kernel once every vertex is read; the readers report that
+    /// as this variant too, so one defect has one variant.
+    IndexOutOfRange {
+        /// The index as written in the file.
+        index: i64,
+        /// The number of vertices it was checked against (for OBJ's negative indices, the
+        /// vertices defined before the face).
+        vertices: usize,
+    },
+    /// The faces do not describe an oriented surface, as
+    /// [`Map::from_flat_polygons`](crate::Map::from_flat_polygons) found: a face with fewer
+    /// than three corners or a repeated one, a non-manifold edge or vertex, or two faces
+    /// whose orientations disagree.
+    Topology {
+        /// The kernel's error, in its numbering: vertex slots from 0, faces counted from 0
+        /// in the order of the file.
+        error: BuildError,
+        /// The file's format, which says how it numbers vertices ([`Format::vertex_number`]).
+        format: Format,
+        /// The lines of the faces `error` names, in its order.
+        lines: Vec<usize>,
+    },
+    /// More vertices or corners than 32-bit handles can address (whether the reader or the
+    /// kernel found it).
+    TooLarge,
+}
+
+impl fmt::Display for ErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ErrorKind::Io(e) => write!(f, "I/O error: {e}"),
+            ErrorKind::UnknownFormat => {
+                f.write_str("unknown mesh format: the file name must end in .obj or .off")
+            }
+            ErrorKind::MissingHeader => f.write_str("missing `OFF` header"),
+            ErrorKind::BadNumber { expected, found } => {
+                write!(f, "expected {expected}, found `{found}`: bad number")
+            }
+            ErrorKind::MissingNumber { expected } => {
+                write!(f, "expected {expected}, found the end of the line")
+            }
+            ErrorKind::CountsMismatch { what, declared, found } => write!(
+                f,
+                "the header declares {declared} {what} but the file has {found}: counts mismatch"
+            ),
+            ErrorKind::ExtraData { declared_faces } => write!(
+                f,
+                "unexpected data after the {declared_faces} faces the header declares: counts mismatch"
+            ),
+            ErrorKind::IndexOutOfRange { index, vertices } => write!(
+                f,
+                "vertex index {index} is out of range for {vertices} vertices: index out of range"
+            ),
+            ErrorKind::Topology {
+                error,
+                format,
+                lines,
+            } => fmt_topology(f, error, *format, lines),
+            ErrorKind::TooLarge => f.write_str("the mesh is too large for 32-bit handles"),
+        }
+    }
+}
+
+/// A kernel error in the file's terms: vertices numbered as the file numbers them, faces
+/// named by their lines (the kernel's face numbers mean little to someone editing the file).
+fn fmt_topology(
+    f: &mut fmt::Formatter<'_>,
+    error: &BuildError,
+    format: Format,
+    lines: &[usize],
+) -> fmt::Result {
+    let v = |x: u32| format.vertex_number(x);
+    // `lines` is public, so it may be shorter than the error needs; never panic in Display.
+    let line = |i: usize| lines.get(i).copied().unwrap_or(0);
+    match *error {
+        BuildError::FaceTooSmall { corners, .. } => write!(
+            f,
+            "face has {corners} corners, at least 3 are needed: face too small"
+        ),
+        BuildError::RepeatedCorner { vertex, .. } => {
+            write!(f, "face uses vertex {} twice: repeated corner", v(vertex))
+        }
+        // The readers report these two as the file-level variants; same messages here.
+        BuildError::IndexOutOfRange {
+            vertex, n_vertices, ..
+        } => fmt::Display::fmt(
+            &ErrorKind::IndexOutOfRange {
+                index: v(vertex) as i64,
+                vertices: n_vertices,
+            },
+            f,
+        ),
+        BuildError::TooLarge { .. } => fmt::Display::fmt(&ErrorKind::TooLarge, f),
+        BuildError::NonManifoldEdge { a, b, .. } => write!(
+            f,
+            "edge {}-{} is used by three or more faces (lines {}, {} and {}): non-manifold edge",
+            v(a),
+            v(b),
+            line(0),
+            line(1),
+            line(2)
+        ),
+        BuildError::InconsistentOrientation { a, b, .. } => write!(
+            f,
+            "the faces on lines {} and {} both run from vertex {} to vertex {}: inconsistent orientation",
+            line(0),
+            line(1),
+            v(a),
+            v(b)
+        ),
+        BuildError::NonManifoldVertex { vertex, .. } => write!(
+            f,
+            "the faces around vertex {} form more than one fan: non-manifold vertex",
+            v(vertex)
+        ),
+    }
+}
+
+/// An error reading or writing a mesh file: where (path, line) and what ([`ErrorKind`]).
+///
+/// ```
+/// use zipmesh::{io::{obj, ErrorKind}, BuildError};
+/// let err = obj::parse("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err();
+/// assert_eq!(err.line(), Some(3));
+/// assert!(matches!(
+///     err.kind(),
+///     ErrorKind::Topology { error: BuildError::FaceTooSmall { corners: 2, .. }, .. }
+/// ));
+/// assert!(err.to_string().starts_with("line 3: "));
+/// ```
+#[derive(Debug)]
+pub struct MeshFileError {
+    path: Option<PathBuf>,
+    line: Option<usize>,
+    kind: ErrorKind,
+}
+
+impl MeshFileError {
+    /// An error of `kind` at 1-based `line` (if known), without a path.
+    ///
+    /// ```
+    /// use zipmesh::io::{ErrorKind, MeshFileError};
+    /// let e = MeshFileError::new(Some(4), ErrorKind::MissingHeader);
+    /// assert_eq!(e.to_string(), "line 4: missing `OFF` header");
+    /// ```
+    pub fn new(line: Option<usize>, kind: ErrorKind) -> Self {
+        MeshFileError {
+            path: None,
+            line,
+            kind,
+        }
+    }
+
+    /// The same error, naming `path` as the file.
+    ///
+    /// ```
+    /// use zipmesh::io::{ErrorKind, MeshFileError};
+    /// let e = MeshFileError::new(Some(4), ErrorKind::MissingHeader).with_path("a.off");
+    /// assert_eq!(e.to_string(), "a.off:4: missing `OFF` header");
+    /// ```
+    pub fn with_path(mut self, path: impl Into<PathBuf>) -> Self {
+        self.path = Some(path.into());
+        self
+    }
+
+    /// The file the error is about, when known.
+    ///
+    /// ```
+    /// let e = zipmesh::io::read_mesh("/no/such/file.obj").unwrap_err();
+    /// assert_eq!(e.path(), Some(std::path::Path::new("/no/such/file.obj")));
+    /// ```
+    pub fn path(&self) -> Option<&Path> {
+        self.path.as_deref()
+    }
+
+    /// The 1-based line of the defect, when the error is about one line.
+    ///
+    /// ```
+    /// let e = zipmesh::io::off::parse("OFF\n1 0 0\n0 0 x\n").unwrap_err();
+    /// assert_eq!(e.line(), Some(3));
+    /// ```
+    pub fn line(&self) -> Option<usize> {
+        self.line
+    }
+
+    /// What is wrong.
+    ///
+    /// ```
+    /// use zipmesh::io::{off, ErrorKind};
+    /// let e = off::parse("3 1 0\n").unwrap_err();
+    /// assert!(matches!(e.kind(), ErrorKind::MissingHeader));
+    /// ```
+    pub fn kind(&self) -> &ErrorKind {
+        &self.kind
+    }
+
+    pub(super) fn io(path: &Path, e: io::Error) -> Self {
+        MeshFileError::new(None, ErrorKind::Io(e)).with_path(path)
+    }
+}
+
+impl fmt::Display for MeshFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (&self.path, self.line) {
+            (Some(p), Some(l)) => write!(f, "{}:{l}: {}", p.display(), self.kind),
+            (Some(p), None) => write!(f, "{}: {}", p.display(), self.kind),
+            (None, Some(l)) => write!(f, "line {l}: {}", self.kind),
+            (None, None) => write!(f, "{}", self.kind),
+        }
+    }
+}
+
+impl std::error::Error for MeshFileError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match &self.kind {
+            ErrorKind::Io(e) => Some(e),
+            _ => None,
+        }
+    }
+}
