@@ -32,7 +32,8 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::Tag;
-use super::prepare::{bounds_one_quad, EndRule, StartRule, Surgery};
+use super::prepare::{EndRule, StartRule, Surgery};
+use super::quad::bounds_one_quad;
 use crate::invariants::{regular_valence, MeshKind};
 use crate::ops::quad::{
     collapse_quad, remove_valence2, split_high_valence, split_vertex, QuadRecord,

@@ -27,20 +27,26 @@
 
 pub mod compass;
 pub mod execute;
+mod homotopy;
+mod positions;
 pub mod prepare;
+mod preprocess;
+mod quad;
+mod reverse;
 pub mod sketch;
 mod verify;
 mod zip;
 
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
+pub use homotopy::{one_quad_sweeps, start_turn};
+pub use positions::{mesh_zip_along, MeshZip};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
+pub use preprocess::{mesh_preprocess, preprocess, Preprocessed};
+pub use reverse::{find_reverse, ReverseRun};
 pub use sketch::{
     max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,
     SketchWorkspace,
 };
 pub use verify::{verify_edit, Broken};
-pub use zip::{
-    find_reverse, mesh_preprocess, mesh_zip_along, moves, one_quad_sweeps, preprocess, start_turn,
-    zip, zip_along, zip_with, MeshZip, Move, Preprocessed, QzipError, ReverseRun,
-};
+pub use zip::{moves, zip, zip_along, zip_with, Move, QzipError};
