@@ -23,18 +23,50 @@ pub(super) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regul
         })
 }
 
-/// The two corners of the quad on the `left` (or right) of `d: a -> b` other than `a` and
-/// `b`: `(corner next to a, corner next to b)`.
-pub(super) fn side_quad(map: &Map, d: Dart, left: bool) -> Option<(Vert, Vert)> {
+/// The quad on one side of a dart `d: a -> b`, as its three other sides read from `a` to `b`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SideQuad {
+    /// From `a` to the corner next to `a`.
+    pub(super) out: Dart,
+    /// From the corner next to `a` to the corner next to `b`.
+    pub(super) across: Dart,
+    /// From the corner next to `b` to `b`.
+    pub(super) back: Dart,
+}
+
+impl SideQuad {
+    /// The corner next to `a`.
+    pub(super) fn near_origin(&self, map: &Map) -> Vert {
+        map.dest(self.out)
+    }
+
+    /// The corner next to `b`.
+    pub(super) fn near_dest(&self, map: &Map) -> Vert {
+        map.dest(self.across)
+    }
+}
+
+/// The quad on the `left` (or right) of `d: a -> b`; `None` at the boundary or when that face
+/// is not a quad.
+pub(super) fn side_quad(map: &Map, d: Dart, left: bool) -> Option<SideQuad> {
     let e = if left { d } else { d.twin() };
     let f = map.face(e)?;
     if map.degree(f) != 4 {
         return None;
     }
-    let (near_origin, near_dest) = (map.origin(map.prev(e)), map.dest(map.next(e)));
+    // The face of `e` is on its left: walking it from `e` goes round the quad.
+    let (after, opposite, before) = (map.next(e), map.next(map.next(e)), map.prev(e));
     Some(if left {
-        (near_origin, near_dest)
+        SideQuad {
+            out: before.twin(),
+            across: opposite.twin(),
+            back: after.twin(),
+        }
     } else {
-        (near_dest, near_origin)
+        SideQuad {
+            out: after,
+            across: opposite,
+            back: before,
+        }
     })
 }
