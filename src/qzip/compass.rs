@@ -418,6 +418,7 @@ impl fmt::Display for Plan {
 /// assert!(e.to_string().contains("valence 6"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PlanError {
     /// The path does not fit this map (it was made for another map, or the map changed).
     StalePath {

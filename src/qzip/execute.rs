@@ -17,11 +17,11 @@
 //!
 //! ```
 //! use zipmesh::{gen, Vert};
-//! use zipmesh::qzip::{zip, SketchOptions, Tag};
+//! use zipmesh::qzip::{Qzip, Tag};
 //! let mut map = gen::subdivided_icosahedron(2).map;
 //! let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 //! let before = map.clone();
-//! let r = zip(&mut map, v3, v5, Tag::LS, &SketchOptions::default()).unwrap();
+//! let r = Qzip::new().zip(&mut map, v3, v5, Tag::LS).unwrap();
 //! assert_eq!(map.check(), Ok(()));
 //! assert_eq!((map.valence(r.moved_from()), map.valence(r.moved_to())), (3, 5));
 //! r.undo(&mut map).unwrap();
@@ -46,11 +46,11 @@ use crate::{Dart, Edge, Face, Map, Vert};
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{zip, SketchOptions, Tag};
+/// use zipmesh::qzip::{Qzip, Tag};
 /// let mut map = gen::subdivided_icosahedron(2).map;
 /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 /// let v0 = map.num_vertices();
-/// let r = zip(&mut map, v5, v3, Tag::LC, &SketchOptions::default()).unwrap();
+/// let r = Qzip::new().zip(&mut map, v5, v3, Tag::LC).unwrap();
 /// assert_eq!(map.num_vertices() as isize, v0 as isize + r.vertex_delta());
 /// assert_eq!(r.footprint_faces().len(), r.collapses());
 /// ```
@@ -175,6 +175,7 @@ impl ZipReport {
 /// assert!(e.to_string().contains("3"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ZipError {
     /// The surgery does not fit the map: at position `index` a vertex is dead or the edge to
     /// the next vertex (or to the guide) is missing or not unique.

@@ -5,18 +5,17 @@
 use alloc::vec::Vec;
 use glam::DVec3;
 
-use super::compass::Tag;
 use super::execute::ZipReport;
-use super::sketch::Path;
-use super::zip::{zip_along, QzipError};
 use crate::ops::quad::QuadRecord;
 use crate::ops::Refusal;
-use crate::Mesh;
-use crate::Vert;
+use crate::{Mesh, Vert};
 
-/// A Q-zip on a [`Mesh`]: the report, and the positions it overwrote (for the undo).
+/// A Q-zip on a [`Mesh`] ([`super::Qzip::zip_mesh`]): the report, and the positions it
+/// overwrote (for the undo). Each vertex a split creates is placed at the mean of its
+/// neighbours (in the order created, so a copy next to an earlier copy uses its new place);
+/// merged vertices keep the position of the vertex that keeps the handle.
 ///
-/// See [`mesh_zip_along`] for an example.
+/// See [`super::Qzip::zip_mesh`] for an example.
 #[derive(Clone, Debug)]
 pub struct MeshZip {
     report: ZipReport,
@@ -27,14 +26,14 @@ pub struct MeshZip {
 impl MeshZip {
     /// The connectivity report.
     ///
-    /// See [`mesh_zip_along`] for an example.
+    /// See [`super::Qzip::zip_mesh`] for an example.
     pub fn report(&self) -> &ZipReport {
         &self.report
     }
 
     /// Undoes the edit: connectivity `==` and positions exactly as before.
     ///
-    /// See [`mesh_zip_along`] for an example.
+    /// See [`super::Qzip::zip_mesh`] for an example.
     pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
         self.report.undo(&mut mesh.map)?;
         for &(v, p) in self.overwritten.iter().rev() {
@@ -80,30 +79,13 @@ pub(super) fn place_created(
     overwritten
 }
 
-/// [`zip_along`] on a mesh: each vertex a split creates is placed at the mean of its
-/// neighbours (in the order created, so a copy next to an earlier copy uses its new place);
-/// merged vertices keep the position of the vertex that keeps the handle.
-///
-/// ```
-/// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{mesh_zip_along, sketch, SketchOptions, Tag};
-/// let mut mesh = gen::subdivided_icosahedron(2);
-/// let before = mesh.clone();
-/// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
-/// let z = mesh_zip_along(&mut mesh, &path, Tag::LS).unwrap();
-/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
-/// assert!(z.report().splits() > 0);
-/// z.undo(&mut mesh).unwrap();
-/// assert_eq!(mesh.map, before.map);
-/// assert_eq!(mesh.positions, before.positions);
-/// ```
-pub fn mesh_zip_along(mesh: &mut Mesh, path: &Path, initial: Tag) -> Result<MeshZip, QzipError> {
-    let report = zip_along(&mut mesh.map, path, initial)?;
-    let old_len = mesh.positions.len();
+/// The positions after a Q-zip on `mesh.map` (`report`) that found `old_len` positions: the
+/// created vertices placed, the overwritten positions kept for the undo.
+pub(super) fn keep_positions(mesh: &mut Mesh, report: ZipReport, old_len: usize) -> MeshZip {
     let overwritten = place_created(mesh, report.records(), old_len);
-    Ok(MeshZip {
+    MeshZip {
         report,
         overwritten,
         old_len,
-    })
+    }
 }

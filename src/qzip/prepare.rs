@@ -278,6 +278,7 @@ impl fmt::Display for Surgery {
 /// assert!(e.to_string().contains("valence 4"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PrepareError {
     /// An end is not an interior v3 or v5 (Sec. 2.6 covers those only).
     End {

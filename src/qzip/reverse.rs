@@ -38,15 +38,15 @@ pub struct ReverseRun {
 ///
 /// ```
 /// use zipmesh::{gen, is_isomorphic};
-/// use zipmesh::qzip::{find_reverse, zip_along, sketch, SketchOptions, Tag};
+/// use zipmesh::qzip::{find_reverse, sketch, Qzip, SketchOptions, Tag};
 /// let original = gen::cube(4).map;
 /// let (a, b) = (zipmesh::Vert::new(0), zipmesh::Vert::new(4));
 /// let path = sketch(&original, a, b, &SketchOptions::default()).unwrap();
 /// let mut edited = original.clone();
-/// let r = zip_along(&mut edited, &path, Tag::LS).unwrap();
+/// let r = Qzip::new().zip_along(&mut edited, &path, Tag::LS).unwrap();
 /// let back = find_reverse(&edited, &r, &original).unwrap();
 /// let mut m = edited.clone();
-/// zip_along(&mut m, &back.path, back.tag).unwrap();
+/// Qzip::new().zip_along(&mut m, &back.path, back.tag).unwrap();
 /// assert!(is_isomorphic(&m, &original));
 /// ```
 pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<ReverseRun> {

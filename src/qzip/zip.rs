@@ -1,25 +1,27 @@
-//! The four stages in one call, and the four movements of a pair.
+//! The four stages in one call ([`Qzip`], the entry point), and the four movements of a pair.
 
 use core::fmt;
 
 use super::compass::{plan, PlanError, Tag};
 use super::execute::{execute_owned, ZipError, ZipReport};
+use super::positions::{keep_positions, MeshZip};
 use super::prepare::{prepare, PrepareError};
-use super::sketch::{sketch, Path, SketchError, SketchOptions, SketchWorkspace};
-use crate::{Map, Vert};
+use super::sketch::{Path, SketchError, SketchOptions, SketchWorkspace};
+use crate::{Map, Mesh, Vert};
 
 /// Why a Q-zip was refused, by stage; the map is unchanged in every case.
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{zip, QzipError, SketchOptions, Tag};
+/// use zipmesh::qzip::{Qzip, QzipError, Tag};
 /// let mut map = gen::torus_grid(6, 6).map;
 /// // A regular torus has no singularity to move.
-/// let e = zip(&mut map, Vert::new(0), Vert::new(2), Tag::LC, &SketchOptions::default());
+/// let e = Qzip::new().zip(&mut map, Vert::new(0), Vert::new(2), Tag::LC);
 /// assert!(matches!(e, Err(QzipError::Prepare(_))));
 /// assert!(e.unwrap_err().to_string().contains("valence 4"));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum QzipError {
     /// Stage 1: no path.
     Sketch(SketchError),
@@ -45,73 +47,202 @@ impl fmt::Display for QzipError {
 #[cfg(feature = "std")]
 impl std::error::Error for QzipError {}
 
-/// Runs stages 2 to 4 along a given path with the initial operation `initial`.
-///
-/// All or nothing: on an error the map is unchanged.
-///
-/// ```
-/// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{sketch, zip_along, SketchOptions, Tag};
-/// let mut map = gen::subdivided_icosahedron(2).map;
-/// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
-/// let path = sketch(&map, v3, v5, &SketchOptions::default()).unwrap();
-/// let r = zip_along(&mut map, &path, Tag::RS).unwrap();
-/// assert_eq!(map.valence(r.moved_to()), 5);
-/// ```
-pub fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {
+/// Stages 2 to 4 along `path`: all or nothing.
+pub(crate) fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {
     let p = plan(map, path, initial).map_err(QzipError::Plan)?;
     let s = prepare(map, &p).map_err(QzipError::Prepare)?;
     execute_owned(map, s).map_err(QzipError::Execute)
 }
 
-/// Runs the four stages: the path from `from` to `to` sketched with `opts`, then
-/// [`zip_along`] it with the initial operation `initial`.
+/// The Q-zip entry point: the sketch options and a reusable [`SketchWorkspace`], and the four
+/// stages run at once on a [`Map`] or, keeping positions, on a [`Mesh`].
+///
+/// Every Q-zip is all or nothing: on an error the map (and the positions) are unchanged. One
+/// value serves any number of Q-zips on any maps; its workspace makes repeated sketches on a
+/// large map cost what they explore (no O(V) set-up per call), with the same path as
+/// [`super::sketch()`]. The staged API ([`super::sketch()`], [`super::plan`],
+/// [`super::prepare()`], [`super::execute()`]) gives each stage's result to inspect.
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{zip, SketchOptions, Tag};
+/// use zipmesh::qzip::{Qzip, SketchOptions, Tag};
 /// let mut map = gen::subdivided_icosahedron(2).map;
 /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
-/// let r = zip(&mut map, v3, v5, Tag::LC, &SketchOptions::default()).unwrap();
+/// let mut q = Qzip::with_options(SketchOptions::default().avoid_boundary(true));
+/// let r = q.zip(&mut map, v3, v5, Tag::LC).unwrap();
 /// assert_eq!(map.valence(r.moved_from()), 3);
+/// r.undo(&mut map).unwrap();
 /// ```
-pub fn zip(
-    map: &mut Map,
-    from: Vert,
-    to: Vert,
-    initial: Tag,
-    opts: &SketchOptions,
-) -> Result<ZipReport, QzipError> {
-    let path = sketch(map, from, to, opts).map_err(QzipError::Sketch)?;
-    zip_along(map, &path, initial)
+#[derive(Debug, Default)]
+pub struct Qzip<'a> {
+    options: SketchOptions<'a>,
+    workspace: SketchWorkspace,
 }
 
-/// [`zip`] with the sketch done in a reusable [`SketchWorkspace`] (the same path, without
-/// per-call allocation proportional to the explored region): for many Q-zips on one large
-/// map. With a [`super::Guide`] in `opts` the sketch explores about O(path length) vertices.
-///
-/// ```
-/// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{zip, zip_with, SketchOptions, SketchWorkspace, Tag};
-/// let mut ws = SketchWorkspace::new();
-/// let mut a = gen::subdivided_icosahedron(2).map;
-/// let mut b = a.clone();
-/// let (v5, v3) = (Vert::new(0), Vert::new(42));
-/// let o = SketchOptions::default();
-/// let ra = zip_with(&mut ws, &mut a, v3, v5, Tag::LC, &o).unwrap();
-/// let rb = zip(&mut b, v3, v5, Tag::LC, &o).unwrap();
-/// assert_eq!((a, ra), (b, rb));
-/// ```
-pub fn zip_with(
-    ws: &mut SketchWorkspace,
-    map: &mut Map,
-    from: Vert,
-    to: Vert,
-    initial: Tag,
-    opts: &SketchOptions<'_>,
-) -> Result<ZipReport, QzipError> {
-    let path = ws.sketch(map, from, to, opts).map_err(QzipError::Sketch)?;
-    zip_along(map, &path, initial)
+impl Qzip<'static> {
+    /// An entry point with the default options (shortest path, nothing forbidden).
+    ///
+    /// ```
+    /// use zipmesh::qzip::{Qzip, SketchOptions};
+    /// assert_eq!(Qzip::new().options(), &SketchOptions::default());
+    /// ```
+    pub fn new() -> Self {
+        Self::default()
+    }
+}
+
+impl<'a> Qzip<'a> {
+    /// An entry point that sketches with `options`.
+    ///
+    /// ```
+    /// use zipmesh::qzip::{Qzip, SketchOptions};
+    /// let q = Qzip::with_options(SketchOptions::default().forbid_edges([3]));
+    /// assert_eq!(q.options().forbidden_edges, vec![3]);
+    /// ```
+    pub fn with_options(options: SketchOptions<'a>) -> Self {
+        Qzip {
+            options,
+            workspace: SketchWorkspace::new(),
+        }
+    }
+
+    /// The sketch options.
+    ///
+    /// See [`Qzip::with_options`] for an example.
+    pub fn options(&self) -> &SketchOptions<'a> {
+        &self.options
+    }
+
+    /// The sketch options, to change between Q-zips.
+    ///
+    /// ```
+    /// use zipmesh::qzip::Qzip;
+    /// let mut q = Qzip::new();
+    /// q.options_mut().avoid_boundary = true;
+    /// assert!(q.options().avoid_boundary);
+    /// ```
+    pub fn options_mut(&mut self) -> &mut SketchOptions<'a> {
+        &mut self.options
+    }
+
+    /// The workspace of the sketches (for [`SketchWorkspace::explored`]).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{Qzip, Tag};
+    /// let mut map = gen::subdivided_icosahedron(2).map;
+    /// let mut q = Qzip::new();
+    /// q.zip(&mut map, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+    /// assert!(q.workspace().explored() > 0);
+    /// ```
+    pub fn workspace(&self) -> &SketchWorkspace {
+        &self.workspace
+    }
+
+    /// Stage 1 alone: the path from `from` to `to` under the options, sketched in the
+    /// workspace (the path [`super::sketch()`] gives).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::Qzip;
+    /// let map = gen::grid(5, 5).map;
+    /// assert_eq!(Qzip::new().sketch(&map, Vert::new(7), Vert::new(10)).unwrap().len(), 3);
+    /// ```
+    pub fn sketch(&mut self, map: &Map, from: Vert, to: Vert) -> Result<Path, SketchError> {
+        self.workspace.sketch(map, from, to, &self.options)
+    }
+
+    /// The four stages: the path from `from` to `to` sketched under the options, then
+    /// [`Qzip::zip_along`] it with the initial operation `initial`.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{Qzip, Tag};
+    /// let mut map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let r = Qzip::new().zip(&mut map, v3, v5, Tag::LC).unwrap();
+    /// assert_eq!(map.valence(r.moved_from()), 3);
+    /// ```
+    pub fn zip(
+        &mut self,
+        map: &mut Map,
+        from: Vert,
+        to: Vert,
+        initial: Tag,
+    ) -> Result<ZipReport, QzipError> {
+        let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
+        zip_along(map, &path, initial)
+    }
+
+    /// Stages 2 to 4 along a given path (from [`super::sketch()`], [`super::validate_path`] or
+    /// [`Qzip::sketch`]) with the initial operation `initial`; the options play no part.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{Qzip, Tag};
+    /// let mut map = gen::subdivided_icosahedron(2).map;
+    /// let mut q = Qzip::new();
+    /// let path = q.sketch(&map, Vert::new(42), Vert::new(0)).unwrap(); // v3 to v5
+    /// let r = q.zip_along(&mut map, &path, Tag::RS).unwrap();
+    /// assert_eq!(map.valence(r.moved_to()), 5);
+    /// ```
+    pub fn zip_along(
+        &self,
+        map: &mut Map,
+        path: &Path,
+        initial: Tag,
+    ) -> Result<ZipReport, QzipError> {
+        zip_along(map, path, initial)
+    }
+
+    /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed at
+    /// the mean of its neighbours (see [`MeshZip`]). A [`super::Guide`] in the options cannot
+    /// borrow this mesh's positions (they are edited): guide with [`Qzip::zip`] on `mesh.map`
+    /// instead, or with a copy of the points.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{Qzip, Tag};
+    /// let mut mesh = gen::subdivided_icosahedron(2);
+    /// let before = mesh.clone();
+    /// let z = Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+    /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+    /// z.undo(&mut mesh).unwrap();
+    /// assert_eq!((mesh.map, mesh.positions), (before.map, before.positions));
+    /// ```
+    pub fn zip_mesh(
+        &mut self,
+        mesh: &mut Mesh,
+        from: Vert,
+        to: Vert,
+        initial: Tag,
+    ) -> Result<MeshZip, QzipError> {
+        let path = self
+            .sketch(&mesh.map, from, to)
+            .map_err(QzipError::Sketch)?;
+        self.zip_mesh_along(mesh, &path, initial)
+    }
+
+    /// [`Qzip::zip_along`] on a mesh, keeping positions (see [`Qzip::zip_mesh`]).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
+    /// let mut mesh = gen::subdivided_icosahedron(2);
+    /// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
+    /// let z = Qzip::new().zip_mesh_along(&mut mesh, &path, Tag::LS).unwrap();
+    /// assert!(z.report().splits() > 0);
+    /// ```
+    pub fn zip_mesh_along(
+        &self,
+        mesh: &mut Mesh,
+        path: &Path,
+        initial: Tag,
+    ) -> Result<MeshZip, QzipError> {
+        let old_len = mesh.positions.len();
+        let report = zip_along(&mut mesh.map, path, initial)?;
+        Ok(keep_positions(mesh, report, old_len))
+    }
 }
 
 /// One of the four movements of a pair: the initial operation and its outcome (the edited

@@ -80,10 +80,7 @@ fn vertex(map: &Map, irregular: &[Vert], bytes: &mut Bytes) -> Option<Vert> {
 /// validated as a caller's path.
 fn path(map: &Map, from: Vert, to: Vert, bytes: &mut Bytes) -> Option<Path> {
     let mode = bytes.u8();
-    let mut opts = SketchOptions {
-        avoid_boundary: mode & 2 != 0,
-        ..SketchOptions::default()
-    };
+    let mut opts = SketchOptions::default().avoid_boundary(mode & 2 != 0);
     let walk_len = usize::from(mode >> 4);
     if mode & 1 == 0 || walk_len == 0 {
         return sketch(map, from, to, &opts).ok();

@@ -52,21 +52,21 @@ use crate::{Dart, Face, Map, Mesh, Vert};
 /// Options of [`sketch`] and [`validate_path`].
 ///
 /// Edges are named by their index `e`: the edge of darts `2e` and `2e + 1`, that is
-/// `dart.index() / 2`.
+/// `dart.index() / 2`. Start from [`SketchOptions::default`] (shortest path, nothing
+/// forbidden) and chain the setters:
 ///
 /// ```
 /// use zipmesh::Face;
 /// use zipmesh::qzip::SketchOptions;
-/// let opts = SketchOptions {
-///     avoid_boundary: true,
-///     forbidden_edges: vec![3, 4],
-///     forbidden_faces: vec![Face::new(0)],
-///     weights: None,
-///     guide: None,
-/// };
+/// let opts = SketchOptions::default()
+///     .avoid_boundary(true)
+///     .forbid_edges([3, 4])
+///     .forbid_faces([Face::new(0)]);
 /// assert!(opts.avoid_boundary);
+/// assert_eq!(opts.forbidden_edges, vec![3, 4]);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct SketchOptions<'a> {
     /// Prefer paths whose interior vertices are not on the boundary; when no such path exists,
     /// fall back to any path. Ignored by [`validate_path`].
@@ -83,6 +83,88 @@ pub struct SketchOptions<'a> {
     /// work smaller. See [`Guide`], also for what a wrong bound does. Ignored with `weights`
     /// and by [`validate_path`].
     pub guide: Option<Guide<'a>>,
+}
+
+impl<'a> SketchOptions<'a> {
+    /// Sets [`SketchOptions::avoid_boundary`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// // 4 x 1 grid: every vertex is on the boundary, so the fallback runs.
+    /// let map = gen::grid(4, 1).map;
+    /// let opts = SketchOptions::default().avoid_boundary(true);
+    /// assert_eq!(sketch(&map, Vert::new(0), Vert::new(4), &opts).unwrap().len(), 4);
+    /// ```
+    pub fn avoid_boundary(mut self, avoid: bool) -> Self {
+        self.avoid_boundary = avoid;
+        self
+    }
+
+    /// Adds `edges` to [`SketchOptions::forbidden_edges`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let (a, b) = (Vert::new(0), Vert::new(1));
+    /// let direct = sketch(&map, a, b, &SketchOptions::default()).unwrap();
+    /// let e = (direct.darts()[0].index() / 2) as u32;
+    /// let opts = SketchOptions::default().forbid_edges([e]);
+    /// assert_eq!(sketch(&map, a, b, &opts).unwrap().len(), 3);
+    /// ```
+    pub fn forbid_edges(mut self, edges: impl IntoIterator<Item = u32>) -> Self {
+        self.forbidden_edges.extend(edges);
+        self
+    }
+
+    /// Adds `faces` to [`SketchOptions::forbidden_faces`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Face, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let opts = SketchOptions::default().forbid_faces([Face::new(0)]);
+    /// // Both edges at corner 0 lie on face 0: no path leaves it.
+    /// assert!(sketch(&map, Vert::new(0), Vert::new(5), &opts).is_err());
+    /// ```
+    pub fn forbid_faces(mut self, faces: impl IntoIterator<Item = Face>) -> Self {
+        self.forbidden_faces.extend(faces);
+        self
+    }
+
+    /// Sets [`SketchOptions::weights`]: per-edge weights, Dijkstra instead of breadth-first
+    /// search.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let opts = SketchOptions::default().weights(vec![2.0; map.dart_slots() / 2]);
+    /// assert_eq!(sketch(&map, Vert::new(0), Vert::new(3), &opts).unwrap().len(), 3);
+    /// ```
+    pub fn weights(mut self, weights: Vec<f64>) -> Self {
+        self.weights = Some(weights);
+        self
+    }
+
+    /// Sets [`SketchOptions::guide`]: an A* search towards the end, the same path.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, Guide, SketchOptions};
+    /// let mesh = gen::grid(10, 10);
+    /// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
+    /// let (a, b) = (Vert::new(0), Vert::new(120));
+    /// assert_eq!(
+    ///     sketch(&mesh.map, a, b, &guided),
+    ///     sketch(&mesh.map, a, b, &SketchOptions::default())
+    /// );
+    /// ```
+    pub fn guide(mut self, guide: Guide<'a>) -> Self {
+        self.guide = Some(guide);
+        self
+    }
 }
 
 /// A simple edge path: its vertices `v0 .. vn` and the darts `v(i) -> v(i+1)`.
@@ -196,6 +278,7 @@ impl fmt::Display for Path {
 /// assert!(e.to_string().contains("4"));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum SketchError {
     /// The two ends are the same vertex.
     SameVertex(Vert),
@@ -350,7 +433,7 @@ impl std::error::Error for SketchError {}
 /// use zipmesh::{gen, Vert};
 /// use zipmesh::qzip::{sketch, Guide, SketchOptions};
 /// let mesh = gen::grid(40, 40);
-/// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+/// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
 /// let (a, b) = (Vert::new(41 * 20 + 3), Vert::new(41 * 20 + 30));
 /// let p = sketch(&mesh.map, a, b, &guided).unwrap();
 /// assert_eq!(p, sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap());
@@ -607,7 +690,7 @@ impl SketchWorkspace {
     /// let mut ws = SketchWorkspace::new();
     /// ws.sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap();
     /// let plain = ws.explored();
-    /// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+    /// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
     /// ws.sketch(&mesh.map, a, b, &guided).unwrap();
     /// assert!(ws.explored() * 5 < plain);
     /// ```
@@ -655,7 +738,7 @@ fn passes(opts: &SketchOptions<'_>) -> &'static [bool] {
 /// use zipmesh::qzip::{sketch, SketchOptions};
 /// // 4 x 1 grid, vertices 0..5 on the bottom row, 5..10 on the top row.
 /// let map = gen::grid(4, 1).map;
-/// let opts = SketchOptions { avoid_boundary: true, ..Default::default() };
+/// let opts = SketchOptions::default().avoid_boundary(true);
 /// let p = sketch(&map, Vert::new(0), Vert::new(4), &opts).unwrap(); // every vertex is on the boundary
 /// assert_eq!(p.len(), 4);
 /// ```
