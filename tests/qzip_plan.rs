@@ -9,7 +9,7 @@ use std::collections::{HashSet, VecDeque};
 use zipmesh::qzip::{
     plan, sketch, validate_path, PlanError, SketchError, SketchOptions, Tag, Turn,
 };
-use zipmesh::{gen, Dart, Face, Map, Vert};
+use zipmesh::{gen, Dart, Edge, Face, Map, Vert};
 
 /// (edge index, u, v) for every live edge.
 fn edge_list(map: &Map) -> Vec<(u32, usize, usize)> {
@@ -148,7 +148,7 @@ proptest! {
         for &f in &faces {
             bad.extend(map.face_darts(f).map(|d: Dart| d.index() as u32 / 2));
         }
-        let opts = SketchOptions::default().forbid_edges(edges).forbid_faces(faces);
+        let opts = SketchOptions::default().forbid_edges(edges.iter().map(|&e| Edge::new(e))).forbid_faces(faces);
         let expected = ref_bfs(map, from.index(), to.index(), &|e| !bad.contains(&e), &|_| true);
         match sketch(map, from, to, &opts) {
             Ok(p) => {
@@ -510,8 +510,7 @@ fn given_path_defects_are_refused_with_the_reason() {
         .vertex_darts(v(1))
         .find(|&d| map.dest(d) == v(5))
         .unwrap()
-        .index() as u32
-        / 2;
+        .edge();
     let fe = SketchOptions::default().forbid_edges(vec![e15]);
     assert_eq!(
         err(&[v(0), v(1), v(5)], v(0), v(5), &fe),
@@ -561,10 +560,7 @@ fn sketch_errors() {
         Err(SketchError::DeadVertex(v(50)))
     );
     // Wall off vertex 0 (corner, edges 0-1 and 0-4).
-    let walls: Vec<u32> = map
-        .vertex_darts(v(0))
-        .map(|d| d.index() as u32 / 2)
-        .collect();
+    let walls: Vec<Edge> = map.vertex_darts(v(0)).map(|d| d.edge()).collect();
     let walled = SketchOptions::default().forbid_edges(walls);
     assert_eq!(
         sketch(&map, v(0), v(15), &walled),
@@ -597,7 +593,7 @@ fn sketch_errors() {
         let o = SketchOptions::default().weights(w);
         assert!(matches!(
             sketch(&map, v(0), v(15), &o),
-            Err(SketchError::BadWeight { edge: 3, .. })
+            Err(SketchError::BadWeight { edge, .. }) if edge == Edge::new(3)
         ));
     }
 }
@@ -732,7 +728,7 @@ proptest! {
             if let Some(slot) = weights.get_mut(k) { *slot = x; }
         }
         for opts in [
-            SketchOptions::default().forbid_edges(fe.clone()).forbid_faces(ff.iter().map(|&f| Face::new(f))),
+            SketchOptions::default().forbid_edges(fe.iter().map(|&e| Edge::new(e))).forbid_faces(ff.iter().map(|&f| Face::new(f))),
             SketchOptions::default().weights(weights.clone()).avoid_boundary(true),
         ] {
             if let Ok(p) = sketch(&map, from, to, &opts) {

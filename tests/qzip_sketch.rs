@@ -10,7 +10,7 @@ use zipmesh::ops::quad;
 use zipmesh::qzip::{
     max_edge_length, sketch, Guide, Path, Qzip, SketchError, SketchOptions, SketchWorkspace, Tag,
 };
-use zipmesh::{gen, Dart, Face, Map, Mesh, Vert};
+use zipmesh::{gen, Dart, Edge, Face, Map, Mesh, Vert};
 
 /// The documented one-sided BFS: FIFO queue, the outgoing darts of a vertex in increasing
 /// index, a vertex keeps the first dart that reaches it; `edge_ok` and `vert_ok` (interior
@@ -149,7 +149,7 @@ proptest! {
         } else {
             rule_bfs(map, from, to, &edge_ok, &|_| true)
         };
-        let plain = SketchOptions::default().avoid_boundary(avoid).forbid_edges(edges.clone()).forbid_faces(faces.clone());
+        let plain = SketchOptions::default().avoid_boundary(avoid).forbid_edges(edges.iter().map(|&e| Edge::new(e))).forbid_faces(faces.clone());
         let guided = plain.clone().guide(Guide::from_mesh(&m));
         let mut ws = SketchWorkspace::new();
         let results = [
@@ -365,10 +365,7 @@ fn workspace_errors_match() {
         Err(SketchError::WeightsTooShort { .. })
     ));
     // Every edge at vertex 0 forbidden: no path, whichever search.
-    let walls: Vec<u32> = map
-        .vertex_darts(v(0))
-        .map(|d| d.index() as u32 / 2)
-        .collect();
+    let walls: Vec<Edge> = map.vertex_darts(v(0)).map(|d| d.edge()).collect();
     let m = gen::grid(3, 3);
     for guide in [None, Some(Guide::from_mesh(&m))] {
         let mut o = SketchOptions::default().forbid_edges(walls.clone());

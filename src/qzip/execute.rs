@@ -65,9 +65,9 @@ pub struct ZipReport {
     moved_from: Vert,
     moved_to: Vert,
     footprint_faces: Vec<Face>,
-    footprint_edges: Vec<usize>,
+    footprint_edges: Vec<Edge>,
     scar_faces: Vec<Face>,
-    scar_edges: Vec<usize>,
+    scar_edges: Vec<Edge>,
 }
 
 impl ZipReport {
@@ -129,10 +129,10 @@ impl ZipReport {
         &self.footprint_faces
     }
 
-    /// The footprint's edges: edges of the original map split in two (edge indices, dart / 2).
+    /// The footprint's edges: edges of the original map split in two.
     ///
     /// See [`execute`] for an example.
-    pub fn footprint_edges(&self) -> &[usize] {
+    pub fn footprint_edges(&self) -> &[Edge] {
         &self.footprint_edges
     }
 
@@ -146,7 +146,7 @@ impl ZipReport {
     /// The scar's edges: edges into which collapses merged two edges, still there.
     ///
     /// See [`execute`] for an example.
-    pub fn scar_edges(&self) -> &[usize] {
+    pub fn scar_edges(&self) -> &[Edge] {
         &self.scar_edges
     }
 
@@ -514,6 +514,17 @@ fn joining_dart(map: &Map, carried: Option<Dart>, from: Vert, to: Vert) -> Optio
         .or_else(|| map.dart_between(from, to))
 }
 
+/// The error of an operation at position `index` (vertex `vertex`, operation `tag`) that the
+/// operator refused.
+fn refused(index: usize, vertex: Vert, tag: Tag) -> impl FnOnce(Refusal) -> ZipError {
+    move |refusal| ZipError::Refused {
+        index,
+        vertex,
+        tag,
+        refusal,
+    }
+}
+
 /// The state of the chain while a surgery runs: the position on the path, the guide, the
 /// touched vertices, the counts, the candidates for where the pair goes, and the footprint and
 /// scar found so far.
@@ -541,9 +552,9 @@ struct Chain<'s> {
     from_candidates: Option<[Vert; 3]>,
     to_candidates: [Vert; 4],
     footprint_faces: Vec<Face>,
-    footprint_edges: Vec<usize>,
+    footprint_edges: Vec<Edge>,
     scar_faces: Vec<Face>,
-    scar_edges: Vec<usize>,
+    scar_edges: Vec<Edge>,
     /// Faces made by the chain's splits, still there: a collapse of one shrinks the scar.
     born_faces: Vec<Face>,
     /// Path vertices sorted, with their positions, for long surgeries (short ones scan).
@@ -653,12 +664,7 @@ impl<'s> Chain<'s> {
         for x in [p, guide, n] {
             self.touched.touch(map, x);
         }
-        let r = split_vertex(map, to_guide, edge).map_err(|refusal| ZipError::Refused {
-            index,
-            vertex: p,
-            tag,
-            refusal,
-        })?;
+        let r = split_vertex(map, to_guide, edge).map_err(refused(index, p, tag))?;
         self.splits += 1;
         let (left, right) = (r.kept(), r.created());
         self.touched.born(right);
@@ -679,7 +685,7 @@ impl<'s> Chain<'s> {
         self.scar_faces.push(r.face());
         for d in [to_guide, edge] {
             if d.edge().index() < self.original_edges {
-                self.footprint_edges.push(d.edge().index());
+                self.footprint_edges.push(d.edge());
             }
         }
         records.push(r.into());
@@ -733,12 +739,7 @@ impl<'s> Chain<'s> {
         for x in [p, n, far, removed] {
             self.touched.touch(map, x);
         }
-        let r = collapse_quad(map, at).map_err(|refusal| ZipError::Refused {
-            index,
-            vertex: p,
-            tag,
-            refusal,
-        })?;
+        let r = collapse_quad(map, at).map_err(refused(index, p, tag))?;
         self.collapses += 1;
         if self.from_candidates.is_none() {
             self.from_candidates = Some(match self.surgery.start_rule() {
@@ -775,7 +776,7 @@ impl<'s> Chain<'s> {
         } else if face.index() < self.original_faces {
             self.footprint_faces.push(face);
         }
-        self.scar_edges.extend(merged.map(|d| d.edge().index()));
+        self.scar_edges.extend(merged.map(Dart::edge));
     }
 
     /// The post-processing of Sec. 2.7: each vertex the chain made valence 2 is removed, each
@@ -858,7 +859,7 @@ fn run(
         mut scar_edges,
         ..
     } = chain;
-    scar_edges.retain(|&e| map.is_live_edge(Edge::new(e as u32)));
+    scar_edges.retain(|&e| map.is_live_edge(e));
     scar_faces.retain(|&f| map.is_live_face(f));
     Ok(ZipReport {
         surgery,

@@ -8,7 +8,7 @@ use super::sketch::{sketch, validate_path, Path, SketchOptions};
 use super::zip::zip_along;
 use crate::invariants::canonical::CanonicalCode;
 use crate::invariants::{is_irregular, MeshKind};
-use crate::{Dart, Map, Vert};
+use crate::{Dart, Edge, Map, Vert};
 
 /// A Q-zip run that undoes another: a path from the moved terminal singularity to the moved
 /// initial one, and the initial operation to run along it.
@@ -84,10 +84,10 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
     // Singularities other than the pair: the forward path passed them on one side; a
     // reverse path through one (where the forward path did not run) reads the compass
     // there by the counting rule and may take the other side.
-    let blocked: Vec<u32> = edited
+    let blocked: Vec<Edge> = edited
         .vertices()
         .filter(|&v| v != from && v != to && is_irregular(edited, MeshKind::Quad, v))
-        .flat_map(|v| edited.vertex_darts(v).map(|d| (d.index() / 2) as u32))
+        .flat_map(|v| edited.vertex_darts(v).map(Dart::edge))
         .collect();
     let block = |o: &SketchOptions<'static>| SketchOptions {
         forbidden_edges: blocked.clone(),
@@ -140,41 +140,8 @@ fn near_paths(edited: &Map, report: &ZipReport, max_len: usize, cap: usize) -> V
             *x = edited.is_live_vertex(s.vertex);
         }
     }
-    let mut core_set: Vec<Vert> = report
-        .surgery()
-        .steps()
-        .iter()
-        .map(|s| s.vertex)
-        .filter(|&v| edited.is_live_vertex(v))
-        .chain([from, to])
-        .collect();
-    for &f in report.scar_faces() {
-        core_set.extend(edited.face_darts(f).map(|d| edited.origin(d)));
-    }
-    for &e in report.scar_edges() {
-        let d = Dart::new(2 * e as u32);
-        core_set.extend([edited.origin(d), edited.dest(d)]);
-    }
-    let mut allowed = alloc::vec![false; slots];
-    for &v in &core_set {
-        for d in edited.vertex_darts(v) {
-            allowed[edited.dest(d).index()] = true;
-        }
-        allowed[v.index()] = true;
-    }
-    // Distances to `to` inside the allowed set prune the enumeration.
-    let mut dist = alloc::vec![usize::MAX; slots];
-    let mut queue = alloc::collections::VecDeque::from([to]);
-    dist[to.index()] = 0;
-    while let Some(v) = queue.pop_front() {
-        for d in edited.vertex_darts(v) {
-            let w = edited.dest(d);
-            if allowed[w.index()] && dist[w.index()] == usize::MAX {
-                dist[w.index()] = dist[v.index()] + 1;
-                queue.push_back(w);
-            }
-        }
-    }
+    let allowed = near_edit(edited, report, from, to);
+    let dist = distances_inside(edited, &allowed, to);
     let mut found: Vec<(usize, Vec<Vert>)> = Vec::new();
     let mut stack: Vec<Vert> = alloc::vec![from];
     let mut visiting = alloc::vec![false; slots];
@@ -221,6 +188,53 @@ fn near_paths(edited: &Map, report: &ZipReport, max_len: usize, cap: usize) -> V
         .collect()
 }
 
+/// The vertices near the edit: the surviving surgery vertices, the two ends, the corners of
+/// the scar, and every neighbour of those.
+fn near_edit(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> Vec<bool> {
+    let slots = edited.vertex_slots();
+    let mut core_set: Vec<Vert> = report
+        .surgery()
+        .steps()
+        .iter()
+        .map(|s| s.vertex)
+        .filter(|&v| edited.is_live_vertex(v))
+        .chain([from, to])
+        .collect();
+    for &f in report.scar_faces() {
+        core_set.extend(edited.face_darts(f).map(|d| edited.origin(d)));
+    }
+    for &e in report.scar_edges() {
+        let d = e.dart(0);
+        core_set.extend([edited.origin(d), edited.dest(d)]);
+    }
+    let mut allowed = alloc::vec![false; slots];
+    for &v in &core_set {
+        for d in edited.vertex_darts(v) {
+            allowed[edited.dest(d).index()] = true;
+        }
+        allowed[v.index()] = true;
+    }
+    allowed
+}
+
+/// Distances to `to` inside the `allowed` vertices (`usize::MAX` outside or unreached).
+fn distances_inside(edited: &Map, allowed: &[bool], to: Vert) -> Vec<usize> {
+    let slots = edited.vertex_slots();
+    let mut dist = alloc::vec![usize::MAX; slots];
+    let mut queue = alloc::collections::VecDeque::from([to]);
+    dist[to.index()] = 0;
+    while let Some(v) = queue.pop_front() {
+        for d in edited.vertex_darts(v) {
+            let w = edited.dest(d);
+            if allowed[w.index()] && dist[w.index()] == usize::MAX {
+                dist[w.index()] = dist[v.index()] + 1;
+                queue.push_back(w);
+            }
+        }
+    }
+    dist
+}
+
 /// Sketch options for the image of the surgery path: unit weight on edges between vertices
 /// of the edit's scar and surviving path, a high weight elsewhere.
 fn image_options(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> SketchOptions<'static> {
@@ -241,15 +255,15 @@ fn image_options(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> Sket
         }
     }
     for &e in report.scar_edges() {
-        let d = Dart::new(2 * e as u32);
+        let d = e.dart(0);
         mark(edited.origin(d));
         mark(edited.dest(d));
     }
     mark(from);
     mark(to);
-    let weights: Vec<f64> = (0..edited.dart_slots() / 2)
+    let weights: Vec<f64> = (0..edited.edge_slots() as u32)
         .map(|e| {
-            let d = Dart::new(2 * e as u32);
+            let d = Edge::new(e).dart(0);
             let inside = |v: Vert| near.get(v.index()).copied().unwrap_or(false);
             if edited.is_live_dart(d) && inside(edited.origin(d)) && inside(edited.dest(d)) {
                 1.0

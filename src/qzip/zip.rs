@@ -95,9 +95,10 @@ impl<'a> Qzip<'a> {
     /// An entry point that sketches with `options`.
     ///
     /// ```
+    /// use zipmesh::Edge;
     /// use zipmesh::qzip::{Qzip, SketchOptions};
-    /// let q = Qzip::with_options(SketchOptions::default().forbid_edges([3]));
-    /// assert_eq!(q.options().forbidden_edges, vec![3]);
+    /// let q = Qzip::with_options(SketchOptions::default().forbid_edges([Edge::new(3)]));
+    /// assert_eq!(q.options().forbidden_edges, vec![Edge::new(3)]);
     /// ```
     pub fn with_options(options: SketchOptions<'a>) -> Self {
         Qzip {

@@ -103,7 +103,7 @@ fn path(map: &Map, from: Vert, to: Vert, bytes: &mut Bytes) -> Option<Path> {
         // The rest of the path may not come back to a walk vertex before the last.
         for &w in &walk[..walk.len() - 1] {
             opts.forbidden_edges
-                .extend(map.vertex_darts(w).map(|d| d.index() as u32 / 2));
+                .extend(map.vertex_darts(w).map(|d| d.edge()));
         }
         let tail = sketch(map, last, to, &opts).ok()?;
         walk.extend_from_slice(&tail.vertices()[1..]);

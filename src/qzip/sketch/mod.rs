@@ -47,23 +47,23 @@ use hashbrown::HashMap;
 
 use self::search::{search, Ctx};
 use self::store::{ArrayStore, Buffers, HashStore, Slot, Store};
-use crate::{Dart, Face, Map, Mesh, Vert};
+use crate::{Dart, Edge, Face, Map, Mesh, Vert};
 
 /// Options of [`sketch`] and [`validate_path`].
 ///
-/// Edges are named by their index `e`: the edge of darts `2e` and `2e + 1`, that is
-/// `dart.index() / 2`. Start from [`SketchOptions::default`] (shortest path, nothing
+/// Edges are [`Edge`] handles (`dart.edge()`); per-edge data is indexed by [`Edge::index`].
+/// Start from [`SketchOptions::default`] (shortest path, nothing
 /// forbidden) and chain the setters:
 ///
 /// ```
-/// use zipmesh::Face;
+/// use zipmesh::{Edge, Face};
 /// use zipmesh::qzip::SketchOptions;
 /// let opts = SketchOptions::default()
 ///     .avoid_boundary(true)
-///     .forbid_edges([3, 4])
+///     .forbid_edges([Edge::new(3), Edge::new(4)])
 ///     .forbid_faces([Face::new(0)]);
 /// assert!(opts.avoid_boundary);
-/// assert_eq!(opts.forbidden_edges, vec![3, 4]);
+/// assert_eq!(opts.forbidden_edges, vec![Edge::new(3), Edge::new(4)]);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 #[non_exhaustive]
@@ -71,11 +71,11 @@ pub struct SketchOptions<'a> {
     /// Prefer paths whose interior vertices are not on the boundary; when no such path exists,
     /// fall back to any path. Ignored by [`validate_path`].
     pub avoid_boundary: bool,
-    /// Edge indices that no path may use (sharp features).
-    pub forbidden_edges: Vec<u32>,
+    /// Edges that no path may use (sharp features).
+    pub forbidden_edges: Vec<Edge>,
     /// Faces whose edges no path may use (protected regions).
     pub forbidden_faces: Vec<Face>,
-    /// Per-edge weights indexed by edge index (length at least `map.dart_slots() / 2`), each
+    /// Per-edge weights indexed by [`Edge::index`] (length at least `map.edge_slots()`), each
     /// finite and non-negative; `None` means unit weights and breadth-first search. Path
     /// lengths whose sum overflows to infinity count as unreachable.
     pub weights: Option<Vec<f64>>,
@@ -109,11 +109,10 @@ impl<'a> SketchOptions<'a> {
     /// let map = gen::grid(3, 3).map;
     /// let (a, b) = (Vert::new(0), Vert::new(1));
     /// let direct = sketch(&map, a, b, &SketchOptions::default()).unwrap();
-    /// let e = (direct.darts()[0].index() / 2) as u32;
-    /// let opts = SketchOptions::default().forbid_edges([e]);
+    /// let opts = SketchOptions::default().forbid_edges([direct.darts()[0].edge()]);
     /// assert_eq!(sketch(&map, a, b, &opts).unwrap().len(), 3);
     /// ```
-    pub fn forbid_edges(mut self, edges: impl IntoIterator<Item = u32>) -> Self {
+    pub fn forbid_edges(mut self, edges: impl IntoIterator<Item = Edge>) -> Self {
         self.forbidden_edges.extend(edges);
         self
     }
@@ -140,7 +139,7 @@ impl<'a> SketchOptions<'a> {
     /// use zipmesh::{gen, Vert};
     /// use zipmesh::qzip::{sketch, SketchOptions};
     /// let map = gen::grid(3, 3).map;
-    /// let opts = SketchOptions::default().weights(vec![2.0; map.dart_slots() / 2]);
+    /// let opts = SketchOptions::default().weights(vec![2.0; map.edge_slots()]);
     /// assert_eq!(sketch(&map, Vert::new(0), Vert::new(3), &opts).unwrap().len(), 3);
     /// ```
     pub fn weights(mut self, weights: Vec<f64>) -> Self {
@@ -300,8 +299,8 @@ pub enum SketchError {
     },
     /// A weight is negative, infinite or NaN.
     BadWeight {
-        /// The edge index.
-        edge: u32,
+        /// The edge.
+        edge: Edge,
         /// The weight given.
         weight: f64,
     },
@@ -336,8 +335,8 @@ pub enum SketchError {
     ForbiddenEdge {
         /// Position of the first of the two in the path.
         index: usize,
-        /// The edge index (the lowest, when several edges join the two vertices).
-        edge: u32,
+        /// The edge (the lowest, when several edges join the two vertices).
+        edge: Edge,
     },
     /// Every edge joining two consecutive vertices of a given path lies on a forbidden face.
     ForbiddenFace {
@@ -366,7 +365,8 @@ impl fmt::Display for SketchError {
             }
             Self::BadWeight { edge, weight } => write!(
                 f,
-                "edge {edge} has weight {weight}; weights must be finite and non-negative"
+                "edge {} has weight {weight}; weights must be finite and non-negative",
+                edge.index()
             ),
             Self::TooShort(n) => write!(f, "a path needs at least two vertices, got {n}"),
             Self::WrongEnd { expected, found } => write!(
@@ -393,7 +393,8 @@ impl fmt::Display for SketchError {
             ),
             Self::ForbiddenEdge { index, edge } => write!(
                 f,
-                "path edge at position {index} is forbidden (edge {edge})"
+                "path edge at position {index} is forbidden (edge {})",
+                edge.index()
             ),
             Self::ForbiddenFace { index, face } => write!(
                 f,
@@ -510,11 +511,8 @@ pub fn max_edge_length(mesh: &Mesh) -> f64 {
             .filter(|p| p.is_finite())
     };
     let mut longest: f64 = 0.0;
-    for e in 0..map.dart_slots() / 2 {
-        let d = Dart::new(2 * e as u32);
-        if !map.is_live_dart(d) {
-            continue;
-        }
+    for e in map.edges() {
+        let d = e.dart(0);
         match (point(map.origin(d)), point(map.dest(d))) {
             (Some(a), Some(b)) => {
                 let l = a.distance(b);
@@ -532,9 +530,9 @@ pub fn max_edge_length(mesh: &Mesh) -> f64 {
 
 /// The edge masks and checked weights shared by the searches and the validation.
 struct Rules<'a> {
-    /// Forbidden edge indices, sorted without repeats: a lookup costs O(log k), and a search
+    /// Forbidden edges, sorted without repeats: a lookup costs O(log k), and a search
     /// costs what it explores, not O(E).
-    forbidden: Vec<u32>,
+    forbidden: Vec<Edge>,
     weights: Option<&'a [f64]>,
 }
 
@@ -543,14 +541,14 @@ impl<'a> Rules<'a> {
     fn new(
         map: &Map,
         opts: &'a SketchOptions<'_>,
-        mut forbidden: Vec<u32>,
+        mut forbidden: Vec<Edge>,
     ) -> Result<Self, SketchError> {
-        let n_edges = map.dart_slots() / 2;
+        let n_edges = map.edge_slots();
         forbidden.clear();
         forbidden.extend_from_slice(&opts.forbidden_edges);
         for &f in &opts.forbidden_faces {
             if map.is_live_face(f) {
-                forbidden.extend(map.face_darts(f).map(|d| (d.index() / 2) as u32));
+                forbidden.extend(map.face_darts(f).map(Dart::edge));
             }
         }
         forbidden.sort_unstable();
@@ -565,11 +563,9 @@ impl<'a> Rules<'a> {
                     });
                 }
                 for (e, &x) in w.iter().enumerate().take(n_edges) {
-                    if !(x.is_finite() && x >= 0.0) && map.is_live_dart(Dart::new(2 * e as u32)) {
-                        return Err(SketchError::BadWeight {
-                            edge: e as u32,
-                            weight: x,
-                        });
+                    let edge = Edge::new(e as u32);
+                    if !(x.is_finite() && x >= 0.0) && map.is_live_edge(edge) {
+                        return Err(SketchError::BadWeight { edge, weight: x });
                     }
                 }
                 Some(&w[..])
@@ -579,11 +575,7 @@ impl<'a> Rules<'a> {
     }
 
     fn usable(&self, d: Dart) -> bool {
-        self.forbidden.is_empty()
-            || self
-                .forbidden
-                .binary_search(&((d.index() / 2) as u32))
-                .is_err()
+        self.forbidden.is_empty() || self.forbidden.binary_search(&d.edge()).is_err()
     }
 }
 
@@ -620,7 +612,7 @@ fn sorted_darts(map: &Map, v: Vert, buf: &mut Vec<Dart>) {
 pub struct SketchWorkspace {
     slots: Vec<Slot>,
     epoch: u32,
-    forbidden: Vec<u32>,
+    forbidden: Vec<Edge>,
     bufs: Buffers,
     explored: usize,
 }

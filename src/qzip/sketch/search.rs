@@ -123,7 +123,11 @@ fn dijkstra<S: Store>(
             if sw.has(DONE) {
                 continue;
             }
-            let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
+            let nd = dv
+                + weights
+                    .get(d.edge().index())
+                    .copied()
+                    .unwrap_or(f64::INFINITY);
             let old = if sw.has(FWD) {
                 sw.dist()
             } else {
@@ -170,6 +174,23 @@ fn trace<S: Store>(cx: &Ctx<'_, '_>, st: &S, pred: impl Fn(&Slot) -> Option<u32>
 /// (the middle layer, down the backward labels, [`mark_back`] up the forward ones) and
 /// [`replay`] replays the one-sided BFS over them.
 fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
+    let (kf, kb) = meet(cx, st, b)?;
+    let total = kf + kb + 1;
+    mark_shortest(cx, st, b, kf, kb);
+    // Labels are exact BFS distances, so a marked vertex's position is either.
+    replay(cx, st, b, total, |s| {
+        if s.has(FWD) {
+            s.fwd
+        } else {
+            total.saturating_sub(s.bwd)
+        }
+    })
+}
+
+/// The two searches of [`bfs`], grown by whole layers until a vertex is labelled by both:
+/// the complete layers `(kf, kb)`, or `None` when a side runs out (no path). The backward
+/// layer `kb` is left in `b.b`.
+fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32, u32)> {
     let (map, from, to) = (cx.map, cx.from, cx.to);
     let s = st.get_mut(from);
     s.set(FWD);
@@ -218,7 +239,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
             }
         }
         if met {
-            break;
+            return Some((kf, kb));
         }
         if forward {
             core::mem::swap(fr, next);
@@ -228,6 +249,14 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
             kb += 1;
         }
     }
+}
+
+/// Marks (`DAG`) the vertices of all shortest paths once the searches met after layers
+/// `kf` and `kb`: the backward layer `kb` vertices one edge from forward layer `kf`, down the
+/// backward labels to `to`, and up the forward labels to `from`.
+fn mark_shortest<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, kf: u32, kb: u32) {
+    let map = cx.map;
+    let bk = &b.b;
     // The middle: backward layer kb vertices one edge from forward layer kf.
     let total = kf + kb + 1;
     b.m.clear();
@@ -264,14 +293,6 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
     cur.clear();
     cur.extend_from_slice(&b.m);
     mark_back(cx, st, cur, nxt, kf + 1, |s| s.has(FWD).then_some(s.fwd));
-    // Labels are exact BFS distances, so a marked vertex's position is either.
-    replay(cx, st, b, total, |s| {
-        if s.has(FWD) {
-            s.fwd
-        } else {
-            total.saturating_sub(s.bwd)
-        }
-    })
 }
 
 /// Marks, from the `DAG` vertices at position `pos` in `cur`, the vertices at positions

@@ -90,7 +90,7 @@ pub fn validate_path(
                     Some(face) => SketchError::ForbiddenFace { index: i, face },
                     None => SketchError::ForbiddenEdge {
                         index: i,
-                        edge: (first.index() / 2) as u32,
+                        edge: first.edge(),
                     },
                 })
             }
