@@ -25,10 +25,7 @@ fn qzip_torus(c: &mut Criterion) {
         let (mesh, ends) = qzip_torus::torus_mesh_with_pairs(1000, 16, len);
         let bound = qzip::max_edge_length(&mesh);
         let zipmesh::Mesh { mut map, positions } = mesh;
-        let guided = SketchOptions {
-            guide: Some(qzip::Guide::new(&positions, bound)),
-            ..SketchOptions::default()
-        };
+        let guided = SketchOptions::default().guide(qzip::Guide::new(&positions, bound));
         let (flat, flat_bound) = qzip_torus::flat_layout(
             1000,
             &zipmesh::Mesh {
@@ -36,22 +33,20 @@ fn qzip_torus(c: &mut Criterion) {
                 positions: positions.clone(),
             },
         );
-        let layout = SketchOptions {
-            guide: Some(qzip::Guide::new(&flat, flat_bound)),
-            ..SketchOptions::default()
-        };
+        let layout = SketchOptions::default().guide(qzip::Guide::new(&flat, flat_bound));
         let mut ws = qzip::SketchWorkspace::new();
         let paths: Vec<qzip::Path> = ends
             .iter()
             .map(|&(a, b)| qzip::sketch(&map, a, b, &opts).expect("a path"))
             .collect();
+        let mut q = qzip::Qzip::with_options(opts.clone());
         g.bench_function(
             format!("zip {len} edges (sketch+plan+prepare+execute)"),
             |b| {
                 b.iter_custom(|iters| {
                     timed_zips(iters, &mut map, |m, i| {
                         let (a, v) = ends[i % ends.len()];
-                        qzip::zip(m, a, v, Tag::LC, &opts)
+                        q.zip(m, a, v, Tag::LC)
                     })
                 })
             },
@@ -61,7 +56,7 @@ fn qzip_torus(c: &mut Criterion) {
             |b| {
                 b.iter_custom(|iters| {
                     timed_zips(iters, &mut map, |m, i| {
-                        qzip::zip_along(m, &paths[i % paths.len()], Tag::LC)
+                        q.zip_along(m, &paths[i % paths.len()], Tag::LC)
                     })
                 })
             },
@@ -71,7 +66,7 @@ fn qzip_torus(c: &mut Criterion) {
             b.iter(|| {
                 i = (i + 1) % ends.len();
                 let (a, v) = ends[i];
-                let r = qzip::zip(&mut map, a, v, Tag::LC, &opts).expect("realizable");
+                let r = q.zip(&mut map, a, v, Tag::LC).expect("realizable");
                 r.undo(&mut map).expect("undo")
             })
         });
@@ -96,13 +91,14 @@ fn qzip_torus(c: &mut Criterion) {
             });
         }
         for (name, o) in [("guided", &guided), ("layout", &layout)] {
+            let mut q = qzip::Qzip::with_options(o.clone());
             g.bench_function(
                 format!("zip {name} {len} edges (workspace sketch+plan+prepare+execute)"),
                 |b| {
                     b.iter_custom(|iters| {
                         timed_zips(iters, &mut map, |m, i| {
                             let (a, v) = ends[i % ends.len()];
-                            qzip::zip_with(&mut ws, m, a, v, Tag::LC, o)
+                            q.zip(m, a, v, Tag::LC)
                         })
                     })
                 },

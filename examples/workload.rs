@@ -145,19 +145,20 @@ fn sketch_row(
 
 /// Q-zip rows (issue 4), microseconds per Q-zip, undo not timed (see `measure_zips`):
 ///
-/// * `qzip{L}_{TAG}`: the full Q-zip (`qzip::zip`: sketch, plan, prepare, execute) of a v5
+/// * `qzip{L}_{TAG}`: the full Q-zip (`qzip::Qzip::zip`: sketch in the entry point's reused
+///   workspace, plan, prepare, execute) of a v5
 ///   and a v3 `L` edges apart on the n x n torus, 16 pairs (each made by two vertex
 ///   splits, see `benches/support/qzip_torus.rs`) on rows n / 16 apart, with the initial
 ///   operation TAG (LC: `L` collapses; RC: one split and `L - 1` collapses);
-///   `qzip{L}_{TAG}_along` the same without the sketch (`zip_along` a path found before),
+///   `qzip{L}_{TAG}_along` the same without the sketch (`Qzip::zip_along` a path found before),
 ///   `qzip{L}_sketch` the sketch alone.
 /// * The fast stage 1 (`qzip::SketchWorkspace`, reused): `qzip{L}_sketch_ws` the bidirectional
 ///   BFS, `qzip{L}_sketch_guided` A* guided by the torus's positions (`qzip::Guide`, split
 ///   copies at the mean of their neighbours), `qzip{L}_sketch_layout` A* guided by a flat
 ///   layout of the torus (`flat_layout` in `benches/support/qzip_torus.rs`: points whose
 ///   distance follows the rows, not the geometry), and `qzip{L}_{TAG}_guided`,
-///   `qzip{L}_{TAG}_layout` the full Q-zip with those sketches (`SketchWorkspace::sketch` then
-///   `zip_along`; the same path, so the same edit). A `#` line gives the vertices each sketch
+///   `qzip{L}_{TAG}_layout` the full Q-zip with those sketches (`Qzip::zip` with the guide in its
+///   options; the same path, so the same edit). A `#` line gives the vertices each sketch
 ///   explored, mean over the pairs.
 /// * `qzip_spot`: the full Q-zip of every realizable (pair, initial operation) of irregular
 ///   vertices within 12 edges on `spot_quadrangulated.obj` (skipped if the file is missing),
@@ -171,15 +172,10 @@ fn qzip_rows(n: usize, reps: usize) {
         let bound = qzip::max_edge_length(&mesh);
         let (flat, flat_bound) = qzip_torus::flat_layout(n, &mesh);
         let zipmesh::Mesh { mut map, positions } = mesh;
-        let guided = SketchOptions {
-            guide: Some(qzip::Guide::new(&positions, bound)),
-            ..SketchOptions::default()
-        };
-        let layout = SketchOptions {
-            guide: Some(qzip::Guide::new(&flat, flat_bound)),
-            ..SketchOptions::default()
-        };
+        let guided = SketchOptions::default().guide(qzip::Guide::new(&positions, bound));
+        let layout = SketchOptions::default().guide(qzip::Guide::new(&flat, flat_bound));
         let mut ws = qzip::SketchWorkspace::new();
+        let mut q = qzip::Qzip::new();
         let before = map.clone();
         let paths: Vec<qzip::Path> = ends
             .iter()
@@ -189,13 +185,13 @@ fn qzip_rows(n: usize, reps: usize) {
         for tag in [Tag::LC, Tag::RC] {
             // Realizable, and undone exactly: checked once, outside the timing.
             for &(a, b) in &ends {
-                let r = qzip::zip(&mut map, a, b, tag, &opts).expect("a realizable Q-zip");
+                let r = q.zip(&mut map, a, b, tag).expect("a realizable Q-zip");
                 r.undo(&mut map).expect("undo");
                 assert!(map == before, "undo restores the map");
             }
             let count = ends.len() * rounds;
             let t = measure_zips(reps, &mut map, &ends, rounds, |m, &(a, b)| {
-                qzip::zip(m, a, b, tag, &opts).expect("realizable")
+                q.zip(m, a, b, tag).expect("realizable")
             });
             report(
                 "quad",
@@ -206,7 +202,7 @@ fn qzip_rows(n: usize, reps: usize) {
                 reps,
             );
             let t = measure_zips(reps, &mut map, &paths, rounds, |m, p| {
-                qzip::zip_along(m, p, tag).expect("realizable")
+                q.zip_along(m, p, tag).expect("realizable")
             });
             report(
                 "quad",
@@ -246,8 +242,9 @@ fn qzip_rows(n: usize, reps: usize) {
             .into_iter()
             .flat_map(|t| [(t, (&guided, "guided")), (t, (&layout, "layout"))])
         {
+            let mut q = qzip::Qzip::with_options(o.clone());
             let t = measure_zips(reps, &mut map, &ends, rounds, |m, &(a, b)| {
-                qzip::zip_with(&mut ws, m, a, b, tag, o).expect("realizable")
+                q.zip(m, a, b, tag).expect("realizable")
             });
             report(
                 "quad",
@@ -272,6 +269,7 @@ fn qzip_rows(n: usize, reps: usize) {
     let mut map = mesh.map;
     let sing: Vec<Vert> =
         zipmesh::invariants::irregular_vertices(&map, zipmesh::invariants::MeshKind::Quad);
+    let mut q = qzip::Qzip::new();
     let mut cases = Vec::new();
     let mut tried = 0;
     for &a in &sing {
@@ -284,7 +282,7 @@ fn qzip_rows(n: usize, reps: usize) {
             }
             for tag in Tag::CCW {
                 tried += 1;
-                if let Ok(r) = qzip::zip_along(&mut map, &p, tag) {
+                if let Ok(r) = q.zip_along(&mut map, &p, tag) {
                     r.undo(&mut map).expect("undo");
                     cases.push((a, b, tag, p.len()));
                 }
@@ -297,7 +295,7 @@ fn qzip_rows(n: usize, reps: usize) {
         cases.len()
     );
     let t = measure_zips(reps, &mut map, &cases, 1, |m, &(a, b, tag, _)| {
-        qzip::zip(m, a, b, tag, &opts).expect("realizable")
+        q.zip(m, a, b, tag).expect("realizable")
     });
     report("quad", "qzip_spot", t, "us/qzip", cases.len(), reps);
 }

@@ -7,7 +7,7 @@ mod common;
 use common::{ico_cc, pairs_within, singular};
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::qzip::{
-    one_quad_sweeps, plan, sketch, start_turn, validate_path, zip_along, Path, SketchOptions, Tag,
+    one_quad_sweeps, plan, sketch, start_turn, validate_path, Path, Qzip, SketchOptions, Tag,
 };
 use zipmesh::{gen, Map, Vert};
 
@@ -20,7 +20,10 @@ fn regular(map: &Map, v: Vert) -> bool {
 fn outcomes(map: &Map, p: &Path) -> [Option<u128>; 4] {
     Tag::CCW.map(|t| {
         let mut m = map.clone();
-        zip_along(&mut m, p, t).ok().map(|_| canonical_hash(&m))
+        Qzip::new()
+            .zip_along(&mut m, p, t)
+            .ok()
+            .map(|_| canonical_hash(&m))
     })
 }
 
@@ -184,8 +187,8 @@ fn a_loop_round_one_quad_is_cut() {
     let s = zipmesh::qzip::prepare(&map, &plan(&map, &q, Tag::RC).unwrap()).unwrap();
     assert!(s.folds() >= 1, "{s}");
     let (mut x, mut y) = (map.clone(), map.clone());
-    zip_along(&mut x, &p, Tag::RC).unwrap();
-    zip_along(&mut y, &q, Tag::RC).unwrap();
+    Qzip::new().zip_along(&mut x, &p, Tag::RC).unwrap();
+    Qzip::new().zip_along(&mut y, &q, Tag::RC).unwrap();
     assert_eq!(canonical_hash(&x), canonical_hash(&y));
 }
 
@@ -209,8 +212,8 @@ proptest::proptest! {
         let k = start_turn(&map, &p, q).unwrap();
         let tag = Tag::CCW[t];
         let (mut x, mut y) = (map.clone(), map.clone());
-        zip_along(&mut x, &p, tag).unwrap();
-        zip_along(&mut y, q, tag.turned(k)).unwrap();
+        Qzip::new().zip_along(&mut x, &p, tag).unwrap();
+        Qzip::new().zip_along(&mut y, q, tag.turned(k)).unwrap();
         proptest::prop_assert_eq!(canonical_hash(&x), canonical_hash(&y));
     }
 }

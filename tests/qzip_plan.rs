@@ -9,7 +9,7 @@ use std::collections::{HashSet, VecDeque};
 use zipmesh::qzip::{
     plan, sketch, validate_path, PlanError, SketchError, SketchOptions, Tag, Turn,
 };
-use zipmesh::{gen, Dart, Face, Map, Vert};
+use zipmesh::{gen, Dart, Edge, Face, Map, Vert};
 
 /// (edge index, u, v) for every live edge.
 fn edge_list(map: &Map) -> Vec<(u32, usize, usize)> {
@@ -126,7 +126,7 @@ proptest! {
         // Deterministic: the same call gives the same path.
         prop_assert_eq!(&sketch(map, from, to, &opts).unwrap(), &p);
         // Unit-weight Dijkstra finds a path of the same length.
-        let unit = SketchOptions { weights: Some(vec![1.0; map.dart_slots() / 2]), ..Default::default() };
+        let unit = SketchOptions::default().weights(vec![1.0; map.dart_slots() / 2]);
         let q = sketch(map, from, to, &unit).unwrap();
         check_path(map, &q, from, to, &HashSet::new());
         prop_assert_eq!(q.len(), p.len());
@@ -148,7 +148,7 @@ proptest! {
         for &f in &faces {
             bad.extend(map.face_darts(f).map(|d: Dart| d.index() as u32 / 2));
         }
-        let opts = SketchOptions { forbidden_edges: edges, forbidden_faces: faces, ..Default::default() };
+        let opts = SketchOptions::default().forbid_edges(edges.iter().map(|&e| Edge::new(e))).forbid_faces(faces);
         let expected = ref_bfs(map, from.index(), to.index(), &|e| !bad.contains(&e), &|_| true);
         match sketch(map, from, to, &opts) {
             Ok(p) => {
@@ -167,7 +167,7 @@ proptest! {
         let map = &meshes()[m];
         let (from, to) = (pick(map, a), pick(map, b));
         prop_assume!(from != to);
-        let opts = SketchOptions { avoid_boundary: true, ..Default::default() };
+        let opts = SketchOptions::default().avoid_boundary(true);
         let p = sketch(map, from, to, &opts).unwrap();
         check_path(map, &p, from, to, &HashSet::new());
         let inner = ref_bfs(map, from.index(), to.index(), &|_| true,
@@ -190,7 +190,7 @@ proptest! {
         let mut rng = zipmesh::rng::Rng::new(seed);
         // Small integers keep the sums exact.
         let w: Vec<f64> = (0..map.dart_slots() / 2).map(|_| rng.below(5) as f64).collect();
-        let opts = SketchOptions { weights: Some(w.clone()), ..Default::default() };
+        let opts = SketchOptions::default().weights(w.clone());
         let p = sketch(map, from, to, &opts).unwrap();
         check_path(map, &p, from, to, &HashSet::new());
         let cost: f64 = p.darts().iter().map(|d| w[d.index() / 2]).sum();
@@ -510,12 +510,8 @@ fn given_path_defects_are_refused_with_the_reason() {
         .vertex_darts(v(1))
         .find(|&d| map.dest(d) == v(5))
         .unwrap()
-        .index() as u32
-        / 2;
-    let fe = SketchOptions {
-        forbidden_edges: vec![e15],
-        ..Default::default()
-    };
+        .edge();
+    let fe = SketchOptions::default().forbid_edges(vec![e15]);
     assert_eq!(
         err(&[v(0), v(1), v(5)], v(0), v(5), &fe),
         SketchError::ForbiddenEdge {
@@ -524,10 +520,7 @@ fn given_path_defects_are_refused_with_the_reason() {
         }
     );
     // Forbid face 0 = (0, 1, 5, 4): its edges 0-1 is refused, and 1-2 is still fine.
-    let ff = SketchOptions {
-        forbidden_faces: vec![Face::new(0)],
-        ..Default::default()
-    };
+    let ff = SketchOptions::default().forbid_faces(vec![Face::new(0)]);
     assert_eq!(
         err(&[v(0), v(1), v(2)], v(0), v(2), &ff),
         SketchError::ForbiddenFace {
@@ -567,14 +560,8 @@ fn sketch_errors() {
         Err(SketchError::DeadVertex(v(50)))
     );
     // Wall off vertex 0 (corner, edges 0-1 and 0-4).
-    let walls: Vec<u32> = map
-        .vertex_darts(v(0))
-        .map(|d| d.index() as u32 / 2)
-        .collect();
-    let walled = SketchOptions {
-        forbidden_edges: walls,
-        ..Default::default()
-    };
+    let walls: Vec<Edge> = map.vertex_darts(v(0)).map(|d| d.edge()).collect();
+    let walled = SketchOptions::default().forbid_edges(walls);
     assert_eq!(
         sketch(&map, v(0), v(15), &walled),
         Err(SketchError::NoPath {
@@ -583,10 +570,7 @@ fn sketch_errors() {
         })
     );
     // Protecting the corner face has the same effect for vertex 0.
-    let prot = SketchOptions {
-        forbidden_faces: vec![Face::new(0)],
-        ..Default::default()
-    };
+    let prot = SketchOptions::default().forbid_faces(vec![Face::new(0)]);
     assert_eq!(
         sketch(&map, v(0), v(15), &prot),
         Err(SketchError::NoPath {
@@ -595,10 +579,7 @@ fn sketch_errors() {
         })
     );
     let n = map.dart_slots() / 2;
-    let short = SketchOptions {
-        weights: Some(vec![1.0; n - 1]),
-        ..Default::default()
-    };
+    let short = SketchOptions::default().weights(vec![1.0; n - 1]);
     assert_eq!(
         sketch(&map, v(0), v(15), &short),
         Err(SketchError::WeightsTooShort {
@@ -609,13 +590,10 @@ fn sketch_errors() {
     for bad in [-1.0, f64::NAN, f64::INFINITY] {
         let mut w = vec![1.0; n];
         w[3] = bad;
-        let o = SketchOptions {
-            weights: Some(w),
-            ..Default::default()
-        };
+        let o = SketchOptions::default().weights(w);
         assert!(matches!(
             sketch(&map, v(0), v(15), &o),
-            Err(SketchError::BadWeight { edge: 3, .. })
+            Err(SketchError::BadWeight { edge, .. }) if edge == Edge::new(3)
         ));
     }
 }
@@ -632,10 +610,7 @@ fn weights_steer_the_path() {
             w[d.index() / 2] = 10.0;
         }
     }
-    let o = SketchOptions {
-        weights: Some(w),
-        ..Default::default()
-    };
+    let o = SketchOptions::default().weights(w);
     let p = sketch(&map, Vert::new(0), Vert::new(4), &o).unwrap();
     assert_eq!(p.len(), 6);
     assert!(p.vertices()[1..6].iter().all(|v| v.index() >= 5));
@@ -753,8 +728,8 @@ proptest! {
             if let Some(slot) = weights.get_mut(k) { *slot = x; }
         }
         for opts in [
-            SketchOptions { forbidden_edges: fe.clone(), forbidden_faces: ff.iter().map(|&f| Face::new(f)).collect(), ..Default::default() },
-            SketchOptions { weights: Some(weights.clone()), avoid_boundary: true, ..Default::default() },
+            SketchOptions::default().forbid_edges(fe.iter().map(|&e| Edge::new(e))).forbid_faces(ff.iter().map(|&f| Face::new(f))),
+            SketchOptions::default().weights(weights.clone()).avoid_boundary(true),
         ] {
             if let Ok(p) = sketch(&map, from, to, &opts) {
                 check_path(&map, &p, from, to, &HashSet::new());

@@ -9,7 +9,7 @@ use common::{check_zip, pairs_within};
 use std::collections::BTreeMap;
 use std::path::Path;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{find_reverse, zip_along, QzipError, Tag};
+use zipmesh::qzip::{find_reverse, Qzip, QzipError, Tag};
 use zipmesh::{io, Map};
 
 const MAX_DISTANCE: usize = 12;
@@ -45,7 +45,7 @@ fn campaign(map: &Map, reverse_every: usize) -> Tally {
                         t.reverse_checked += 1;
                         if let Some(back) = find_reverse(&edited, &r, map) {
                             let mut m = edited.clone();
-                            zip_along(&mut m, &back.path, back.tag).unwrap();
+                            Qzip::new().zip_along(&mut m, &back.path, back.tag).unwrap();
                             assert_eq!(CanonicalCode::of(&m), code);
                             t.reversed += 1;
                         }

@@ -5,7 +5,7 @@ mod common;
 
 use common::{check_zip, ico_cc, pairs_within};
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{find_reverse, zip_along, Tag};
+use zipmesh::qzip::{find_reverse, Qzip, Tag};
 use zipmesh::{gen, Map};
 
 #[derive(Default, Debug)]
@@ -39,13 +39,14 @@ fn sweep(map: &Map, max_len: usize) -> Tally {
             // Re-run it independently: the original comes back, and exactly one of the
             // four initial operations along that path does it.
             let mut m = edited.clone();
-            zip_along(&mut m, &back.path, back.tag).unwrap();
+            Qzip::new().zip_along(&mut m, &back.path, back.tag).unwrap();
             assert_eq!(CanonicalCode::of(&m), code);
             let restoring = Tag::CCW
                 .iter()
                 .filter(|&&u| {
                     let mut m = edited.clone();
-                    zip_along(&mut m, &back.path, u).is_ok() && CanonicalCode::of(&m) == code
+                    Qzip::new().zip_along(&mut m, &back.path, u).is_ok()
+                        && CanonicalCode::of(&m) == code
                 })
                 .count();
             assert_eq!(restoring, 1);
@@ -100,7 +101,7 @@ proptest::proptest! {
         let (edited, r) = check_zip(&map, &path, Tag::CCW[t]).unwrap();
         let back = find_reverse(&edited, &r, &map).expect("a reverse run");
         let mut m = edited.clone();
-        zip_along(&mut m, &back.path, back.tag).unwrap();
+        Qzip::new().zip_along(&mut m, &back.path, back.tag).unwrap();
         proptest::prop_assert!(CanonicalCode::of(&m) == CanonicalCode::of(&map));
     }
 }

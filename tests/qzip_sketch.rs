@@ -8,10 +8,9 @@ use proptest::prelude::*;
 use std::collections::{HashSet, VecDeque};
 use zipmesh::ops::quad;
 use zipmesh::qzip::{
-    max_edge_length, sketch, zip_along, Guide, Path, SketchError, SketchOptions, SketchWorkspace,
-    Tag,
+    max_edge_length, sketch, Guide, Path, Qzip, SketchError, SketchOptions, SketchWorkspace, Tag,
 };
-use zipmesh::{gen, Dart, Face, Map, Mesh, Vert};
+use zipmesh::{gen, Dart, Edge, Face, Map, Mesh, Vert};
 
 /// The documented one-sided BFS: FIFO queue, the outgoing darts of a vertex in increasing
 /// index, a vertex keeps the first dart that reaches it; `edge_ok` and `vert_ok` (interior
@@ -150,13 +149,8 @@ proptest! {
         } else {
             rule_bfs(map, from, to, &edge_ok, &|_| true)
         };
-        let plain = SketchOptions {
-            avoid_boundary: avoid,
-            forbidden_edges: edges.clone(),
-            forbidden_faces: faces.clone(),
-            ..Default::default()
-        };
-        let guided = SketchOptions { guide: Some(Guide::from_mesh(&m)), ..plain.clone() };
+        let plain = SketchOptions::default().avoid_boundary(avoid).forbid_edges(edges.iter().map(|&e| Edge::new(e))).forbid_faces(faces.clone());
+        let guided = plain.clone().guide(Guide::from_mesh(&m));
         let mut ws = SketchWorkspace::new();
         let results = [
             sketch(map, from, to, &plain),
@@ -189,7 +183,7 @@ proptest! {
         prop_assume!(from != to);
         let mut rng = zipmesh::rng::Rng::new(wseed);
         let w: Vec<f64> = (0..map.dart_slots() / 2).map(|_| rng.below(5) as f64).collect();
-        let opts = SketchOptions { weights: Some(w.clone()), avoid_boundary: avoid, ..Default::default() };
+        let opts = SketchOptions::default().weights(w.clone()).avoid_boundary(avoid);
         let p = sketch(map, from, to, &opts).unwrap();
         check_path(map, &p, from, to, &HashSet::new());
         if !avoid {
@@ -198,7 +192,7 @@ proptest! {
         }
         let mut ws = SketchWorkspace::new();
         prop_assert_eq!(&ws.sketch(map, from, to, &opts).unwrap(), &p);
-        let guided = SketchOptions { guide: Some(Guide::from_mesh(&m)), ..opts.clone() };
+        let guided = opts.clone().guide(Guide::from_mesh(&m));
         prop_assert_eq!(&ws.sketch(map, from, to, &guided).unwrap(), &p);
     }
 
@@ -217,7 +211,7 @@ proptest! {
         let (from, to) = (pick(map, a), pick(map, b));
         prop_assume!(from != to);
         let expected = rule_bfs(map, from, to, &|_| true, &|_| true).unwrap();
-        let guided = SketchOptions { guide: Some(Guide::from_mesh(&m)), ..Default::default() };
+        let guided = SketchOptions::default().guide(Guide::from_mesh(&m));
         let p = sketch(map, from, to, &guided).unwrap();
         prop_assert_eq!(p.vertices(), &expected[..]);
     }
@@ -235,7 +229,7 @@ proptest! {
         prop_assume!(from != to);
         let shortest = rule_bfs(map, from, to, &|_| true, &|_| true).unwrap().len() - 1;
         let bound = max_edge_length(&m) / f64::from(shrink);
-        let wrong = SketchOptions { guide: Some(Guide::new(&m.positions, bound)), ..Default::default() };
+        let wrong = SketchOptions::default().guide(Guide::new(&m.positions, bound));
         let mut ws = SketchWorkspace::new();
         for p in [sketch(map, from, to, &wrong).unwrap(), ws.sketch(map, from, to, &wrong).unwrap()] {
             check_path(map, &p, from, to, &HashSet::new());
@@ -251,10 +245,7 @@ fn guided_search_is_linear_on_a_grid() {
     let n = 120;
     let m = gen::grid(n, n);
     let at = |i: usize, j: usize| Vert::new((j * (n + 1) + i) as u32);
-    let guided = SketchOptions {
-        guide: Some(Guide::from_mesh(&m)),
-        ..Default::default()
-    };
+    let guided = SketchOptions::default().guide(Guide::from_mesh(&m));
     let plain = SketchOptions::default();
     let mut ws = SketchWorkspace::new();
     for len in [5usize, 20, 50, 100] {
@@ -283,10 +274,7 @@ fn guided_search_is_linear_on_a_grid() {
 #[test]
 fn guided_search_on_the_torus_matches() {
     let m = gen::torus_grid(30, 20);
-    let guided = SketchOptions {
-        guide: Some(Guide::from_mesh(&m)),
-        ..Default::default()
-    };
+    let guided = SketchOptions::default().guide(Guide::from_mesh(&m));
     let plain = SketchOptions::default();
     let (mut ws, mut ws2) = (SketchWorkspace::new(), SketchWorkspace::new());
     let from = Vert::new(31);
@@ -310,10 +298,7 @@ fn workspace_reuse_across_maps_and_edits() {
     let tri = gen::random_triangle(400, 1, 2, 5);
     for round in 0..3u64 {
         for m in [&big, &small, &tri, &big] {
-            let guided = SketchOptions {
-                guide: Some(Guide::from_mesh(m)),
-                ..Default::default()
-            };
+            let guided = SketchOptions::default().guide(Guide::from_mesh(m));
             for k in 0..20u64 {
                 let (a, b) = (
                     pick(&m.map, k * 7919 + round),
@@ -349,7 +334,7 @@ fn workspace_reuse_across_maps_and_edits() {
             let (v5, v3) = (at(4, 3), at(12, 3));
             let p = ws.sketch(&map, v5, v3, &plain).unwrap();
             assert_eq!(p, sketch(&map, v5, v3, &plain).unwrap());
-            zip_along(&mut map, &p, Tag::LC).unwrap();
+            Qzip::new().zip_along(&mut map, &p, Tag::LC).unwrap();
         }
     }
     assert!(map.check().is_ok());
@@ -370,10 +355,7 @@ fn workspace_errors_match() {
         ws.sketch(&map, v(0), v(99), &o),
         Err(SketchError::DeadVertex(v(99)))
     );
-    let short = SketchOptions {
-        weights: Some(vec![1.0; 2]),
-        ..Default::default()
-    };
+    let short = SketchOptions::default().weights(vec![1.0; 2]);
     assert_eq!(
         ws.sketch(&map, v(0), v(15), &short),
         sketch(&map, v(0), v(15), &short)
@@ -383,17 +365,11 @@ fn workspace_errors_match() {
         Err(SketchError::WeightsTooShort { .. })
     ));
     // Every edge at vertex 0 forbidden: no path, whichever search.
-    let walls: Vec<u32> = map
-        .vertex_darts(v(0))
-        .map(|d| d.index() as u32 / 2)
-        .collect();
+    let walls: Vec<Edge> = map.vertex_darts(v(0)).map(|d| d.edge()).collect();
     let m = gen::grid(3, 3);
     for guide in [None, Some(Guide::from_mesh(&m))] {
-        let o = SketchOptions {
-            forbidden_edges: walls.clone(),
-            guide,
-            ..Default::default()
-        };
+        let mut o = SketchOptions::default().forbid_edges(walls.clone());
+        o.guide = guide;
         let e = Err(SketchError::NoPath {
             from: v(0),
             to: v(15),
@@ -417,17 +393,11 @@ fn unusable_guides_are_ignored() {
         Guide::new(few, 1.0),
         Guide::new(&[], 1.0),
     ] {
-        let o = SketchOptions {
-            guide: Some(g),
-            ..Default::default()
-        };
+        let o = SketchOptions::default().guide(g);
         assert_eq!(sketch(&m.map, a, b, &o).unwrap(), expected);
     }
     // Points for only some vertices (the rest count as 0): still the rule's path.
-    let o = SketchOptions {
-        guide: Some(Guide::new(&m.positions[..100], 1.0)),
-        ..Default::default()
-    };
+    let o = SketchOptions::default().guide(Guide::new(&m.positions[..100], 1.0));
     assert_eq!(sketch(&m.map, Vert::new(119), a, &o).unwrap().len(), 19);
     assert_eq!(
         sketch(&m.map, Vert::new(119), a, &o).unwrap(),

@@ -7,7 +7,7 @@ use common::{check_zip, ico_cc, pairs_within, singular, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::qzip::{
-    moves, plan, prepare, sketch, validate_path, zip, EndRule, PrepareError, QzipError,
+    moves, plan, prepare, sketch, validate_path, EndRule, PrepareError, Qzip, QzipError,
     SketchOptions, StartRule, Tag,
 };
 use zipmesh::{gen, Map, Vert};
@@ -139,7 +139,9 @@ fn refusals_leave_the_map_untouched() {
     // A regular end.
     let mut map = gen::torus_grid(8, 8).map;
     let before = map.clone();
-    let e = zip(&mut map, Vert::new(0), Vert::new(3), Tag::LC, &opts).unwrap_err();
+    let e = Qzip::with_options(opts.clone())
+        .zip(&mut map, Vert::new(0), Vert::new(3), Tag::LC)
+        .unwrap_err();
     assert!(
         matches!(e, QzipError::Prepare(PrepareError::End { valence: 4, .. })),
         "{e}"
@@ -148,7 +150,9 @@ fn refusals_leave_the_map_untouched() {
     // A boundary end (grid corners have valence 2).
     let mut map = gen::grid(6, 6).map;
     let before = map.clone();
-    let e = zip(&mut map, Vert::new(0), Vert::new(6), Tag::LS, &opts).unwrap_err();
+    let e = Qzip::with_options(opts.clone())
+        .zip(&mut map, Vert::new(0), Vert::new(6), Tag::LS)
+        .unwrap_err();
     assert!(
         matches!(
             e,
@@ -176,7 +180,7 @@ fn refusals_leave_the_map_untouched() {
         map.dest(map.rotate_cw(map.vertex_dart(v))),
     );
     let path = validate_path(&map, x, y, &[x, v, y], &opts).unwrap();
-    let e = zipmesh::qzip::zip_along(&mut map, &path, Tag::LC).unwrap_err();
+    let e = Qzip::new().zip_along(&mut map, &path, Tag::LC).unwrap_err();
     assert!(
         matches!(
             e,

@@ -8,7 +8,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use zipmesh::qzip::{verify_edit, zip_along};
+use zipmesh::qzip::{verify_edit, Qzip};
 
 #[path = "common/qzip_case.rs"]
 mod qzip_case;
@@ -18,7 +18,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let mut map = c.original.clone();
-    let report = match zip_along(&mut map, &c.path, c.tag) {
+    let report = match Qzip::new().zip_along(&mut map, &c.path, c.tag) {
         Ok(r) => r,
         Err(e) => {
             assert!(map == c.original, "a refused Q-zip changed the map: {e}");

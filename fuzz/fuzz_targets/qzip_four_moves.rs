@@ -9,7 +9,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{sketch, zip_along, Path, SketchOptions, Tag};
+use zipmesh::qzip::{sketch, Qzip, Path, SketchOptions, Tag};
 use zipmesh::{Map, Vert};
 
 #[path = "common/qzip_case.rs"]
@@ -49,7 +49,7 @@ fuzz_target!(|data: &[u8]| {
         .iter()
         .filter_map(|&t| {
             let mut m = c.original.clone();
-            match zip_along(&mut m, &c.path, t) {
+            match Qzip::new().zip_along(&mut m, &c.path, t) {
                 Ok(_) => Some((t, CanonicalCode::of(&m))),
                 Err(e) => {
                     assert!(m == c.original, "a refused Q-zip changed the map: {e}");

@@ -6,7 +6,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{one_quad_sweeps, start_turn, zip_along};
+use zipmesh::qzip::{one_quad_sweeps, start_turn, Qzip};
 
 #[path = "common/qzip_case.rs"]
 mod qzip_case;
@@ -23,7 +23,7 @@ fuzz_target!(|data: &[u8]| {
     let k = start_turn(&c.original, &c.path, swept).expect("a sweep keeps the start");
     let run = |p, t| {
         let mut m = c.original.clone();
-        match zip_along(&mut m, p, t) {
+        match Qzip::new().zip_along(&mut m, p, t) {
             Ok(_) => Some(CanonicalCode::of(&m)),
             Err(e) => {
                 assert!(m == c.original, "a refused Q-zip changed the map: {e}");

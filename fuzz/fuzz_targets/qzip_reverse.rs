@@ -5,7 +5,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{find_reverse, zip_along};
+use zipmesh::qzip::{find_reverse, Qzip};
 
 #[path = "common/qzip_case.rs"]
 mod qzip_case;
@@ -15,12 +15,12 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let mut edited = c.original.clone();
-    let Ok(report) = zip_along(&mut edited, &c.path, c.tag) else {
+    let Ok(report) = Qzip::new().zip_along(&mut edited, &c.path, c.tag) else {
         return;
     };
     if let Some(back) = find_reverse(&edited, &report, &c.original) {
         let mut m = edited.clone();
-        let r = zip_along(&mut m, &back.path, back.tag);
+        let r = Qzip::new().zip_along(&mut m, &back.path, back.tag);
         assert!(r.is_ok(), "the named reverse run is refused: {:?}", r.err());
         assert!(
             CanonicalCode::of(&m) == CanonicalCode::of(&c.original),

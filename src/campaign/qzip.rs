@@ -8,8 +8,7 @@ use std::vec::Vec;
 use super::{Case, Outcome, Property};
 use crate::invariants::canonical::CanonicalCode;
 use crate::qzip::{
-    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, zip_along, Path, SketchOptions,
-    Tag,
+    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
 };
 use crate::{Map, Vert};
 
@@ -104,7 +103,7 @@ fn checked_zip(
     tag: Tag,
 ) -> Result<Option<(Map, crate::qzip::ZipReport)>, String> {
     let mut m = map.clone();
-    let r = match zip_along(&mut m, path, tag) {
+    let r = match Qzip::new().zip_along(&mut m, path, tag) {
         Ok(r) => r,
         Err(_) if &m == map => return Ok(None),
         Err(e) => return Err(format!("{tag} refused ({e}) but changed the map")),
@@ -155,7 +154,9 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
             // is counted (the docs say where our reverse path misses) but not failed.
             if let Some(back) = find_reverse(&m, &r, map) {
                 let mut again = m.clone();
-                let ok = zip_along(&mut again, &back.path, back.tag).is_ok()
+                let ok = Qzip::new()
+                    .zip_along(&mut again, &back.path, back.tag)
+                    .is_ok()
                     && CanonicalCode::of(&again) == code;
                 if !ok {
                     return Outcome::fail(
@@ -186,7 +187,10 @@ fn regular(map: &Map, v: Vert) -> bool {
 fn outcomes(map: &Map, p: &Path) -> [Option<CanonicalCode>; 4] {
     Tag::CCW.map(|t| {
         let mut m = map.clone();
-        zip_along(&mut m, p, t).ok().map(|_| CanonicalCode::of(&m))
+        Qzip::new()
+            .zip_along(&mut m, p, t)
+            .ok()
+            .map(|_| CanonicalCode::of(&m))
     })
 }
 

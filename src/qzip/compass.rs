@@ -331,6 +331,8 @@ pub struct PlanStep {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
     steps: Vec<PlanStep>,
+    /// The path's darts, carried on to the preparation: dart `i` joins steps `i` and `i + 1`.
+    darts: Vec<Dart>,
 }
 
 impl Plan {
@@ -359,6 +361,20 @@ impl Plan {
     /// ```
     pub fn initial(&self) -> Tag {
         self.steps[0].tag
+    }
+
+    /// The darts of the planned path: dart `i` goes from the vertex of step `i` to that of
+    /// step `i + 1`, in the map the plan was made on.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, sketch, SketchOptions, Tag};
+    /// let map = gen::torus_grid(6, 6).map;
+    /// let path = sketch(&map, Vert::new(0), Vert::new(3), &SketchOptions::default()).unwrap();
+    /// assert_eq!(plan(&map, &path, Tag::LS).unwrap().darts(), path.darts());
+    /// ```
+    pub fn darts(&self) -> &[Dart] {
+        &self.darts
     }
 
     /// The tag the compass arrives with at the last vertex.
@@ -402,6 +418,7 @@ impl fmt::Display for Plan {
 /// assert!(e.to_string().contains("valence 6"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PlanError {
     /// The path does not fit this map (it was made for another map, or the map changed).
     StalePath {
@@ -602,5 +619,8 @@ pub fn plan(map: &Map, path: &Path, initial: Tag) -> Result<Plan, PlanError> {
         turn: None,
         count: None,
     });
-    Ok(Plan { steps })
+    Ok(Plan {
+        steps,
+        darts: darts.to_vec(),
+    })
 }

@@ -17,11 +17,11 @@
 //!
 //! ```
 //! use zipmesh::{gen, Vert};
-//! use zipmesh::qzip::{zip, SketchOptions, Tag};
+//! use zipmesh::qzip::{Qzip, Tag};
 //! let mut map = gen::subdivided_icosahedron(2).map;
 //! let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 //! let before = map.clone();
-//! let r = zip(&mut map, v3, v5, Tag::LS, &SketchOptions::default()).unwrap();
+//! let r = Qzip::new().zip(&mut map, v3, v5, Tag::LS).unwrap();
 //! assert_eq!(map.check(), Ok(()));
 //! assert_eq!((map.valence(r.moved_from()), map.valence(r.moved_to())), (3, 5));
 //! r.undo(&mut map).unwrap();
@@ -32,24 +32,25 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::Tag;
-use super::prepare::{bounds_one_quad, EndRule, StartRule, Surgery};
+use super::prepare::{EndRule, StartRule, Surgery};
+use super::quad::bounds_one_quad;
 use crate::invariants::{regular_valence, MeshKind};
 use crate::ops::quad::{
     collapse_quad, remove_valence2, split_high_valence, split_vertex, QuadRecord,
 };
 use crate::ops::Refusal;
-use crate::{Dart, Face, Map, Vert};
+use crate::{Dart, Edge, Face, Map, Vert};
 
 /// What an executed Q-zip did: the moved singularities, counts, footprint and scar, and the
 /// records for an exact undo.
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{zip, SketchOptions, Tag};
+/// use zipmesh::qzip::{Qzip, Tag};
 /// let mut map = gen::subdivided_icosahedron(2).map;
 /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
 /// let v0 = map.num_vertices();
-/// let r = zip(&mut map, v5, v3, Tag::LC, &SketchOptions::default()).unwrap();
+/// let r = Qzip::new().zip(&mut map, v5, v3, Tag::LC).unwrap();
 /// assert_eq!(map.num_vertices() as isize, v0 as isize + r.vertex_delta());
 /// assert_eq!(r.footprint_faces().len(), r.collapses());
 /// ```
@@ -64,9 +65,9 @@ pub struct ZipReport {
     moved_from: Vert,
     moved_to: Vert,
     footprint_faces: Vec<Face>,
-    footprint_edges: Vec<usize>,
+    footprint_edges: Vec<Edge>,
     scar_faces: Vec<Face>,
-    scar_edges: Vec<usize>,
+    scar_edges: Vec<Edge>,
 }
 
 impl ZipReport {
@@ -128,10 +129,10 @@ impl ZipReport {
         &self.footprint_faces
     }
 
-    /// The footprint's edges: edges of the original map split in two (edge indices, dart / 2).
+    /// The footprint's edges: edges of the original map split in two.
     ///
     /// See [`execute`] for an example.
-    pub fn footprint_edges(&self) -> &[usize] {
+    pub fn footprint_edges(&self) -> &[Edge] {
         &self.footprint_edges
     }
 
@@ -145,7 +146,7 @@ impl ZipReport {
     /// The scar's edges: edges into which collapses merged two edges, still there.
     ///
     /// See [`execute`] for an example.
-    pub fn scar_edges(&self) -> &[usize] {
+    pub fn scar_edges(&self) -> &[Edge] {
         &self.scar_edges
     }
 
@@ -174,6 +175,7 @@ impl ZipReport {
 /// assert!(e.to_string().contains("3"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ZipError {
     /// The surgery does not fit the map: at position `index` a vertex is dead or the edge to
     /// the next vertex (or to the guide) is missing or not unique.
@@ -503,229 +505,364 @@ pub(crate) fn execute_owned(map: &mut Map, surgery: Surgery) -> Result<ZipReport
     }
 }
 
-fn run(map: &mut Map, s: Surgery, records: &mut Vec<QuadRecord>) -> Result<ZipReport, ZipError> {
-    let steps = s.steps();
-    let m = steps.len() - 1;
-    let original_faces = map.face_slots();
-    let original_edges = map.dart_slots() / 2;
-    // Sized for the usual counts (a few touches and merged edges per operation) so nothing
-    // regrows mid-chain.
-    let expected = 4 * steps.len() + 8;
-    let mut touched = Touched {
-        list: Vec::with_capacity(expected),
-        table: alloc::vec![0; (2 * expected).next_power_of_two()],
-    };
-    let (mut splits, mut collapses) = (0, 0);
-    let mut guide: Option<Vert> = None;
-    // Where the pair went: the vertices of the first and of the last operation, the one the
-    // start/end rule predicts first; the first of them left with the singularity's valence
-    // wins (at a turn right after a start the defect can land on the other copy).
-    let (val_from, val_to) = (map.valence(s.from()), map.valence(s.to()));
-    // Fixed-size candidate lists: no allocation per operation.
-    let mut from_cands: Option<[Vert; 3]> = None;
-    let mut to_cands: [Vert; 4] = [Vert::new(u32::MAX); 4];
-    let mut footprint_faces = Vec::new();
-    let mut footprint_edges = Vec::new();
-    let mut scar_faces: Vec<Face> = Vec::new();
-    let mut scar_edges: Vec<usize> = Vec::with_capacity(2 * steps.len());
-    let mut born_faces: Vec<Face> = Vec::new();
-    // `cur` is the handle of the vertex at position `index`: a merge can fold the path onto
-    // itself, and then the position jumps ahead while the handle stays the merged vertex.
-    let mut index = 0;
-    let mut cur = steps[0].vertex;
-    // Path vertices sorted, with their positions: a collapse asks whether it removes one.
-    // Short surgeries scan instead (no allocation).
-    let mut position: Vec<(Vert, usize)> = Vec::new();
-    if steps.len() > SCAN_LIMIT {
-        position = steps
-            .iter()
-            .enumerate()
-            .map(|(i, x)| (x.vertex, i))
-            .collect();
-        position.sort_unstable();
+/// Where an edge of the path is looked up: the dart the surgery carries when it still joins
+/// `from` and `to`, else (the chain's edits merged or re-homed it, or the map changed) the
+/// dart found again in the map.
+fn joining_dart(map: &Map, carried: Option<Dart>, from: Vert, to: Vert) -> Option<Dart> {
+    carried
+        .filter(|&d| map.is_live_dart(d) && map.origin(d) == from && map.dest(d) == to)
+        .or_else(|| map.dart_between(from, to))
+}
+
+/// The error of an operation at position `index` (vertex `vertex`, operation `tag`) that the
+/// operator refused.
+fn refused(index: usize, vertex: Vert, tag: Tag) -> impl FnOnce(Refusal) -> ZipError {
+    move |refusal| ZipError::Refused {
+        index,
+        vertex,
+        tag,
+        refusal,
     }
-    while index < m {
-        let (p, n) = (cur, steps[index + 1].vertex);
-        let Some(tag) = steps[index].op else {
-            guide = Some(p);
-            index += 1;
-            cur = steps[index].vertex;
-            continue;
+}
+
+/// The state of the chain while a surgery runs: the position on the path, the guide, the
+/// touched vertices, the counts, the candidates for where the pair goes, and the footprint and
+/// scar found so far.
+struct Chain<'s> {
+    surgery: &'s Surgery,
+    /// Face and edge slots of the map before the edit: a handle below is an original one.
+    original_faces: usize,
+    original_edges: usize,
+    touched: Touched,
+    splits: usize,
+    collapses: usize,
+    /// The vertex the next split splits towards (with the next path vertex).
+    guide: Option<Vert>,
+    /// The position on the path, and the handle of the vertex there: a merge can fold the path
+    /// onto itself, and then the position jumps ahead while the handle stays the merged vertex.
+    index: usize,
+    current: Vert,
+    /// Valences of the pair before the edit.
+    from_valence: usize,
+    to_valence: usize,
+    /// Where the pair went: the vertices of the first and of the last operation, the one the
+    /// start/end rule predicts first; the first of them left with the singularity's valence
+    /// wins (at a turn right after a start the defect can land on the other copy). Fixed size:
+    /// no allocation per operation.
+    from_candidates: Option<[Vert; 3]>,
+    to_candidates: [Vert; 4],
+    footprint_faces: Vec<Face>,
+    footprint_edges: Vec<Edge>,
+    scar_faces: Vec<Face>,
+    scar_edges: Vec<Edge>,
+    /// Faces made by the chain's splits, still there: a collapse of one shrinks the scar.
+    born_faces: Vec<Face>,
+    /// Path vertices sorted, with their positions, for long surgeries (short ones scan).
+    positions: Vec<(Vert, usize)>,
+}
+
+impl<'s> Chain<'s> {
+    fn new(map: &Map, surgery: &'s Surgery) -> Self {
+        let steps = surgery.steps();
+        // Sized for the usual counts (a few touches and merged edges per operation) so nothing
+        // regrows mid-chain.
+        let expected = 4 * steps.len() + 8;
+        let mut positions: Vec<(Vert, usize)> = Vec::new();
+        if steps.len() > SCAN_LIMIT {
+            positions = steps
+                .iter()
+                .enumerate()
+                .map(|(i, x)| (x.vertex, i))
+                .collect();
+            positions.sort_unstable();
+        }
+        Chain {
+            surgery,
+            original_faces: map.face_slots(),
+            original_edges: map.edge_slots(),
+            touched: Touched {
+                list: Vec::with_capacity(expected),
+                table: alloc::vec![0; (2 * expected).next_power_of_two()],
+            },
+            splits: 0,
+            collapses: 0,
+            guide: None,
+            index: 0,
+            current: steps[0].vertex,
+            from_valence: map.valence(surgery.from()),
+            to_valence: map.valence(surgery.to()),
+            from_candidates: None,
+            to_candidates: [Vert::new(u32::MAX); 4],
+            footprint_faces: Vec::new(),
+            footprint_edges: Vec::new(),
+            scar_faces: Vec::new(),
+            scar_edges: Vec::with_capacity(2 * steps.len()),
+            born_faces: Vec::new(),
+            positions,
+        }
+    }
+
+    fn vertex_at(&self, i: usize) -> Vert {
+        self.surgery.steps()[i].vertex
+    }
+
+    /// Moves on to position `i`, whose vertex has the handle `handle`.
+    fn advance(&mut self, i: usize, handle: Vert) {
+        self.index = i;
+        self.current = handle;
+    }
+
+    /// Runs every operation of the surgery, in order.
+    fn run(&mut self, map: &mut Map, records: &mut Vec<QuadRecord>) -> Result<(), ZipError> {
+        let last = self.surgery.steps().len() - 1;
+        while self.index < last {
+            let index = self.index;
+            let (p, n) = (self.current, self.vertex_at(index + 1));
+            let Some(tag) = self.surgery.steps()[index].op else {
+                self.guide = Some(p);
+                self.advance(index + 1, n);
+                continue;
+            };
+            let carried = self.surgery.darts().get(index).copied();
+            let edge = joining_dart(map, carried, p, n).ok_or(ZipError::StalePlan { index })?;
+            if tag.is_split() {
+                self.split_step(map, tag, edge, records)?;
+            } else {
+                self.collapse_step(map, tag, edge, records)?;
+            }
+        }
+        if matches!(
+            self.surgery.end_rule(),
+            EndRule::V5Collapse | EndRule::V5Split
+        ) {
+            self.to_candidates[0] = self.current;
+        }
+        Ok(())
+    }
+
+    /// LS / RS at `p = origin(edge)`: split `p` along its edges to the guide and to the next
+    /// vertex; the copy on the hand's side continues the path and becomes the guide.
+    fn split_step(
+        &mut self,
+        map: &mut Map,
+        tag: Tag,
+        edge: Dart,
+        records: &mut Vec<QuadRecord>,
+    ) -> Result<(), ZipError> {
+        let index = self.index;
+        let (p, n) = (map.origin(edge), map.dest(edge));
+        let guide = self.guide.ok_or(ZipError::StalePlan { index })?;
+        // After a no-op the guide is the previous path vertex, whose carried dart may still
+        // join them; after an operation the guide is a vertex the edit made or moved, found in
+        // the map.
+        let carried_back = index
+            .checked_sub(1)
+            .and_then(|i| self.surgery.darts().get(i))
+            .map(|d| d.twin());
+        let to_guide =
+            joining_dart(map, carried_back, p, guide).ok_or(ZipError::StalePlan { index })?;
+        for x in [p, guide, n] {
+            self.touched.touch(map, x);
+        }
+        let r = split_vertex(map, to_guide, edge).map_err(refused(index, p, tag))?;
+        self.splits += 1;
+        let (left, right) = (r.kept(), r.created());
+        self.touched.born(right);
+        let (cont, other) = if tag == Tag::LS {
+            (left, right)
+        } else {
+            (right, left)
         };
-        let e = map
-            .dart_between(p, n)
-            .ok_or(ZipError::StalePlan { index })?;
-        let refused = |refusal| ZipError::Refused {
+        if self.from_candidates.is_none() {
+            self.from_candidates = Some(match self.surgery.start_rule() {
+                StartRule::V5Split => [self.vertex_at(0), other, cont],
+                _ => [other, cont, guide],
+            });
+        }
+        self.to_candidates = [cont, cont, other, n];
+        self.guide = Some(cont);
+        self.born_faces.push(r.face());
+        self.scar_faces.push(r.face());
+        for d in [to_guide, edge] {
+            if d.edge().index() < self.original_edges {
+                self.footprint_edges.push(d.edge());
+            }
+        }
+        records.push(r.into());
+        self.advance(index + 1, self.vertex_at(index + 1));
+        Ok(())
+    }
+
+    /// The position of `v` in the surgery, if it is a path vertex.
+    fn position_of(&self, v: Vert) -> Option<usize> {
+        if self.surgery.steps().len() > SCAN_LIMIT {
+            let k = self.positions.binary_search_by_key(&v, |x| x.0).ok()?;
+            Some(self.positions[k].1)
+        } else {
+            self.surgery.steps().iter().position(|x| x.vertex == v)
+        }
+    }
+
+    /// LC / RC along `edge: P -> N`: collapse the quad on the hand's side, merging `N` with
+    /// that quad's corner next to `P`; the corner next to `N` becomes the guide.
+    fn collapse_step(
+        &mut self,
+        map: &mut Map,
+        tag: Tag,
+        edge: Dart,
+        records: &mut Vec<QuadRecord>,
+    ) -> Result<(), ZipError> {
+        let index = self.index;
+        let (p, n) = (map.origin(edge), map.dest(edge));
+        let (at, far) = strip_quad(map, edge, tag);
+        let removed = map.origin(map.next(map.next(at)));
+        let lost = ZipError::Lost {
             index,
-            vertex: p,
-            tag,
-            refusal,
+            vertex: removed,
         };
-        if tag.is_split() {
-            let g = guide.ok_or(ZipError::StalePlan { index })?;
-            let sg = map
-                .dart_between(p, g)
-                .ok_or(ZipError::StalePlan { index })?;
-            for x in [p, g, n] {
-                touched.touch(map, x);
+        // Merging `n` with a later path vertex folds the path: n -> x -> removed comes back to
+        // the merged vertex, and that pair of edges cancels (like a fold of the preparation,
+        // with the compass unchanged). Merging with the path vertex four steps ahead makes a
+        // loop n -> .. -> n: cancelled like the loops of the preparation when it goes round
+        // one quad (checked after the collapse, which is undone with the rest if not).
+        // Anything else would lose the vertex.
+        let mut next = index + 1;
+        let mut round = None;
+        if let Some(j) = self.position_of(removed).filter(|&j| j >= index + 2) {
+            if j == index + 5 {
+                round = Some(j);
+            } else if j != index + 3 {
+                return Err(lost);
             }
-            let r = split_vertex(map, sg, e).map_err(refused)?;
-            splits += 1;
-            let (left, right) = (r.kept(), r.created());
-            touched.born(right);
-            let (cont, other) = if tag == Tag::LS {
-                (left, right)
+            next = j;
+        }
+        for x in [p, n, far, removed] {
+            self.touched.touch(map, x);
+        }
+        let r = collapse_quad(map, at).map_err(refused(index, p, tag))?;
+        self.collapses += 1;
+        if self.from_candidates.is_none() {
+            self.from_candidates = Some(match self.surgery.start_rule() {
+                StartRule::V5Collapse => [n, p, far],
+                _ => [p, n, far],
+            });
+        }
+        self.to_candidates = [far, far, n, p];
+        self.guide = Some(far);
+        self.track_collapsed(r.face(), r.merged_edges());
+        records.push(r.into());
+        if let Some(j) = round {
+            let ring = [
+                n,
+                self.vertex_at(j - 3),
+                self.vertex_at(j - 2),
+                self.vertex_at(j - 1),
+            ];
+            // Valences mid-chain are transient: only the quad is required.
+            if !bounds_one_quad(map, ring, [self.surgery.from(), self.surgery.to()], false) {
+                return Err(lost);
+            }
+        }
+        self.advance(next, n);
+        Ok(())
+    }
+
+    /// Footprint and scar after collapsing `face` (merging the two edge pairs of `merged`): a
+    /// quad a split made leaves the scar, an original one joins the footprint.
+    fn track_collapsed(&mut self, face: Face, merged: [Dart; 2]) {
+        if let Some(k) = self.born_faces.iter().rposition(|&b| b == face) {
+            self.born_faces.swap_remove(k);
+            self.scar_faces.retain(|&x| x != face);
+        } else if face.index() < self.original_faces {
+            self.footprint_faces.push(face);
+        }
+        self.scar_edges.extend(merged.map(Dart::edge));
+    }
+
+    /// The post-processing of Sec. 2.7: each vertex the chain made valence 2 is removed, each
+    /// it made valence 6 is split (see [`v6_first_dart`]); returns the two counts.
+    fn clean_up(
+        &mut self,
+        map: &mut Map,
+        records: &mut Vec<QuadRecord>,
+    ) -> Result<(usize, usize), ZipError> {
+        let (mut v2_removals, mut v6_splits) = (0, 0);
+        for v in self.touched.to_clean(map) {
+            for d in map.vertex_darts(v) {
+                self.touched.touch(map, map.dest(d));
+            }
+            let cleanup = |refusal| ZipError::Cleanup { vertex: v, refusal };
+            if map.valence(v) == 2 {
+                let r = remove_valence2(map, map.vertex_dart(v)).map_err(cleanup)?;
+                v2_removals += 1;
+                records.push(r.into());
             } else {
-                (right, left)
-            };
-            if from_cands.is_none() {
-                from_cands = Some(match s.start_rule() {
-                    StartRule::V5Split => [steps[0].vertex, other, cont],
-                    _ => [other, cont, g],
-                });
+                let first = v6_first_dart(map, v, &self.touched.list);
+                let r = split_high_valence(map, v, first).map_err(cleanup)?;
+                v6_splits += 1;
+                records.push(r.into());
             }
-            to_cands = [cont, cont, other, n];
-            guide = Some(cont);
-            born_faces.push(r.face());
-            scar_faces.push(r.face());
-            for d in [sg, e] {
-                if d.index() / 2 < original_edges {
-                    footprint_edges.push(d.index() / 2);
-                }
-            }
-            records.push(r.into());
-            index += 1;
-            cur = steps[index].vertex;
-        } else {
-            let (d, far) = strip_quad(map, e, tag);
-            let removed = map.origin(map.next(map.next(d)));
-            // Merging `n` with a later path vertex folds the path: n -> x -> removed comes
-            // back to the merged vertex, and that pair of edges cancels (like a fold of the
-            // preparation, with the compass unchanged). Anything else would lose the vertex.
-            let mut next = index + 1;
-            let at = if steps.len() > SCAN_LIMIT {
-                position
-                    .binary_search_by_key(&removed, |x| x.0)
-                    .ok()
-                    .map(|k| position[k].1)
-            } else {
-                steps.iter().position(|x| x.vertex == removed)
-            };
-            // Merging with the path vertex four steps ahead makes a loop n -> .. -> n:
-            // cancelled like the loops of the preparation when it goes round one quad
-            // (checked after the collapse, which is undone with the rest if not).
-            let mut round = None;
-            if let Some(j) = at.filter(|&j| j >= index + 2) {
-                if j == index + 5 {
-                    round = Some(j);
-                } else if j != index + 3 {
-                    return Err(ZipError::Lost {
-                        index,
-                        vertex: removed,
-                    });
-                }
-                next = j;
-            }
-            for x in [p, n, far, removed] {
-                touched.touch(map, x);
-            }
-            let r = collapse_quad(map, d).map_err(refused)?;
-            collapses += 1;
-            if from_cands.is_none() {
-                from_cands = Some(match s.start_rule() {
-                    StartRule::V5Collapse => [n, p, far],
-                    _ => [p, n, far],
-                });
-            }
-            to_cands = [far, far, n, p];
-            guide = Some(far);
-            let f = r.face();
-            if let Some(k) = born_faces.iter().rposition(|&b| b == f) {
-                born_faces.swap_remove(k);
-                scar_faces.retain(|&x| x != f);
-            } else if f.index() < original_faces {
-                footprint_faces.push(f);
-            }
-            scar_edges.extend(r.merged_edges().map(|d| d.index() / 2));
-            records.push(r.into());
-            if let Some(j) = round {
-                let ring = [
-                    n,
-                    steps[j - 3].vertex,
-                    steps[j - 2].vertex,
-                    steps[j - 1].vertex,
-                ];
-                // Valences mid-chain are transient: only the quad is required.
-                if !bounds_one_quad(map, ring, [s.from(), s.to()], false) {
-                    return Err(ZipError::Lost {
-                        index,
-                        vertex: removed,
-                    });
-                }
-            }
-            index = next;
-            cur = n;
         }
+        Ok((v2_removals, v6_splits))
     }
-    if matches!(s.end_rule(), EndRule::V5Collapse | EndRule::V5Split) {
-        to_cands[0] = cur;
-    }
-    let (mut v2_removals, mut v6_splits) = (0, 0);
-    let to_clean = touched.to_clean(map);
-    for &v in &to_clean {
-        for d in map.vertex_darts(v) {
-            touched.touch(map, map.dest(d));
+
+    /// Where the pair went: among the candidates, the first the edit left with the
+    /// singularity's valence, else the first such touched vertex (in touch order for the
+    /// initial singularity, in reverse for the terminal one).
+    fn locate_moved_pair(&self, map: &Map) -> Result<(Vert, Vert), ZipError> {
+        let touched = &self.touched;
+        let pick = |candidates: &[Vert], k: usize, forward: bool| {
+            let changed = |v: &Vert| touched.changed_to(map, *v, k);
+            candidates.iter().copied().find(changed).or_else(|| {
+                let mut order = touched.list.iter().map(|s| s.v);
+                if forward {
+                    order.find(changed)
+                } else {
+                    order.rev().find(changed)
+                }
+            })
+        };
+        let from_candidates = self.from_candidates.unwrap_or([self.current; 3]);
+        let (Some(moved_from), Some(moved_to)) = (
+            pick(&from_candidates, self.from_valence, true),
+            pick(&self.to_candidates, self.to_valence, false),
+        ) else {
+            return Err(ZipError::Untracked);
+        };
+        if moved_from == moved_to {
+            return Err(ZipError::Untracked);
         }
-        if map.valence(v) == 2 {
-            let r = remove_valence2(map, map.vertex_dart(v))
-                .map_err(|refusal| ZipError::Cleanup { vertex: v, refusal })?;
-            v2_removals += 1;
-            records.push(r.into());
-        } else {
-            let first = v6_first_dart(map, v, &touched.list);
-            let r = split_high_valence(map, v, first)
-                .map_err(|refusal| ZipError::Cleanup { vertex: v, refusal })?;
-            v6_splits += 1;
-            records.push(r.into());
-        }
+        Ok((moved_from, moved_to))
     }
-    if let Err((before, after)) = touched.irregulars_kept(map) {
+}
+
+/// The chain, the clean-up, the guard and the report; on an error the caller undoes
+/// `records`.
+fn run(
+    map: &mut Map,
+    surgery: Surgery,
+    records: &mut Vec<QuadRecord>,
+) -> Result<ZipReport, ZipError> {
+    let mut chain = Chain::new(map, &surgery);
+    chain.run(map, records)?;
+    let (v2_removals, v6_splits) = chain.clean_up(map, records)?;
+    if let Err((before, after)) = chain.touched.irregulars_kept(map) {
         return Err(ZipError::NotGridPreserving { before, after });
     }
-    let changed_to = |v: Vert, k: usize| touched.changed_to(map, v, k);
-    let touched_order = |forward: bool| {
-        let it = touched.list.iter().map(|s| s.v);
-        let v: Vec<Vert> = if forward {
-            it.collect()
-        } else {
-            it.rev().collect()
-        };
-        v
-    };
-    let pick = |cands: &[Vert], k: usize, forward: bool| {
-        cands
-            .iter()
-            .copied()
-            .find(|&v| changed_to(v, k))
-            .or_else(|| {
-                touched_order(forward)
-                    .into_iter()
-                    .find(|&v| changed_to(v, k))
-            })
-    };
-    let (Some(moved_from), Some(moved_to)) = (
-        pick(&from_cands.unwrap_or([cur; 3]), val_from, true),
-        pick(&to_cands, val_to, false),
-    ) else {
-        return Err(ZipError::Untracked);
-    };
-    if moved_from == moved_to {
-        return Err(ZipError::Untracked);
-    }
-    scar_edges.retain(|&e| map.is_live_dart(Dart::new(2 * e as u32)));
+    let (moved_from, moved_to) = chain.locate_moved_pair(map)?;
+    let Chain {
+        splits,
+        collapses,
+        footprint_faces,
+        footprint_edges,
+        mut scar_faces,
+        mut scar_edges,
+        ..
+    } = chain;
+    scar_edges.retain(|&e| map.is_live_edge(e));
     scar_faces.retain(|&f| map.is_live_face(f));
     Ok(ZipReport {
-        surgery: s,
+        surgery,
         records: core::mem::take(records),
         splits,
         collapses,

@@ -12,7 +12,8 @@
 //! 4. [`execute`](mod@execute): the serial collapses and splits, the v2/v6 clean-up, and a
 //!    [`ZipReport`] (moved singularities, footprint, scar, exact undo).
 //!
-//! [`zip`] runs the four stages; [`moves`] tries the four initial operations.
+//! [`Qzip`] is the entry point that runs the four stages at once (on a [`crate::Map`], or on a
+//! [`crate::Mesh`] keeping positions); [`moves`] tries the four initial operations.
 //! See `docs/qzip.md` for the reading of the paper behind each rule.
 //!
 //! ```
@@ -27,20 +28,26 @@
 
 pub mod compass;
 pub mod execute;
+mod homotopy;
+mod positions;
 pub mod prepare;
+mod preprocess;
+mod quad;
+mod reverse;
 pub mod sketch;
 mod verify;
 mod zip;
 
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
+pub use homotopy::{one_quad_sweeps, start_turn};
+pub use positions::MeshZip;
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
+pub use preprocess::{mesh_preprocess, preprocess, Preprocessed};
+pub use reverse::{find_reverse, ReverseRun};
 pub use sketch::{
     max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,
     SketchWorkspace,
 };
 pub use verify::{verify_edit, Broken};
-pub use zip::{
-    find_reverse, mesh_preprocess, mesh_zip_along, moves, one_quad_sweeps, preprocess, start_turn,
-    zip, zip_along, zip_with, MeshZip, Move, Preprocessed, QzipError, ReverseRun,
-};
+pub use zip::{moves, Move, Qzip, QzipError};

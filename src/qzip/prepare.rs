@@ -42,6 +42,7 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::{Plan, Tag};
+use super::quad::{bounds_one_quad, side_quad, SideQuad};
 use crate::{Dart, Map, Vert};
 
 /// How the start of the path was adjusted (Sec. 2.6).
@@ -142,6 +143,8 @@ pub struct Surgery {
     start: StartRule,
     end: EndRule,
     folds: usize,
+    /// Dart `i` joins steps `i` and `i + 1` in the map the surgery was prepared on.
+    darts: Vec<Dart>,
 }
 
 impl Surgery {
@@ -231,6 +234,24 @@ impl Surgery {
     pub fn operations(&self) -> usize {
         self.steps.iter().filter(|s| s.op.is_some()).count()
     }
+
+    /// The darts of the adjusted path: dart `i` goes from the vertex of step `i` to that of
+    /// step `i + 1`, in the map the surgery was prepared on.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{plan, prepare, sketch, SketchOptions, Tag};
+    /// let map = gen::subdivided_icosahedron(2).map;
+    /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
+    /// let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+    /// let s = prepare(&map, &plan(&map, &path, Tag::LS).unwrap()).unwrap();
+    /// for (d, w) in s.darts().iter().zip(s.steps().windows(2)) {
+    ///     assert_eq!((map.origin(*d), map.dest(*d)), (w[0].vertex, w[1].vertex));
+    /// }
+    /// ```
+    pub fn darts(&self) -> &[Dart] {
+        &self.darts
+    }
 }
 
 impl fmt::Display for Surgery {
@@ -257,6 +278,7 @@ impl fmt::Display for Surgery {
 /// assert!(e.to_string().contains("valence 4"));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PrepareError {
     /// An end is not an interior v3 or v5 (Sec. 2.6 covers those only).
     End {
@@ -321,42 +343,6 @@ impl fmt::Display for PrepareError {
 #[cfg(feature = "std")]
 impl std::error::Error for PrepareError {}
 
-/// Whether the closed walk `ring[0] -> ring[1] -> ring[2] -> ring[3] -> ring[0]` goes round
-/// one quad of `map` whose corners other than `ring[0]` are not one of `ends` and, when
-/// `regular` is set, are regular interior vertices: cutting it out of a path is a homotopy
-/// across that quad.
-pub(crate) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regular: bool) -> bool {
-    let ok = |w: Vert| {
-        map.is_live_vertex(w)
-            && !ends.contains(&w)
-            && (!regular || (map.valence(w) == 4 && !map.is_boundary_vertex(w)))
-    };
-    ring[1..].iter().all(|&w| ok(w))
-        && map.dart_between(ring[0], ring[1]).is_some_and(|d| {
-            [d, d.twin()].iter().any(|&x| {
-                map.face(x).is_some_and(|f| {
-                    map.degree(f) == 4 && map.face_darts(f).all(|y| ring.contains(&map.origin(y)))
-                })
-            })
-        })
-}
-
-/// The two corners of the quad on the `left` (or right) of `d: a -> b` other than `a` and
-/// `b`: `(corner next to a, corner next to b)`.
-fn side_quad(map: &Map, d: Dart, left: bool) -> Option<(Vert, Vert)> {
-    let e = if left { d } else { d.twin() };
-    let f = map.face(e)?;
-    if map.degree(f) != 4 {
-        return None;
-    }
-    let (near_origin, near_dest) = (map.origin(map.prev(e)), map.dest(map.next(e)));
-    Some(if left {
-        (near_origin, near_dest)
-    } else {
-        (near_dest, near_origin)
-    })
-}
-
 fn end_error(map: &Map, index: usize, vertex: Vert) -> PrepareError {
     PrepareError::End {
         index,
@@ -385,24 +371,245 @@ fn repeated(v: &[Vert]) -> Option<Vert> {
     sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
 }
 
-/// Cuts the closed walk of `len` edges that starts at position `i` (`v[i] == v[i + len]`):
-/// the surviving `v[i]` takes the hand of the edge leaving the walk, so the compass after it
-/// is unchanged.
-fn cut_closed_walk(
-    v: &mut Vec<Vert>,
-    hand: &mut Vec<Tag>,
-    noop: &mut Vec<bool>,
-    i: usize,
-    len: usize,
-) {
-    // noop is per outgoing edge: if the walk ends the path, vertex i becomes last.
-    if i + len == v.len() - 1 {
-        noop.drain(i..i + len);
-    } else {
-        noop.drain(i + 1..i + len + 1);
+/// The path being adjusted: its vertices and, per edge `i` (from vertex `i` to `i + 1`), the
+/// dart, the compass hand and whether vertex `i` does nothing (a no-op).
+struct Draft {
+    vertices: Vec<Vert>,
+    darts: Vec<Dart>,
+    hands: Vec<Tag>,
+    noops: Vec<bool>,
+}
+
+impl Draft {
+    /// The plan's path, every vertex with its operation.
+    fn new(plan: &Plan) -> Self {
+        let steps = plan.steps();
+        let hands: Vec<Tag> = steps[..steps.len() - 1].iter().map(|s| s.tag).collect();
+        Draft {
+            vertices: steps.iter().map(|s| s.vertex).collect(),
+            darts: plan.darts().to_vec(),
+            noops: alloc::vec![false; hands.len()],
+            hands,
+        }
     }
-    v.drain(i + 1..i + len + 1);
-    hand.drain(i..i + len);
+
+    /// The carried dart `i` when it still joins vertices `i` and `i + 1` of `map`.
+    fn dart(&self, map: &Map, i: usize) -> Result<Dart, PrepareError> {
+        let d = *self.darts.get(i).ok_or(PrepareError::StalePlan)?;
+        let joins = map.is_live_dart(d)
+            && map.origin(d) == self.vertices[i]
+            && map.dest(d) == self.vertices[i + 1];
+        joins.then_some(d).ok_or(PrepareError::StalePlan)
+    }
+
+    /// Puts `vertex` in front, joined to the old first vertex by `dart`.
+    fn prepend(&mut self, vertex: Vert, dart: Dart, hand: Tag, noop: bool) {
+        self.vertices.insert(0, vertex);
+        self.darts.insert(0, dart);
+        self.hands.insert(0, hand);
+        self.noops.insert(0, noop);
+    }
+
+    /// Appends `vertex`, joined to the old last vertex by `dart`.
+    fn append(&mut self, vertex: Vert, dart: Dart, hand: Tag) {
+        self.vertices.push(vertex);
+        self.darts.push(dart);
+        self.hands.push(hand);
+        self.noops.push(false);
+    }
+
+    /// The start rule of Sec. 2.6 for the initial operation `initial`.
+    fn adjust_start(&mut self, map: &Map, initial: Tag) -> Result<StartRule, PrepareError> {
+        let from = self.vertices[0];
+        Ok(match (end_valence(map, 0, from)?, initial.is_split()) {
+            (3, true) => {
+                self.noops[0] = true;
+                StartRule::V3Split
+            }
+            (3, false) => {
+                // Round the quad on the collapse's side: x -> x' -> p1.
+                let left = initial == Tag::LC;
+                let quad = side_quad(map, self.dart(map, 0)?, left)
+                    .ok_or(PrepareError::NoQuad { vertex: from })?;
+                self.vertices[0] = quad.near_dest(map);
+                self.darts[0] = quad.back;
+                self.hands[0] = if left { initial.cw() } else { initial.ccw() };
+                self.prepend(quad.near_origin(map), quad.across, initial, false);
+                StartRule::V3Collapse
+            }
+            (_, false) => StartRule::V5Collapse,
+            (_, true) => {
+                let guide = second_neighbour(map, self.dart(map, 0)?, initial == Tag::LS);
+                self.prepend(map.dest(guide), guide.twin(), initial, true);
+                StartRule::V5Split
+            }
+        })
+    }
+
+    /// A path that reaches the terminal singularity by going round a quad touching it
+    /// (a -> b -> c -> end, with a and end joined by that quad's fourth side) is shortened to
+    /// a -> end, a homotopy across that quad inside the one-ring: the compass along a -> end
+    /// is the hand along b -> c, the parallel side. Adjusting the end of the U-turn instead
+    /// would reroute back over it.
+    fn shorten_round_quad_end(&mut self, map: &Map) {
+        let v = &self.vertices;
+        if v.len() < 4 {
+            return;
+        }
+        let m = v.len() - 1;
+        let (a, b, c, e) = (v[m - 3], v[m - 2], v[m - 1], v[m]);
+        // Not a path dart: the quad's fourth side, looked up in the map.
+        let Some(side) = map.dart_between(a, e) else {
+            return;
+        };
+        let quad = [side, side.twin()].iter().any(|&x| {
+            map.face(x).is_some_and(|f| {
+                map.degree(f) == 4
+                    && map
+                        .face_darts(f)
+                        .map(|y| map.origin(y))
+                        .all(|w| [a, b, c, e].contains(&w))
+            })
+        });
+        let regular = |w: Vert| map.valence(w) == 4 && !map.is_boundary_vertex(w);
+        if quad && regular(b) && regular(c) && !self.noops[m - 3] {
+            self.hands[m - 3] = self.hands[m - 2];
+            self.darts[m - 3] = side;
+            self.vertices.drain(m - 2..m);
+            self.darts.drain(m - 2..m);
+            self.hands.drain(m - 2..m);
+            self.noops.drain(m - 2..m);
+        }
+    }
+
+    /// The end rule of Sec. 2.6 for the compass arriving with `arriving`; `index` is the end's
+    /// position in the plan.
+    fn adjust_end(
+        &mut self,
+        map: &Map,
+        index: usize,
+        arriving: Tag,
+    ) -> Result<EndRule, PrepareError> {
+        let m = self.vertices.len() - 1;
+        let to = self.vertices[m];
+        if end_valence(map, index, to)? == 3 {
+            return Ok(EndRule::V3);
+        }
+        let last = self.dart(map, m - 1)?;
+        if arriving.is_split() {
+            let guide = second_neighbour(map, last.twin(), arriving == Tag::LS);
+            self.append(map.dest(guide), guide, arriving);
+            return Ok(EndRule::V5Split);
+        }
+        // Replace the last edge q' -> q by the two other sides q' -> f -> f' of the quad.
+        let left = arriving == Tag::LC;
+        let quad: SideQuad =
+            side_quad(map, last, left).ok_or(PrepareError::NoQuad { vertex: to })?;
+        self.vertices[m] = quad.near_origin(map);
+        self.darts[m - 1] = quad.out;
+        self.hands[m - 1] = if left { arriving.ccw() } else { arriving.cw() };
+        self.append(quad.near_dest(map), quad.across, arriving);
+        Ok(EndRule::V5Collapse)
+    }
+
+    /// Cuts the closed walk of `len` edges that starts at position `i` (`v[i] == v[i + len]`):
+    /// the surviving `v[i]` takes the hand (and the dart) of the edge leaving the walk, so the
+    /// compass after it is unchanged.
+    fn cut_closed_walk(&mut self, i: usize, len: usize) {
+        // noops is per outgoing edge: if the walk ends the path, vertex i becomes last.
+        if i + len == self.vertices.len() - 1 {
+            self.noops.drain(i..i + len);
+        } else {
+            self.noops.drain(i + 1..i + len + 1);
+        }
+        self.vertices.drain(i + 1..i + len + 1);
+        self.hands.drain(i..i + len);
+        self.darts.drain(i..i + len);
+    }
+
+    /// Cancels the folds a -> b -> a: vertex a takes the hand of the edge leaving the fold.
+    fn cancel_folds(&mut self) -> usize {
+        let mut folds = 0;
+        let mut i = 0;
+        while i + 2 < self.vertices.len() {
+            if self.vertices[i] == self.vertices[i + 2] {
+                self.cut_closed_walk(i, 2);
+                folds += 1;
+                i = i.saturating_sub(1);
+            } else {
+                i += 1;
+            }
+        }
+        folds
+    }
+
+    /// Cancels the loops a -> x -> y -> z -> a round one quad whose other corners are regular:
+    /// a homotopy across that quad (an end reroute after a path that went round the quad on
+    /// the other side makes them). Vertex a takes the hand of the edge leaving the loop, as at
+    /// a fold.
+    fn cancel_quad_loops(&mut self, map: &Map, ends: [Vert; 2]) -> usize {
+        let mut loops = 0;
+        let mut i = 0;
+        while i + 4 < self.vertices.len() {
+            let v = &self.vertices;
+            let round_quad = v[i] == v[i + 4]
+                && bounds_one_quad(map, [v[i], v[i + 1], v[i + 2], v[i + 3]], ends, true);
+            if round_quad {
+                self.cut_closed_walk(i, 4);
+                loops += 1;
+            } else {
+                i += 1;
+            }
+        }
+        loops
+    }
+
+    /// A v3 start's reroute folded back onto the path so that the first operation is a split:
+    /// it needs a guide, and the v3 `from` it started from is one (as in a v3 start with a
+    /// split, whose no-op start guides the first split).
+    fn restore_v3_guide(&mut self, map: &Map, from: Vert) {
+        let first_is_split =
+            self.hands.first().is_some_and(|h| h.is_split()) && self.noops.first() == Some(&false);
+        if !first_is_split || self.vertices.contains(&from) {
+            return;
+        }
+        // Not a path dart: the edge back to the v3, looked up in the map.
+        if let Some(d) = map.dart_between(from, self.vertices[0]) {
+            let hand = self.hands[0];
+            self.prepend(from, d, hand, true);
+        }
+    }
+
+    /// The surgery steps: each vertex with the hand along its outgoing edge and its operation;
+    /// the last with the hand the compass arrives with.
+    fn steps(&self, arriving: Tag) -> Vec<SurgeryStep> {
+        let hands = &self.hands;
+        let mut out: Vec<SurgeryStep> = self
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(i, &vertex)| {
+                let hand = hands.get(i).copied().unwrap_or(arriving);
+                let op = (i < hands.len() && !self.noops[i]).then_some(hand);
+                SurgeryStep { vertex, hand, op }
+            })
+            .collect();
+        if let Some(l) = out.last_mut() {
+            l.hand = hands.last().copied().unwrap_or(arriving);
+            l.op = None;
+        }
+        out
+    }
+}
+
+/// The dart from the origin of `d` to its second neighbour counter-clockwise (`ccw`) or
+/// clockwise from `d`: the guide edge of a split at a v5 end.
+fn second_neighbour(map: &Map, d: Dart, ccw: bool) -> Dart {
+    if ccw {
+        map.rotate_ccw(map.rotate_ccw(d))
+    } else {
+        map.rotate_cw(map.rotate_cw(d))
+    }
 }
 
 /// Applies the end-point adjustments of Sec. 2.6 to a plan, then cancels folds and loops
@@ -427,170 +634,30 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     if steps.len() < 2 {
         return Err(PrepareError::StalePlan);
     }
-    let mut v: Vec<Vert> = steps.iter().map(|s| s.vertex).collect();
-    // hand[i]: the compass hand along edge i; noop[i]: whether vertex i does nothing.
-    let mut hand: Vec<Tag> = steps[..steps.len() - 1].iter().map(|s| s.tag).collect();
-    let mut noop: Vec<bool> = alloc::vec![false; hand.len()];
+    let mut draft = Draft::new(plan);
     let initial = plan.initial();
-    let (from, to) = (v[0], v[v.len() - 1]);
-    let edge = |a: Vert, b: Vert| map.dart_between(a, b).ok_or(PrepareError::StalePlan);
-
-    let start = match (end_valence(map, 0, from)?, initial.is_split()) {
-        (3, true) => {
-            noop[0] = true;
-            StartRule::V3Split
-        }
-        (3, false) => {
-            let left = initial == Tag::LC;
-            let (x, xn) = side_quad(map, edge(v[0], v[1])?, left)
-                .ok_or(PrepareError::NoQuad { vertex: from })?;
-            v[0] = xn;
-            v.insert(0, x);
-            let turn = if left { initial.cw() } else { initial.ccw() };
-            hand[0] = turn;
-            hand.insert(0, initial);
-            noop.insert(0, false);
-            StartRule::V3Collapse
-        }
-        (_, false) => StartRule::V5Collapse,
-        (_, true) => {
-            let d = edge(v[0], v[1])?;
-            let g = if initial == Tag::LS {
-                map.rotate_ccw(map.rotate_ccw(d))
-            } else {
-                map.rotate_cw(map.rotate_cw(d))
-            };
-            v.insert(0, map.dest(g));
-            hand.insert(0, initial);
-            noop.insert(0, true);
-            StartRule::V5Split
-        }
-    };
-
-    // A path that reaches the terminal singularity by going round a quad touching it
-    // (a -> b -> c -> end, with a and end joined by that quad's fourth side) is first
-    // shortened to a -> end, a homotopy across that quad inside the one-ring: the compass
-    // along a -> end is the hand along b -> c, the parallel side. Adjusting the end of the
-    // U-turn instead would reroute back over it.
-    if v.len() >= 4 {
-        let m = v.len() - 1;
-        let (a, b, c, e) = (v[m - 3], v[m - 2], v[m - 1], v[m]);
-        let quad = map.dart_between(a, e).is_some_and(|d| {
-            [d, d.twin()].iter().any(|&x| {
-                map.face(x).is_some_and(|f| {
-                    map.degree(f) == 4
-                        && map
-                            .face_darts(f)
-                            .map(|y| map.origin(y))
-                            .all(|w| [a, b, c, e].contains(&w))
-                })
-            })
-        });
-        let regular = |w: Vert| map.valence(w) == 4 && !map.is_boundary_vertex(w);
-        if quad && regular(b) && regular(c) && !noop[m - 3] {
-            hand[m - 3] = hand[m - 2];
-            v.drain(m - 2..m);
-            hand.drain(m - 2..m);
-            noop.drain(m - 2..m);
-        }
+    let (from, to) = (steps[0].vertex, steps[steps.len() - 1].vertex);
+    let start = draft.adjust_start(map, initial)?;
+    draft.shorten_round_quad_end(map);
+    let arriving = draft.hands[draft.hands.len() - 1];
+    let end = draft.adjust_end(map, steps.len() - 1, arriving)?;
+    let mut folds = draft.cancel_folds();
+    folds += draft.cancel_quad_loops(map, [from, to]);
+    if start == StartRule::V3Collapse {
+        draft.restore_v3_guide(map, from);
     }
-
-    let last = steps.len() - 1;
-    let m = v.len() - 1;
-    let arriving = hand[m - 1];
-    let end = if end_valence(map, last, to)? == 3 {
-        EndRule::V3
-    } else if arriving.is_split() {
-        let d = edge(v[m], v[m - 1])?;
-        let g = if arriving == Tag::LS {
-            map.rotate_ccw(map.rotate_ccw(d))
-        } else {
-            map.rotate_cw(map.rotate_cw(d))
-        };
-        v.push(map.dest(g));
-        hand.push(arriving);
-        noop.push(false);
-        EndRule::V5Split
-    } else {
-        let left = arriving == Tag::LC;
-        let (f, fl) = side_quad(map, edge(v[m - 1], v[m])?, left)
-            .ok_or(PrepareError::NoQuad { vertex: to })?;
-        v[m] = f;
-        v.push(fl);
-        hand[m - 1] = if left { arriving.ccw() } else { arriving.cw() };
-        hand.push(arriving);
-        noop.push(false);
-        EndRule::V5Collapse
-    };
-
-    // Cancel folds a -> b -> a: vertex a takes the hand of the edge leaving the fold.
-    let mut folds = 0;
-    let mut i = 0;
-    while i + 2 < v.len() {
-        if v[i] == v[i + 2] {
-            cut_closed_walk(&mut v, &mut hand, &mut noop, i, 2);
-            folds += 1;
-            i = i.saturating_sub(1);
-        } else {
-            i += 1;
-        }
-    }
-    // Cancel loops a -> x -> y -> z -> a round one quad whose other corners are regular: a
-    // homotopy across that quad (an end reroute after a path that went round the quad on the
-    // other side makes them). Vertex a takes the hand of the edge leaving the loop, as at a
-    // fold.
-    let mut i = 0;
-    while i + 4 < v.len() {
-        let round_quad = v[i] == v[i + 4]
-            && bounds_one_quad(map, [v[i], v[i + 1], v[i + 2], v[i + 3]], [from, to], true);
-        if round_quad {
-            cut_closed_walk(&mut v, &mut hand, &mut noop, i, 4);
-            folds += 1;
-        } else {
-            i += 1;
-        }
-    }
-    // A reroute folded back onto the path so that the first operation is a split: it needs
-    // a guide, and the v3 it started from is one (as in a v3 start with a split, whose
-    // no-op start guides the first split).
-    if start == StartRule::V3Collapse
-        && hand.first().is_some_and(|h| h.is_split())
-        && noop.first() == Some(&false)
-        && !v.contains(&from)
-        && map.dart_between(from, v[0]).is_some()
-    {
-        v.insert(0, from);
-        hand.insert(0, hand[0]);
-        noop.insert(0, true);
-    }
-    if let Some(w) = repeated(&v) {
+    if let Some(w) = repeated(&draft.vertices) {
         return Err(PrepareError::NotSimple { vertex: w });
     }
-    let mut out: Vec<SurgeryStep> = v
-        .iter()
-        .enumerate()
-        .map(|(i, &vertex)| {
-            let h = hand.get(i).copied().unwrap_or(arriving);
-            let op = (i < hand.len() && !noop[i]).then_some(h);
-            SurgeryStep {
-                vertex,
-                hand: h,
-                op,
-            }
-        })
-        .collect();
-    if let Some(l) = out.last_mut() {
-        l.hand = hand.last().copied().unwrap_or(arriving);
-        l.op = None;
-    }
     let s = Surgery {
-        steps: out,
+        steps: draft.steps(arriving),
         from,
         to,
         initial,
         start,
         end,
         folds,
+        darts: draft.darts,
     };
     if s.operations() == 0 {
         return Err(PrepareError::Empty);

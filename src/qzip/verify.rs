@@ -65,11 +65,11 @@ impl std::error::Error for Broken {}
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{sketch, verify_edit, zip_along, SketchOptions, Tag};
+/// use zipmesh::qzip::{sketch, verify_edit, Qzip, SketchOptions, Tag};
 /// let before = gen::subdivided_icosahedron(2).map;
 /// let path = sketch(&before, Vert::new(0), Vert::new(42), &SketchOptions::default()).unwrap();
 /// let mut after = before.clone();
-/// let r = zip_along(&mut after, &path, Tag::RS).unwrap();
+/// let r = Qzip::new().zip_along(&mut after, &path, Tag::RS).unwrap();
 /// assert_eq!(verify_edit(&before, &after, &path, &r), Ok(()));
 /// // Against the wrong "before", the promises do not hold.
 /// assert!(verify_edit(&after, &after, &path, &r).is_err());

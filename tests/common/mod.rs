@@ -6,9 +6,7 @@ pub mod cli;
 
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::quad;
-use zipmesh::qzip::{
-    sketch, verify_edit, zip_along, Path, QzipError, SketchOptions, Tag, ZipReport,
-};
+use zipmesh::qzip::{sketch, verify_edit, Path, Qzip, QzipError, SketchOptions, Tag, ZipReport};
 use zipmesh::{gen, Map, Mesh, Vert};
 
 /// Catmull-Clark of an icosahedron, `levels` times: 12 v5s and 20 v3s, isolated
@@ -72,7 +70,7 @@ pub fn pairs_within(map: &Map, max_len: usize) -> Vec<Path> {
 /// untouched. Leaves `map` as it was and returns the edited copy with the report.
 pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), QzipError> {
     let mut m = map.clone();
-    let r = match zip_along(&mut m, path, tag) {
+    let r = match Qzip::new().zip_along(&mut m, path, tag) {
         Ok(r) => r,
         Err(e) => {
             assert_eq!(&m, map, "a refusal changed the map: {e}");

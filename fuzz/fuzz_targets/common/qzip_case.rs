@@ -80,10 +80,7 @@ fn vertex(map: &Map, irregular: &[Vert], bytes: &mut Bytes) -> Option<Vert> {
 /// validated as a caller's path.
 fn path(map: &Map, from: Vert, to: Vert, bytes: &mut Bytes) -> Option<Path> {
     let mode = bytes.u8();
-    let mut opts = SketchOptions {
-        avoid_boundary: mode & 2 != 0,
-        ..SketchOptions::default()
-    };
+    let mut opts = SketchOptions::default().avoid_boundary(mode & 2 != 0);
     let walk_len = usize::from(mode >> 4);
     if mode & 1 == 0 || walk_len == 0 {
         return sketch(map, from, to, &opts).ok();
@@ -106,7 +103,7 @@ fn path(map: &Map, from: Vert, to: Vert, bytes: &mut Bytes) -> Option<Path> {
         // The rest of the path may not come back to a walk vertex before the last.
         for &w in &walk[..walk.len() - 1] {
             opts.forbidden_edges
-                .extend(map.vertex_darts(w).map(|d| d.index() as u32 / 2));
+                .extend(map.vertex_darts(w).map(|d| d.edge()));
         }
         let tail = sketch(map, last, to, &opts).ok()?;
         walk.extend_from_slice(&tail.vertices()[1..]);

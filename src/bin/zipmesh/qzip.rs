@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::io::{self, MeshFileError};
 use zipmesh::qzip::{
-    find_reverse, mesh_preprocess, mesh_zip_along, moves, sketch, validate_path, Path,
-    SketchOptions, Tag, ZipReport,
+    find_reverse, mesh_preprocess, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag,
+    ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
@@ -214,13 +214,15 @@ fn join(v: &[u32]) -> String {
 pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     let (original, path) = load(&args.pair)?;
     let mut mesh = original.clone();
-    let z = mesh_zip_along(&mut mesh, &path, args.tag).map_err(|e| {
-        InputError(format!(
-            "{}: the {} movement is not realizable: {e}",
-            args.pair.file.display(),
-            args.tag
-        ))
-    })?;
+    let z = Qzip::new()
+        .zip_mesh_along(&mut mesh, &path, args.tag)
+        .map_err(|e| {
+            InputError(format!(
+                "{}: the {} movement is not realizable: {e}",
+                args.pair.file.display(),
+                args.tag
+            ))
+        })?;
     let r = z.report();
     // The reverse run is found on the edited map before compaction renumbers it.
     let reverse = find_reverse(&mesh.map, r, &original.map);

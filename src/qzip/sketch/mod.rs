@@ -33,43 +33,49 @@
 //! assert_eq!(path.len(), 3);
 //! ```
 
-use alloc::collections::BinaryHeap;
+mod search;
+mod store;
+mod validate;
+
+pub use validate::validate_path;
+
 use alloc::vec::Vec;
-use core::cmp::Ordering;
 use core::fmt;
 
 use glam::DVec3;
 use hashbrown::HashMap;
 
-use crate::{Dart, Face, Map, Mesh, Vert};
+use self::search::{search, Ctx};
+use self::store::{ArrayStore, Buffers, HashStore, Slot, Store};
+use crate::{Dart, Edge, Face, Map, Mesh, Vert};
 
 /// Options of [`sketch`] and [`validate_path`].
 ///
-/// Edges are named by their index `e`: the edge of darts `2e` and `2e + 1`, that is
-/// `dart.index() / 2`.
+/// Edges are [`Edge`] handles (`dart.edge()`); per-edge data is indexed by [`Edge::index`].
+/// Start from [`SketchOptions::default`] (shortest path, nothing
+/// forbidden) and chain the setters:
 ///
 /// ```
-/// use zipmesh::Face;
+/// use zipmesh::{Edge, Face};
 /// use zipmesh::qzip::SketchOptions;
-/// let opts = SketchOptions {
-///     avoid_boundary: true,
-///     forbidden_edges: vec![3, 4],
-///     forbidden_faces: vec![Face::new(0)],
-///     weights: None,
-///     guide: None,
-/// };
+/// let opts = SketchOptions::default()
+///     .avoid_boundary(true)
+///     .forbid_edges([Edge::new(3), Edge::new(4)])
+///     .forbid_faces([Face::new(0)]);
 /// assert!(opts.avoid_boundary);
+/// assert_eq!(opts.forbidden_edges, vec![Edge::new(3), Edge::new(4)]);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct SketchOptions<'a> {
     /// Prefer paths whose interior vertices are not on the boundary; when no such path exists,
     /// fall back to any path. Ignored by [`validate_path`].
     pub avoid_boundary: bool,
-    /// Edge indices that no path may use (sharp features).
-    pub forbidden_edges: Vec<u32>,
+    /// Edges that no path may use (sharp features).
+    pub forbidden_edges: Vec<Edge>,
     /// Faces whose edges no path may use (protected regions).
     pub forbidden_faces: Vec<Face>,
-    /// Per-edge weights indexed by edge index (length at least `map.dart_slots() / 2`), each
+    /// Per-edge weights indexed by [`Edge::index`] (length at least `map.edge_slots()`), each
     /// finite and non-negative; `None` means unit weights and breadth-first search. Path
     /// lengths whose sum overflows to infinity count as unreachable.
     pub weights: Option<Vec<f64>>,
@@ -77,6 +83,87 @@ pub struct SketchOptions<'a> {
     /// work smaller. See [`Guide`], also for what a wrong bound does. Ignored with `weights`
     /// and by [`validate_path`].
     pub guide: Option<Guide<'a>>,
+}
+
+impl<'a> SketchOptions<'a> {
+    /// Sets [`SketchOptions::avoid_boundary`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// // 4 x 1 grid: every vertex is on the boundary, so the fallback runs.
+    /// let map = gen::grid(4, 1).map;
+    /// let opts = SketchOptions::default().avoid_boundary(true);
+    /// assert_eq!(sketch(&map, Vert::new(0), Vert::new(4), &opts).unwrap().len(), 4);
+    /// ```
+    pub fn avoid_boundary(mut self, avoid: bool) -> Self {
+        self.avoid_boundary = avoid;
+        self
+    }
+
+    /// Adds `edges` to [`SketchOptions::forbidden_edges`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let (a, b) = (Vert::new(0), Vert::new(1));
+    /// let direct = sketch(&map, a, b, &SketchOptions::default()).unwrap();
+    /// let opts = SketchOptions::default().forbid_edges([direct.darts()[0].edge()]);
+    /// assert_eq!(sketch(&map, a, b, &opts).unwrap().len(), 3);
+    /// ```
+    pub fn forbid_edges(mut self, edges: impl IntoIterator<Item = Edge>) -> Self {
+        self.forbidden_edges.extend(edges);
+        self
+    }
+
+    /// Adds `faces` to [`SketchOptions::forbidden_faces`].
+    ///
+    /// ```
+    /// use zipmesh::{gen, Face, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let opts = SketchOptions::default().forbid_faces([Face::new(0)]);
+    /// // Both edges at corner 0 lie on face 0: no path leaves it.
+    /// assert!(sketch(&map, Vert::new(0), Vert::new(5), &opts).is_err());
+    /// ```
+    pub fn forbid_faces(mut self, faces: impl IntoIterator<Item = Face>) -> Self {
+        self.forbidden_faces.extend(faces);
+        self
+    }
+
+    /// Sets [`SketchOptions::weights`]: per-edge weights, Dijkstra instead of breadth-first
+    /// search.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, SketchOptions};
+    /// let map = gen::grid(3, 3).map;
+    /// let opts = SketchOptions::default().weights(vec![2.0; map.edge_slots()]);
+    /// assert_eq!(sketch(&map, Vert::new(0), Vert::new(3), &opts).unwrap().len(), 3);
+    /// ```
+    pub fn weights(mut self, weights: Vec<f64>) -> Self {
+        self.weights = Some(weights);
+        self
+    }
+
+    /// Sets [`SketchOptions::guide`]: an A* search towards the end, the same path.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, Guide, SketchOptions};
+    /// let mesh = gen::grid(10, 10);
+    /// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
+    /// let (a, b) = (Vert::new(0), Vert::new(120));
+    /// assert_eq!(
+    ///     sketch(&mesh.map, a, b, &guided),
+    ///     sketch(&mesh.map, a, b, &SketchOptions::default())
+    /// );
+    /// ```
+    pub fn guide(mut self, guide: Guide<'a>) -> Self {
+        self.guide = Some(guide);
+        self
+    }
 }
 
 /// A simple edge path: its vertices `v0 .. vn` and the darts `v(i) -> v(i+1)`.
@@ -190,6 +277,7 @@ impl fmt::Display for Path {
 /// assert!(e.to_string().contains("4"));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum SketchError {
     /// The two ends are the same vertex.
     SameVertex(Vert),
@@ -211,8 +299,8 @@ pub enum SketchError {
     },
     /// A weight is negative, infinite or NaN.
     BadWeight {
-        /// The edge index.
-        edge: u32,
+        /// The edge.
+        edge: Edge,
         /// The weight given.
         weight: f64,
     },
@@ -247,8 +335,8 @@ pub enum SketchError {
     ForbiddenEdge {
         /// Position of the first of the two in the path.
         index: usize,
-        /// The edge index (the lowest, when several edges join the two vertices).
-        edge: u32,
+        /// The edge (the lowest, when several edges join the two vertices).
+        edge: Edge,
     },
     /// Every edge joining two consecutive vertices of a given path lies on a forbidden face.
     ForbiddenFace {
@@ -277,7 +365,8 @@ impl fmt::Display for SketchError {
             }
             Self::BadWeight { edge, weight } => write!(
                 f,
-                "edge {edge} has weight {weight}; weights must be finite and non-negative"
+                "edge {} has weight {weight}; weights must be finite and non-negative",
+                edge.index()
             ),
             Self::TooShort(n) => write!(f, "a path needs at least two vertices, got {n}"),
             Self::WrongEnd { expected, found } => write!(
@@ -304,7 +393,8 @@ impl fmt::Display for SketchError {
             ),
             Self::ForbiddenEdge { index, edge } => write!(
                 f,
-                "path edge at position {index} is forbidden (edge {edge})"
+                "path edge at position {index} is forbidden (edge {})",
+                edge.index()
             ),
             Self::ForbiddenFace { index, face } => write!(
                 f,
@@ -344,7 +434,7 @@ impl std::error::Error for SketchError {}
 /// use zipmesh::{gen, Vert};
 /// use zipmesh::qzip::{sketch, Guide, SketchOptions};
 /// let mesh = gen::grid(40, 40);
-/// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+/// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
 /// let (a, b) = (Vert::new(41 * 20 + 3), Vert::new(41 * 20 + 30));
 /// let p = sketch(&mesh.map, a, b, &guided).unwrap();
 /// assert_eq!(p, sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap());
@@ -421,11 +511,8 @@ pub fn max_edge_length(mesh: &Mesh) -> f64 {
             .filter(|p| p.is_finite())
     };
     let mut longest: f64 = 0.0;
-    for e in 0..map.dart_slots() / 2 {
-        let d = Dart::new(2 * e as u32);
-        if !map.is_live_dart(d) {
-            continue;
-        }
+    for e in map.edges() {
+        let d = e.dart(0);
         match (point(map.origin(d)), point(map.dest(d))) {
             (Some(a), Some(b)) => {
                 let l = a.distance(b);
@@ -443,9 +530,9 @@ pub fn max_edge_length(mesh: &Mesh) -> f64 {
 
 /// The edge masks and checked weights shared by the searches and the validation.
 struct Rules<'a> {
-    /// Forbidden edge indices, sorted without repeats: a lookup costs O(log k), and a search
+    /// Forbidden edges, sorted without repeats: a lookup costs O(log k), and a search
     /// costs what it explores, not O(E).
-    forbidden: Vec<u32>,
+    forbidden: Vec<Edge>,
     weights: Option<&'a [f64]>,
 }
 
@@ -454,14 +541,14 @@ impl<'a> Rules<'a> {
     fn new(
         map: &Map,
         opts: &'a SketchOptions<'_>,
-        mut forbidden: Vec<u32>,
+        mut forbidden: Vec<Edge>,
     ) -> Result<Self, SketchError> {
-        let n_edges = map.dart_slots() / 2;
+        let n_edges = map.edge_slots();
         forbidden.clear();
         forbidden.extend_from_slice(&opts.forbidden_edges);
         for &f in &opts.forbidden_faces {
             if map.is_live_face(f) {
-                forbidden.extend(map.face_darts(f).map(|d| (d.index() / 2) as u32));
+                forbidden.extend(map.face_darts(f).map(Dart::edge));
             }
         }
         forbidden.sort_unstable();
@@ -476,11 +563,9 @@ impl<'a> Rules<'a> {
                     });
                 }
                 for (e, &x) in w.iter().enumerate().take(n_edges) {
-                    if !(x.is_finite() && x >= 0.0) && map.is_live_dart(Dart::new(2 * e as u32)) {
-                        return Err(SketchError::BadWeight {
-                            edge: e as u32,
-                            weight: x,
-                        });
+                    let edge = Edge::new(e as u32);
+                    if !(x.is_finite() && x >= 0.0) && map.is_live_edge(edge) {
+                        return Err(SketchError::BadWeight { edge, weight: x });
                     }
                 }
                 Some(&w[..])
@@ -490,11 +575,7 @@ impl<'a> Rules<'a> {
     }
 
     fn usable(&self, d: Dart) -> bool {
-        self.forbidden.is_empty()
-            || self
-                .forbidden
-                .binary_search(&((d.index() / 2) as u32))
-                .is_err()
+        self.forbidden.is_empty() || self.forbidden.binary_search(&d.edge()).is_err()
     }
 }
 
@@ -506,129 +587,6 @@ fn sorted_darts(map: &Map, v: Vert, buf: &mut Vec<Dart>) {
     if !buf.windows(2).all(|w| w[0] <= w[1]) {
         buf.sort_unstable();
     }
-}
-
-/// What a search knows of one vertex, in 16 bytes (the searches are bound by memory traffic
-/// on large maps). Every field is valid only with its flag set.
-#[derive(Clone, Copy, Debug, Default)]
-struct Slot {
-    /// The search epoch that wrote this slot (workspace arrays only) above 8 flag bits.
-    tag: u32,
-    /// Distance from `from` (BFS layer, A* g; `FWD`).
-    fwd: u32,
-    /// Distance from `to` (backward BFS layer, `BWD`); in A*, the dart that last improved
-    /// `fwd` (with `FWD`).
-    bwd: u32,
-    /// The dart that reached this vertex in the final pass (`PRED`).
-    pred: u32,
-}
-
-const FWD: u8 = 1;
-const BWD: u8 = 2;
-const DAG: u8 = 4;
-const PRED: u8 = 8;
-const DONE: u8 = 16;
-/// Epochs live in the tag's upper 24 bits.
-const EPOCHS: u32 = 1 << 24;
-
-impl Slot {
-    fn has(&self, flag: u8) -> bool {
-        self.tag & u32::from(flag) != 0
-    }
-
-    fn set(&mut self, flag: u8) {
-        self.tag |= u32::from(flag);
-    }
-
-    /// Dijkstra's distance, kept in `fwd` and `bwd` (with `FWD`).
-    fn dist(&self) -> f64 {
-        f64::from_bits((u64::from(self.fwd) << 32) | u64::from(self.bwd))
-    }
-
-    fn set_dist(&mut self, d: f64) {
-        let bits = d.to_bits();
-        self.fwd = (bits >> 32) as u32;
-        self.bwd = bits as u32;
-    }
-}
-
-/// Per-vertex records of one search pass: a hash map ([`sketch`]) or epoch-stamped arrays
-/// ([`SketchWorkspace`]).
-trait Store {
-    /// The record of `v` (all flags clear when the pass has not touched it).
-    fn get(&self, v: Vert) -> Slot;
-    /// The record of `v`, created empty on first touch.
-    fn get_mut(&mut self, v: Vert) -> &mut Slot;
-    /// Forgets every record: the start of a new search pass.
-    fn next_pass(&mut self);
-}
-
-/// One-off records: the search costs what it explores, with no O(V) set-up.
-struct HashStore(HashMap<u32, Slot>);
-
-impl Store for HashStore {
-    fn get(&self, v: Vert) -> Slot {
-        self.0.get(&(v.index() as u32)).copied().unwrap_or_default()
-    }
-    fn get_mut(&mut self, v: Vert) -> &mut Slot {
-        self.0.entry(v.index() as u32).or_default()
-    }
-    fn next_pass(&mut self) {
-        self.0.clear();
-    }
-}
-
-/// Records in a reused array: a slot is valid when its stamp is the current epoch, so a new
-/// pass costs one increment, not an O(V) clear.
-struct ArrayStore<'w> {
-    slots: &'w mut Vec<Slot>,
-    epoch: &'w mut u32,
-    touched: &'w mut usize,
-}
-
-impl Store for ArrayStore<'_> {
-    fn get(&self, v: Vert) -> Slot {
-        match self.slots.get(v.index()) {
-            Some(s) if s.tag >> 8 == *self.epoch => *s,
-            _ => Slot::default(),
-        }
-    }
-    fn get_mut(&mut self, v: Vert) -> &mut Slot {
-        let i = v.index();
-        if i >= self.slots.len() {
-            // Only for handles past the map's slots, which live darts never reach.
-            self.slots.resize(i + 1, Slot::default());
-        }
-        let s = &mut self.slots[i];
-        if s.tag >> 8 != *self.epoch {
-            *s = Slot {
-                tag: *self.epoch << 8,
-                ..Slot::default()
-            };
-            *self.touched += 1;
-        }
-        s
-    }
-    fn next_pass(&mut self) {
-        // A fresh epoch; on wrap-around, clear once so no old stamp matches.
-        *self.epoch += 1;
-        if *self.epoch >= EPOCHS {
-            self.slots.fill(Slot::default());
-            *self.epoch = 1;
-        }
-    }
-}
-
-/// Reused buffers of one search.
-#[derive(Default)]
-struct Buffers {
-    a: Vec<Vert>,
-    b: Vec<Vert>,
-    c: Vec<Vert>,
-    m: Vec<Vert>,
-    darts: Vec<Dart>,
-    astar: BinaryHeap<AEntry>,
-    dijkstra: BinaryHeap<Entry>,
 }
 
 /// Reusable memory for many sketches: per-vertex arrays stamped with a search epoch, so a
@@ -654,7 +612,7 @@ struct Buffers {
 pub struct SketchWorkspace {
     slots: Vec<Slot>,
     epoch: u32,
-    forbidden: Vec<u32>,
+    forbidden: Vec<Edge>,
     bufs: Buffers,
     explored: usize,
 }
@@ -724,7 +682,7 @@ impl SketchWorkspace {
     /// let mut ws = SketchWorkspace::new();
     /// ws.sketch(&mesh.map, a, b, &SketchOptions::default()).unwrap();
     /// let plain = ws.explored();
-    /// let guided = SketchOptions { guide: Some(Guide::from_mesh(&mesh)), ..Default::default() };
+    /// let guided = SketchOptions::default().guide(Guide::from_mesh(&mesh));
     /// ws.sketch(&mesh.map, a, b, &guided).unwrap();
     /// assert!(ws.explored() * 5 < plain);
     /// ```
@@ -772,7 +730,7 @@ fn passes(opts: &SketchOptions<'_>) -> &'static [bool] {
 /// use zipmesh::qzip::{sketch, SketchOptions};
 /// // 4 x 1 grid, vertices 0..5 on the bottom row, 5..10 on the top row.
 /// let map = gen::grid(4, 1).map;
-/// let opts = SketchOptions { avoid_boundary: true, ..Default::default() };
+/// let opts = SketchOptions::default().avoid_boundary(true);
 /// let p = sketch(&map, Vert::new(0), Vert::new(4), &opts).unwrap(); // every vertex is on the boundary
 /// assert_eq!(p.len(), 4);
 /// ```
@@ -818,503 +776,5 @@ fn run_passes<S: Store>(
             avoid,
         };
         search(&cx, opts.guide.as_ref(), store, bufs)
-    })
-}
-
-/// Dijkstra heap entry: smallest (distance, vertex) first.
-#[derive(PartialEq)]
-struct Entry(f64, u32);
-
-impl Eq for Entry {}
-
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // Reversed so that BinaryHeap (a max-heap) pops the smallest; weights are finite.
-        other
-            .0
-            .total_cmp(&self.0)
-            .then_with(|| other.1.cmp(&self.1))
-    }
-}
-
-/// A* heap entry `(f, g, vertex)` packed in one integer: smallest f first, then the deepest
-/// (largest g), which walks straight down a run of ties, then the smallest vertex. The order
-/// only changes the work, not the path. `f >= 0`, so its bits order as the numbers do.
-#[derive(PartialEq, Eq, PartialOrd, Ord)]
-struct AEntry(core::cmp::Reverse<u128>);
-
-impl AEntry {
-    fn new(f: f64, g: u32, v: Vert) -> Self {
-        let key =
-            (u128::from(f.to_bits()) << 64) | (u128::from(u32::MAX - g) << 32) | v.index() as u128;
-        AEntry(core::cmp::Reverse(key))
-    }
-
-    fn f(&self) -> f64 {
-        f64::from_bits((self.0 .0 >> 64) as u64)
-    }
-
-    fn g(&self) -> u32 {
-        u32::MAX - (self.0 .0 >> 32) as u32
-    }
-
-    fn vertex(&self) -> Vert {
-        Vert::new(self.0 .0 as u32)
-    }
-}
-
-/// One search pass's fixed inputs.
-struct Ctx<'m, 'r> {
-    map: &'m Map,
-    from: Vert,
-    to: Vert,
-    rules: &'r Rules<'r>,
-    /// Exclude boundary vertices other than the ends.
-    avoid: bool,
-}
-
-impl Ctx<'_, '_> {
-    /// Whether the search may step along `d` (an allowed edge to an allowed vertex).
-    fn step(&self, d: Dart) -> bool {
-        let w = self.map.dest(d);
-        self.rules.usable(d)
-            && !(self.avoid && w != self.to && w != self.from && self.map.is_boundary_vertex(w))
-    }
-}
-
-fn search<S: Store>(
-    cx: &Ctx<'_, '_>,
-    guide: Option<&Guide<'_>>,
-    st: &mut S,
-    b: &mut Buffers,
-) -> Option<Path> {
-    match (cx.rules.weights, guide) {
-        (Some(w), _) => dijkstra(cx, w, st, b),
-        (None, Some(g)) if g.usable(cx.to) => astar(cx, g, st, b),
-        (None, _) => bfs(cx, st, b),
-    }
-}
-
-/// Dijkstra: settles the vertex of smallest (distance, index); a vertex keeps the first
-/// predecessor that reached it at its final distance.
-fn dijkstra<S: Store>(
-    cx: &Ctx<'_, '_>,
-    weights: &[f64],
-    st: &mut S,
-    b: &mut Buffers,
-) -> Option<Path> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
-    let heap = &mut b.dijkstra;
-    heap.clear();
-    let s = st.get_mut(from);
-    s.set(FWD);
-    s.set_dist(0.0);
-    heap.push(Entry(0.0, from.index() as u32));
-    while let Some(Entry(dv, vi)) = heap.pop() {
-        let v = Vert::new(vi);
-        let s = st.get_mut(v);
-        if s.has(DONE) {
-            continue;
-        }
-        s.set(DONE);
-        if v == to {
-            break;
-        }
-        sorted_darts(map, v, &mut b.darts);
-        for &d in &b.darts {
-            if !cx.step(d) {
-                continue;
-            }
-            let w = map.dest(d);
-            let sw = st.get_mut(w);
-            if sw.has(DONE) {
-                continue;
-            }
-            let nd = dv + weights.get(d.index() / 2).copied().unwrap_or(f64::INFINITY);
-            let old = if sw.has(FWD) {
-                sw.dist()
-            } else {
-                f64::INFINITY
-            };
-            if nd < old {
-                sw.set(FWD | PRED);
-                sw.set_dist(nd);
-                sw.pred = d.index() as u32;
-                heap.push(Entry(nd, w.index() as u32));
-            }
-        }
-    }
-    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
-}
-
-/// The path ending at `to` read back through `pred` (darts); `None` when the chain breaks or
-/// runs longer than the map has vertices.
-fn trace<S: Store>(cx: &Ctx<'_, '_>, st: &S, pred: impl Fn(&Slot) -> Option<u32>) -> Option<Path> {
-    let map = cx.map;
-    let mut darts = Vec::new();
-    let mut v = cx.to;
-    while v != cx.from {
-        if darts.len() > map.vertex_slots() {
-            return None;
-        }
-        let d = Dart::new(pred(&st.get(v))?);
-        darts.push(d);
-        v = map.origin(d);
-    }
-    darts.reverse();
-    let mut vertices = Vec::with_capacity(darts.len() + 1);
-    vertices.push(cx.from);
-    vertices.extend(darts.iter().map(|&d| map.dest(d)));
-    Some(Path { vertices, darts })
-}
-
-/// Bidirectional breadth-first search, then the path the one-sided search would give.
-///
-/// The two sides grow by whole layers, the smaller frontier first (forward on a tie), until a
-/// vertex is labelled by both: with forward layers `0..=kf` and backward layers `0..=kb`
-/// complete, the distance is `kf + kb + 1` and the shortest paths cross from forward layer
-/// `kf` to backward layer `kb` over one edge. [`mark_and_replay`] then keeps the vertices of
-/// shortest paths and replays the one-sided BFS over them.
-fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
-    let s = st.get_mut(from);
-    s.set(FWD);
-    s.fwd = 0;
-    let s = st.get_mut(to);
-    s.set(BWD);
-    s.bwd = 0;
-    let (fr, bk, next) = (&mut b.a, &mut b.b, &mut b.c);
-    fr.clear();
-    bk.clear();
-    fr.push(from);
-    bk.push(to);
-    let (mut kf, mut kb) = (0u32, 0u32);
-    loop {
-        if fr.is_empty() || bk.is_empty() {
-            return None;
-        }
-        let forward = fr.len() <= bk.len();
-        let (front, mine, theirs, k) = if forward {
-            (&*fr, FWD, BWD, kf)
-        } else {
-            (&*bk, BWD, FWD, kb)
-        };
-        next.clear();
-        let mut met = false;
-        'layer: for &u in front {
-            for d in map.vertex_darts(u) {
-                if !cx.step(d) {
-                    continue;
-                }
-                let s = st.get_mut(map.dest(d));
-                if s.has(mine) {
-                    continue;
-                }
-                s.set(mine);
-                if forward {
-                    s.fwd = k + 1;
-                } else {
-                    s.bwd = k + 1;
-                }
-                if s.has(theirs) {
-                    met = true;
-                    break 'layer;
-                }
-                next.push(map.dest(d));
-            }
-        }
-        if met {
-            break;
-        }
-        if forward {
-            core::mem::swap(fr, next);
-            kf += 1;
-        } else {
-            core::mem::swap(bk, next);
-            kb += 1;
-        }
-    }
-    // The middle: backward layer kb vertices one edge from forward layer kf.
-    let total = kf + kb + 1;
-    b.m.clear();
-    for &v in bk.iter() {
-        let crosses = map.vertex_darts(v).any(|d| {
-            let s = st.get(map.dest(d));
-            cx.step(d) && s.has(FWD) && s.fwd == kf
-        });
-        if crosses {
-            let s = st.get_mut(v);
-            s.set(DAG);
-            b.m.push(v);
-        }
-    }
-    // Down to `to` along backward labels, then back to `from` along forward labels.
-    let (cur, nxt) = (&mut b.a, &mut b.c);
-    cur.clear();
-    cur.extend_from_slice(&b.m);
-    for pos in kf + 1..total {
-        nxt.clear();
-        for &v in cur.iter() {
-            for d in map.vertex_darts(v) {
-                let w = map.dest(d);
-                let s = st.get(w);
-                if cx.step(d) && s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
-                    let s = st.get_mut(w);
-                    s.set(DAG);
-                    nxt.push(w);
-                }
-            }
-        }
-        core::mem::swap(cur, nxt);
-    }
-    cur.clear();
-    cur.extend_from_slice(&b.m);
-    mark_back(cx, st, cur, nxt, kf + 1, |s| s.has(FWD).then_some(s.fwd));
-    // Labels are exact BFS distances, so a marked vertex's position is either.
-    replay(cx, st, b, total, |s| {
-        if s.has(FWD) {
-            s.fwd
-        } else {
-            total.saturating_sub(s.bwd)
-        }
-    })
-}
-
-/// Marks, from the `DAG` vertices at position `pos` in `cur`, the vertices at positions
-/// `pos - 1` down to 0 whose exact distance from `from` (`dist`) is their position.
-fn mark_back<S: Store>(
-    cx: &Ctx<'_, '_>,
-    st: &mut S,
-    cur: &mut Vec<Vert>,
-    nxt: &mut Vec<Vert>,
-    pos: u32,
-    dist: impl Fn(&Slot) -> Option<u32>,
-) {
-    let map = cx.map;
-    for pos in (1..=pos).rev() {
-        nxt.clear();
-        for &v in cur.iter() {
-            for d in map.vertex_darts(v) {
-                let u = map.dest(d);
-                let s = st.get(u);
-                if cx.step(d) && !s.has(DAG) && dist(&s) == Some(pos - 1) {
-                    let s = st.get_mut(u);
-                    s.set(DAG);
-                    nxt.push(u);
-                }
-            }
-        }
-        core::mem::swap(cur, nxt);
-    }
-}
-
-/// Replays the one-sided BFS over the `DAG` vertices (every vertex of a shortest path, each
-/// marked with its distance from `from`): layer by layer, darts in increasing index, a vertex
-/// keeps the first predecessor that reaches it. A vertex's BFS predecessor is always on a
-/// shortest path too, so this gives the one-sided search's path.
-fn replay<S: Store>(
-    cx: &Ctx<'_, '_>,
-    st: &mut S,
-    b: &mut Buffers,
-    total: u32,
-    position: impl Fn(&Slot) -> u32,
-) -> Option<Path> {
-    let map = cx.map;
-    let (cur, nxt) = (&mut b.a, &mut b.c);
-    cur.clear();
-    if !st.get(cx.from).has(DAG) {
-        return None;
-    }
-    cur.push(cx.from);
-    for pos in 0..total {
-        nxt.clear();
-        for &v in cur.iter() {
-            sorted_darts(map, v, &mut b.darts);
-            for &d in &b.darts {
-                let w = map.dest(d);
-                let s = st.get(w);
-                if s.has(DAG) && !s.has(PRED) && position(&s) == pos + 1 && cx.step(d) {
-                    let s = st.get_mut(w);
-                    s.set(PRED);
-                    s.pred = d.index() as u32;
-                    nxt.push(w);
-                }
-            }
-        }
-        core::mem::swap(cur, nxt);
-    }
-    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
-}
-
-/// A* on unit weights with the guide's heuristic, re-expanding a vertex whose distance
-/// improves (so an admissible heuristic suffices), until every vertex that could lie on a
-/// shortest path has its exact distance: the open vertices' `g + h` all exceed the best
-/// distance to `to` (beyond a margin for the rounding of `h`). Then [`mark_back`] from `to` and [`replay`] give the one-sided BFS's path. With
-/// an overestimating heuristic, the last improving darts still form a simple path to `to`,
-/// returned when the replay does not reach it.
-fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
-    let target = g.point(to)?;
-    let scale = 1.0 / g.max_edge_length;
-    let h = |v: Vert| match g.point(v) {
-        Some(p) => {
-            let x = p.distance(target) * scale;
-            if x.is_finite() {
-                x
-            } else {
-                0.0
-            }
-        }
-        None => 0.0,
-    };
-    let heap = &mut b.astar;
-    heap.clear();
-    let s = st.get_mut(from);
-    s.set(FWD);
-    s.fwd = 0;
-    heap.push(AEntry::new(h(from), 0, from));
-    let mut best = u32::MAX;
-    while let Some(e) = heap.pop() {
-        let (f, gv, v) = (e.f(), e.g(), e.vertex());
-        // A vertex of a shortest path has f <= best up to the rounding of h (relative error
-        // far below 1e-9); the margin keeps rounding from dropping one.
-        if best != u32::MAX && f > best as f64 * (1.0 + 1e-9) + 1e-9 {
-            break;
-        }
-        if st.get(v).fwd != gv {
-            continue; // stale: improved since it was pushed
-        }
-        for d in map.vertex_darts(v) {
-            if !cx.step(d) {
-                continue;
-            }
-            let w = map.dest(d);
-            let ng = gv + 1;
-            let s = st.get_mut(w);
-            if s.has(FWD) && s.fwd <= ng {
-                continue;
-            }
-            s.set(FWD);
-            s.fwd = ng;
-            s.bwd = d.index() as u32;
-            if w == to {
-                best = ng;
-            } else {
-                heap.push(AEntry::new(ng as f64 + h(w), ng, w));
-            }
-        }
-    }
-    if best == u32::MAX {
-        return None;
-    }
-    let s = st.get_mut(to);
-    s.set(DAG);
-    let (cur, nxt) = (&mut b.a, &mut b.c);
-    cur.clear();
-    cur.push(to);
-    mark_back(cx, st, cur, nxt, best, |s| s.has(FWD).then_some(s.fwd));
-    replay(cx, st, b, best, |s| s.fwd).or_else(|| trace(cx, st, |s| s.has(FWD).then_some(s.bwd)))
-}
-
-/// Checks a caller-given path (`vertices`) that should run from `from` to `to` and returns it as a [`Path`].
-///
-/// The checks, in order: at least two vertices; every vertex live; the first is `from` and
-/// the last is `to`; no vertex twice; consecutive vertices joined by an edge that is neither
-/// forbidden nor on a forbidden face (when several edges join them, the lowest-index allowed
-/// one is used). `opts.avoid_boundary` and `opts.weights` play no part.
-///
-/// ```
-/// use zipmesh::{gen, Vert};
-/// use zipmesh::qzip::{validate_path, SketchError, SketchOptions};
-/// let map = gen::grid(3, 3).map;
-/// let v = |i| Vert::new(i);
-/// let opts = SketchOptions::default();
-/// assert!(validate_path(&map, v(0), v(2), &[v(0), v(1), v(2)], &opts).is_ok());
-/// assert!(matches!(
-///     validate_path(&map, v(0), v(2), &[v(0), v(2)], &opts),
-///     Err(SketchError::NotAdjacent { index: 0, .. })
-/// ));
-/// ```
-pub fn validate_path(
-    map: &Map,
-    from: Vert,
-    to: Vert,
-    vertices: &[Vert],
-    opts: &SketchOptions<'_>,
-) -> Result<Path, SketchError> {
-    if vertices.len() < 2 {
-        return Err(SketchError::TooShort(vertices.len()));
-    }
-    for &v in vertices {
-        if !map.is_live_vertex(v) {
-            return Err(SketchError::DeadVertex(v));
-        }
-    }
-    for (expected, found) in [(from, vertices[0]), (to, vertices[vertices.len() - 1])] {
-        if expected != found {
-            return Err(SketchError::WrongEnd { expected, found });
-        }
-    }
-    for i in 0..vertices.len() {
-        for j in 0..i {
-            if vertices[i] == vertices[j] {
-                return Err(SketchError::Repeated {
-                    vertex: vertices[i],
-                    first: j,
-                    second: i,
-                });
-            }
-        }
-    }
-    // Weights play no part in validation, so they are not checked either.
-    let unweighted = SketchOptions {
-        weights: None,
-        ..opts.clone()
-    };
-    let rules = Rules::new(map, &unweighted, Vec::new())?;
-    let forbidden_face = |d: Dart| {
-        opts.forbidden_faces
-            .iter()
-            .copied()
-            .find(|&f| map.face(d) == Some(f) || map.face(d.twin()) == Some(f))
-    };
-    let mut darts = Vec::with_capacity(vertices.len() - 1);
-    let mut buf = Vec::new();
-    for (i, w) in vertices.windows(2).enumerate() {
-        sorted_darts(map, w[0], &mut buf);
-        let joining: Vec<Dart> = buf
-            .iter()
-            .copied()
-            .filter(|&d| map.dest(d) == w[1])
-            .collect();
-        let Some(&first) = joining.first() else {
-            return Err(SketchError::NotAdjacent {
-                index: i,
-                a: w[0],
-                b: w[1],
-            });
-        };
-        match joining.iter().copied().find(|&d| rules.usable(d)) {
-            Some(d) => darts.push(d),
-            None => {
-                return Err(match forbidden_face(first) {
-                    Some(face) => SketchError::ForbiddenFace { index: i, face },
-                    None => SketchError::ForbiddenEdge {
-                        index: i,
-                        edge: (first.index() / 2) as u32,
-                    },
-                })
-            }
-        }
-    }
-    Ok(Path {
-        vertices: vertices.to_vec(),
-        darts,
     })
 }

@@ -1,0 +1,72 @@
+//! Queries on the quads round a path edge or a short closed walk, shared by the preparation
+//! (stage 3) and the execution (stage 4).
+
+use crate::{Dart, Map, Vert};
+
+/// Whether the closed walk `ring[0] -> ring[1] -> ring[2] -> ring[3] -> ring[0]` goes round
+/// one quad of `map` whose corners other than `ring[0]` are not one of `ends` and, when
+/// `regular` is set, are regular interior vertices: cutting it out of a path is a homotopy
+/// across that quad.
+pub(super) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regular: bool) -> bool {
+    let ok = |w: Vert| {
+        map.is_live_vertex(w)
+            && !ends.contains(&w)
+            && (!regular || (map.valence(w) == 4 && !map.is_boundary_vertex(w)))
+    };
+    ring[1..].iter().all(|&w| ok(w))
+        && map.dart_between(ring[0], ring[1]).is_some_and(|d| {
+            [d, d.twin()].iter().any(|&x| {
+                map.face(x).is_some_and(|f| {
+                    map.degree(f) == 4 && map.face_darts(f).all(|y| ring.contains(&map.origin(y)))
+                })
+            })
+        })
+}
+
+/// The quad on one side of a dart `d: a -> b`, as its three other sides read from `a` to `b`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SideQuad {
+    /// From `a` to the corner next to `a`.
+    pub(super) out: Dart,
+    /// From the corner next to `a` to the corner next to `b`.
+    pub(super) across: Dart,
+    /// From the corner next to `b` to `b`.
+    pub(super) back: Dart,
+}
+
+impl SideQuad {
+    /// The corner next to `a`.
+    pub(super) fn near_origin(&self, map: &Map) -> Vert {
+        map.dest(self.out)
+    }
+
+    /// The corner next to `b`.
+    pub(super) fn near_dest(&self, map: &Map) -> Vert {
+        map.dest(self.across)
+    }
+}
+
+/// The quad on the `left` (or right) of `d: a -> b`; `None` at the boundary or when that face
+/// is not a quad.
+pub(super) fn side_quad(map: &Map, d: Dart, left: bool) -> Option<SideQuad> {
+    let e = if left { d } else { d.twin() };
+    let f = map.face(e)?;
+    if map.degree(f) != 4 {
+        return None;
+    }
+    // The face of `e` is on its left: walking it from `e` goes round the quad.
+    let (after, opposite, before) = (map.next(e), map.next(map.next(e)), map.prev(e));
+    Some(if left {
+        SideQuad {
+            out: before.twin(),
+            across: opposite.twin(),
+            back: after.twin(),
+        }
+    } else {
+        SideQuad {
+            out: after,
+            across: opposite,
+            back: before,
+        }
+    })
+}
