@@ -173,3 +173,90 @@ fn a_journal_saves_each_vertex_once_and_rewinds_in_order() {
     j.rewind(&mut marks);
     assert_eq!(marks, vec![false, true, false]);
 }
+
+/// Vertices that a Q-zip's splits created (their slots may be reused ones).
+fn created_by(records: &[QuadRecord]) -> Vec<Vert> {
+    records
+        .iter()
+        .filter_map(|r| match r {
+            QuadRecord::Split(s) => Some(s.created()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn qzip_keeps_both_layers_in_step() {
+    use zipmesh::invariants::{irregular_vertices, MeshKind};
+    use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
+    let mut mesh = gen::subdivided_icosahedron(2);
+    let mut rng = Rng::new(7);
+    let marks = (0..mesh.map.vertex_slots())
+        .map(|_| rng.chance(1, 2))
+        .collect();
+    let mut layers: Layers = (mesh.positions.clone(), marks);
+    let sing = irregular_vertices(&mesh.map, MeshKind::Quad);
+    let (mut zipped, mut reused) = (0, 0);
+    for (i, &a) in sing.iter().enumerate().take(8) {
+        let b = sing[(i * 7 + 13) % sing.len()];
+        let Ok(path) = sketch(&mesh.map, a, b, &SketchOptions::default()) else {
+            continue;
+        };
+        for tag in Tag::CCW {
+            let before = (mesh.map.clone(), layers.clone());
+            let Ok(z) = Qzip::new().zip_along_with(&mut mesh.map, &mut layers, &path, tag) else {
+                assert_eq!((&mesh.map, &layers), (&before.0, &before.1));
+                continue;
+            };
+            zipped += 1;
+            let created = created_by(z.record().records());
+            let diff = changed(&before.1, &layers);
+            assert!(
+                diff.iter().all(|v| created.contains(v)),
+                "{diff:?} not created"
+            );
+            reused += z.journal().overwritten();
+            assert!(layers.0.len() >= mesh.map.vertex_slots());
+            z.undo_with(&mut mesh.map, &mut layers).unwrap();
+            assert_eq!((&mesh.map, &layers), (&before.0, &before.1), "{tag:?} undo");
+        }
+    }
+    assert!(zipped >= 8, "only {zipped} Q-zips applied");
+    // Zips free slots (collapses) and reuse them (splits): the journal must have saved some.
+    assert!(
+        reused > 0,
+        "no Q-zip reused a slot: the journal was not exercised"
+    );
+}
+
+/// The preprocessing's undo restores positions too, also those of reused slots (before the
+/// attribute layer it dropped them).
+#[test]
+fn preprocessing_undo_restores_positions() {
+    use zipmesh::ops::quad;
+    use zipmesh::qzip::mesh_preprocess;
+    let mut found = 0;
+    for seed in 0..40u64 {
+        let mut mesh = gen::torus_grid(8, 8);
+        let mut rng = Rng::new(seed);
+        // A collapse frees a slot and makes a v6; a doublet takes the slot as a v2.
+        for _ in 0..3 {
+            let d = Dart::new(rng.below(mesh.map.dart_slots()) as u32);
+            let _ = quad::mesh_collapse_quad(&mut mesh, d);
+            let d = Dart::new(rng.below(mesh.map.dart_slots()) as u32);
+            let _ = quad::mesh_insert_doublet(&mut mesh, d);
+        }
+        let before = mesh.clone();
+        let Ok(p) = mesh_preprocess(&mut mesh) else {
+            assert_eq!(mesh, before);
+            continue;
+        };
+        found += usize::from(p.journal().overwritten() > 0);
+        p.undo(&mut mesh).unwrap();
+        assert_eq!(mesh, before, "seed {seed}");
+    }
+    assert!(
+        found > 0,
+        "no preprocessing overwrote a position: the case is not exercised"
+    );
+}

@@ -29,7 +29,7 @@
 pub mod compass;
 pub mod execute;
 mod homotopy;
-mod positions;
+mod placement;
 pub mod prepare;
 mod preprocess;
 mod quad;
@@ -41,9 +41,8 @@ mod zip;
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
 pub use homotopy::{one_quad_sweeps, start_turn};
-pub use positions::MeshZip;
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
-pub use preprocess::{mesh_preprocess, preprocess, Preprocessed};
+pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
 pub use reverse::{find_reverse, ReverseRun};
 pub use sketch::{
     max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,

@@ -2,27 +2,52 @@
 
 use alloc::vec::Vec;
 
-use super::positions::place_created;
+use super::placement::place_created;
+use crate::mesh::{Edited, Journal, VertexAttributes};
 use crate::ops::quad::{remove_valence2, split_high_valence, QuadRecord};
 use crate::ops::Refusal;
 use crate::{Dart, Map, Mesh, Vert};
 
 /// [`preprocess`] on a mesh: the vertices its splits create are placed at the mean of their
-/// neighbours.
+/// neighbours, and the undo restores the positions too.
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart};
 /// use zipmesh::qzip::mesh_preprocess;
 /// let mut mesh = gen::torus_grid(8, 8);
 /// quad::collapse_quad(&mut mesh.map, Dart::new(0)).unwrap();
-/// mesh_preprocess(&mut mesh).unwrap();
+/// let before = mesh.clone();
+/// let p = mesh_preprocess(&mut mesh).unwrap();
 /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// p.undo(&mut mesh).unwrap();
+/// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_preprocess(mesh: &mut Mesh) -> Result<Preprocessed, Refusal> {
-    let old_len = mesh.positions.len();
-    let p = preprocess(&mut mesh.map)?;
-    place_created(mesh, p.records(), old_len);
-    Ok(p)
+pub fn mesh_preprocess(mesh: &mut Mesh) -> Result<Edited<Preprocessed>, Refusal> {
+    preprocess_with(&mut mesh.map, &mut mesh.positions)
+}
+
+/// [`preprocess`] keeping any per-vertex data in step, as [`super::Qzip::zip_along_with`]
+/// does: created vertices take the mean of their neighbours' values.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad, Dart};
+/// use zipmesh::qzip::preprocess_with;
+/// let mut map = gen::torus_grid(8, 8).map;
+/// quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
+/// let mut marks = vec![true; map.vertex_slots()];
+/// let p = preprocess_with(&mut map, &mut marks).unwrap();
+/// assert_eq!(marks.len(), map.vertex_slots());
+/// assert!(marks.iter().all(|&m| m)); // a mark spreads to the vertices made from it
+/// p.undo_with(&mut map, &mut marks).unwrap();
+/// ```
+pub fn preprocess_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+) -> Result<Edited<Preprocessed, A>, Refusal> {
+    let mut journal = Journal::start(attrs);
+    let p = preprocess(map)?;
+    place_created(map, attrs, &mut journal, p.records());
+    Ok(Edited::new(p, journal))
 }
 
 /// What [`preprocess`] did, with the records for an exact undo.

@@ -4,9 +4,10 @@ use core::fmt;
 
 use super::compass::{plan, PlanError, Tag};
 use super::execute::{execute_owned, ZipError, ZipReport};
-use super::positions::{keep_positions, MeshZip};
+use super::placement::place_created;
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{Path, SketchError, SketchOptions, SketchWorkspace};
+use crate::mesh::{Edited, Journal, VertexAttributes};
 use crate::{Map, Mesh, Vert};
 
 /// Why a Q-zip was refused, by stage; the map is unchanged in every case.
@@ -197,9 +198,9 @@ impl<'a> Qzip<'a> {
     }
 
     /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed at
-    /// the mean of its neighbours (see [`MeshZip`]). A [`super::Guide`] in the options cannot
-    /// borrow this mesh's positions (they are edited): guide with [`Qzip::zip`] on `mesh.map`
-    /// instead, or with a copy of the points.
+    /// the mean of its neighbours (see [`Qzip::zip_along_with`]). A [`super::Guide`] in the
+    /// options cannot borrow this mesh's positions (they are edited): guide with
+    /// [`Qzip::zip`] on `mesh.map` instead, or with a copy of the points.
     ///
     /// ```
     /// use zipmesh::{gen, Vert};
@@ -217,7 +218,7 @@ impl<'a> Qzip<'a> {
         from: Vert,
         to: Vert,
         initial: Tag,
-    ) -> Result<MeshZip, QzipError> {
+    ) -> Result<Edited<ZipReport>, QzipError> {
         let path = self
             .sketch(&mesh.map, from, to)
             .map_err(QzipError::Sketch)?;
@@ -232,17 +233,46 @@ impl<'a> Qzip<'a> {
     /// let mut mesh = gen::subdivided_icosahedron(2);
     /// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
     /// let z = Qzip::new().zip_mesh_along(&mut mesh, &path, Tag::LS).unwrap();
-    /// assert!(z.report().splits() > 0);
+    /// assert!(z.record().splits() > 0);
     /// ```
     pub fn zip_mesh_along(
         &self,
         mesh: &mut Mesh,
         path: &Path,
         initial: Tag,
-    ) -> Result<MeshZip, QzipError> {
-        let old_len = mesh.positions.len();
-        let report = zip_along(&mut mesh.map, path, initial)?;
-        Ok(keep_positions(mesh, report, old_len))
+    ) -> Result<Edited<ZipReport>, QzipError> {
+        self.zip_along_with(&mut mesh.map, &mut mesh.positions, path, initial)
+    }
+
+    /// [`Qzip::zip_along`] keeping any per-vertex data in step (positions, marks, or a pair
+    /// of layers): each vertex a split creates takes the mean of its neighbours' values, in
+    /// the order created; merged vertices keep the value of the vertex that keeps the
+    /// handle; every other vertex keeps its value. The undo restores map and data `==`.
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
+    /// let mut mesh = gen::subdivided_icosahedron(2);
+    /// let mut marks = vec![false; mesh.map.vertex_slots()];
+    /// marks[42] = true;
+    /// let before = (mesh.map.clone(), marks.clone());
+    /// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
+    /// let z = Qzip::new().zip_along_with(&mut mesh.map, &mut marks, &path, Tag::LS).unwrap();
+    /// assert_eq!(marks.len(), mesh.map.vertex_slots());
+    /// z.undo_with(&mut mesh.map, &mut marks).unwrap();
+    /// assert_eq!((mesh.map, marks), before);
+    /// ```
+    pub fn zip_along_with<A: VertexAttributes>(
+        &self,
+        map: &mut Map,
+        attrs: &mut A,
+        path: &Path,
+        initial: Tag,
+    ) -> Result<Edited<ZipReport, A>, QzipError> {
+        let mut journal = Journal::start(attrs);
+        let report = zip_along(map, path, initial)?;
+        place_created(map, attrs, &mut journal, report.records());
+        Ok(Edited::new(report, journal))
     }
 }
 

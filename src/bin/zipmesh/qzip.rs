@@ -223,7 +223,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
                 args.tag
             ))
         })?;
-    let r = z.report();
+    let r = z.record();
     // The reverse run is found on the edited map before compaction renumbers it.
     let reverse = find_reverse(&mesh.map, r, &original.map);
     let c = mesh.compact();
