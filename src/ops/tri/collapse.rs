@@ -43,7 +43,7 @@ struct Plan {
     last: u32,
 }
 
-/// Finds the collapse's darts; with `policy`, also applies every rule of [`can_collapse`].
+/// Finds the collapse's darts; with `policy`, also applies every rule of [`can_collapse_edge`].
 /// Without it (undoing a vertex split) only the rules that keep the map valid apply (proper
 /// triangles, not both ends on the boundary of an interior edge, distinct apexes).
 fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
@@ -177,23 +177,22 @@ fn third_corner(map: &Map, x: u32) -> u32 {
     triangle(map, x).map_or(NONE, |tr| org(map, tr[2]))
 }
 
-/// Record of a [`collapse`]: the kept and removed vertices, and what the exact undo needs.
+/// Record of a [`collapse_edge`]: the kept and removed vertices, and what the exact undo needs.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri, Dart};
 /// let mut mesh = gen::random_triangle(200, 1, 0, 5);
-/// let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
+/// let h = mesh.map.darts().find(|&d| tri::can_collapse_edge(&mesh.map, d).is_ok()).unwrap();
 /// let (v, u) = (mesh.map.origin(h), mesh.map.dest(h));
-/// let rec = tri::collapse(&mut mesh.map, h).unwrap();
-/// assert_eq!((rec.kept, rec.removed), (u, v));
+/// let rec = tri::collapse_edge(&mut mesh.map, h).unwrap();
+/// assert_eq!((rec.kept(), rec.removed()), (u, v));
 /// assert!(!mesh.map.is_live_vertex(v));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct CollapseRecord {
-    /// The vertex that stays (`dest(h)`); it received every dart of the removed one.
-    pub kept: Vert,
-    /// The vertex that was removed (`origin(h)`); its slot is free.
-    pub removed: Vert,
+pub struct EdgeCollapse {
+    /// `dest(h)` and `origin(h)` (see [`EdgeCollapse::kept`], [`EdgeCollapse::removed`]).
+    kept: Vert,
+    removed: Vert,
     /// `h, h1, h2, t1, t2` before the collapse (`NONE` for an absent side).
     darts: [u32; 5],
     /// Apexes c and d.
@@ -213,7 +212,7 @@ pub struct CollapseRecord {
     old_fdart: [u32; 4],
 }
 
-/// Checks whether [`collapse`] applies to the dart `h`, without changing anything.
+/// Checks whether [`collapse_edge`] applies to the dart `h`, without changing anything.
 ///
 /// `h` runs from the vertex `v` that is removed to the vertex `u` that is kept. With `L =
 /// (v, u, c)` the triangle of `h` and `R = (u, v, d)` that of `twin(h)` (one of them absent
@@ -240,9 +239,9 @@ pub struct CollapseRecord {
 /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
 /// // A tetrahedron: every collapse fails the link condition.
 /// let tet = Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap();
-/// assert!(tet.darts().all(|d| tri::can_collapse(&tet, d) == Err(Refusal::LinkCondition)));
+/// assert!(tet.darts().all(|d| tri::can_collapse_edge(&tet, d) == Err(Refusal::LinkCondition)));
 /// ```
-pub fn can_collapse(map: &Map, h: Dart) -> Result<(), Refusal> {
+pub fn can_collapse_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
     plan(map, h, true).map(|_| ())
 }
 
@@ -263,29 +262,29 @@ pub fn can_collapse(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// Boundary edge: V -1, E -2, F -1; `d(u)` becomes `d(u) + d(v) - 3`; the apex loses one.
 /// Every other vertex keeps its valence. Handles of `u`, of the edges `u-c`, `u-d`, of every
 /// other element stay valid; `v`, L, R, the edge `u-v` and the edges `v-c`, `v-d` are freed.
-/// Refusals: see [`can_collapse`]; on refusal the map is unchanged. The inverse is
+/// Refusals: see [`can_collapse_edge`]; on refusal the map is unchanged. The inverse is
 /// [`split_vertex`] at `u`'s darts to `c` and `d` (interior edges) or, exactly,
-/// [`CollapseRecord::undo`].
+/// [`EdgeCollapse::undo`].
 ///
 /// ```
 /// use zipmesh::{gen, invariants::Counts, ops::tri};
 /// let mut map = gen::random_triangle(300, 1, 0, 1).map;
 /// let before = map.clone();
-/// let h = map.darts().find(|&d| tri::can_collapse(&map, d).is_ok()).unwrap();
-/// let rec = tri::collapse(&mut map, h).unwrap();
+/// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+/// let rec = tri::collapse_edge(&mut map, h).unwrap();
 /// assert!(map.check().is_ok());
 /// assert_eq!(Counts::of(&map).genus, 1);
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn collapse(map: &mut Map, h: Dart) -> Result<CollapseRecord, Refusal> {
+pub fn collapse_edge(map: &mut Map, h: Dart) -> Result<EdgeCollapse, Refusal> {
     let p = plan(map, h, true)?;
     Ok(apply(map, &p, None))
 }
 
 /// Applies a planned collapse. With `release`, the removed slots are un-allocated (undo of a
 /// vertex split that allocated them after `release`) instead of freed.
-fn apply(map: &mut Map, p: &Plan, release: Option<Lens>) -> CollapseRecord {
+fn apply(map: &mut Map, p: &Plan, release: Option<Lens>) -> EdgeCollapse {
     let (h, t) = (p.h, p.h ^ 1);
     let has_l = p.h1 != NONE;
     let has_r = p.t1 != NONE;
@@ -435,7 +434,7 @@ fn apply(map: &mut Map, p: &Plan, release: Option<Lens>) -> CollapseRecord {
             release_edge(map, h, lens);
         }
     }
-    CollapseRecord {
+    EdgeCollapse {
         kept: Vert(p.u),
         removed: Vert(p.v),
         darts: [h, p.h1, p.h2, p.t1, p.t2],
@@ -451,7 +450,33 @@ fn apply(map: &mut Map, p: &Plan, release: Option<Lens>) -> CollapseRecord {
     }
 }
 
-impl CollapseRecord {
+impl EdgeCollapse {
+    /// The vertex that stays (`dest(h)`); it received every dart of the removed one.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri};
+    /// let mut map = gen::random_triangle(200, 1, 0, 5).map;
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let u = map.dest(h);
+    /// assert_eq!(tri::collapse_edge(&mut map, h).unwrap().kept(), u);
+    /// ```
+    pub fn kept(&self) -> Vert {
+        self.kept
+    }
+
+    /// The vertex that was removed (`origin(h)`); its slot is free.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri};
+    /// let mut map = gen::random_triangle(200, 1, 0, 5).map;
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let r = tri::collapse_edge(&mut map, h).unwrap();
+    /// assert!(!map.is_live_vertex(r.removed()));
+    /// ```
+    pub fn removed(&self) -> Vert {
+        self.removed
+    }
+
     /// Undoes the collapse: the map becomes equal (`==`) to the one before, free lists
     /// included, provided it has not been changed since (other records undone in reverse
     /// order are fine).
@@ -464,8 +489,8 @@ impl CollapseRecord {
     /// use zipmesh::{gen, ops::{tri, Refusal}, Map};
     /// let mut map = gen::random_triangle(100, 0, 1, 2).map;
     /// let before = map.clone();
-    /// let h = map.darts().find(|&d| tri::can_collapse(&map, d).is_ok()).unwrap();
-    /// let rec = tri::collapse(&mut map, h).unwrap();
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let rec = tri::collapse_edge(&mut map, h).unwrap();
     /// assert_eq!(rec.undo(&mut Map::new()), Err(Refusal::StaleRecord));
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
@@ -727,9 +752,9 @@ impl CollapseRecord {
     }
 }
 
-impl Undo for CollapseRecord {
+impl Undo for EdgeCollapse {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        CollapseRecord::undo(self, map)
+        EdgeCollapse::undo(self, map)
     }
 }
 
@@ -742,16 +767,14 @@ impl Undo for CollapseRecord {
 /// let d1 = map.vertex_dart(w);
 /// let d2 = map.rotate_cw(map.rotate_cw(map.rotate_cw(d1)));
 /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
-/// assert_eq!(map.origin(rec.edge), rec.vertex);
-/// assert_eq!(map.dest(rec.edge), w);
+/// assert_eq!(map.origin(rec.edge()), rec.created());
+/// assert_eq!(map.dest(rec.edge()), w);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct VertexSplitRecord {
-    /// The new vertex `v`.
-    pub vertex: Vert,
-    /// The new edge's dart from `v` to `w`: [`collapse`] of it undoes the split up to slot
-    /// numbers (the same map up to isomorphism; `undo` restores the very same arrays).
-    pub edge: Dart,
+pub struct VertexSplit {
+    /// The new vertex and edge (see [`VertexSplit::created`], [`VertexSplit::edge`]).
+    vertex: Vert,
+    edge: Dart,
     /// Old record of w; the new edges of `a` and `b`; faces L, R; slot counts before.
     old_w: u32,
     edges: [u32; 2],
@@ -788,7 +811,7 @@ struct SplitPlan {
 ///    at `a` or `b`; [`Refusal::LinkCondition`] if `y` ends at a vertex that a kept dart of
 ///    `w` also reaches (the two copies would share a neighbour other than `a`, `b`).
 ///
-/// These are exactly the cases where the new edge would fail [`can_collapse`]'s link
+/// These are exactly the cases where the new edge would fail [`can_collapse_edge`]'s link
 /// condition, so every allowed split can be collapsed back, except that the collapse also
 /// requires the valence minimum of `w`, `a` and `b` before the split (a split never lowers a
 /// valence, so it does not ask for it). In a simple mesh whose vertices meet the valence
@@ -889,7 +912,7 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
     })
 }
 
-/// Splits the vertex `w = origin(d1) = origin(d2)` in two, the inverse of [`collapse`].
+/// Splits the vertex `w = origin(d1) = origin(d2)` in two, the inverse of [`collapse_edge`].
 ///
 /// `w` keeps `d1`, `d2` and the darts clockwise after `d1` and before `d2` (the *kept arc*,
 /// `k_w` darts strictly inside); a new vertex `v` takes the darts clockwise after `d2` and
@@ -900,7 +923,7 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 ///          a                     a
 ///          |                   /   \
 ///          d1                 /  L  d1
-///  moved - w - kept   ==>   v --e--> w - kept      e = record.edge, from v to w
+///  moved - w - kept   ==>   v --e--> w - kept      e = record.edge(), from v to w
 ///          d2       moved -   \  R  d2
 ///          |                   \   /
 ///          b                     b
@@ -911,7 +934,7 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 /// dart is moved or is `d1`), the other becomes interior: so a split never pinches. Every
 /// existing handle stays valid; `w` keeps its handle. Refusals: see [`can_split_vertex`].
 ///
-/// [`collapse`] of `record.edge` gives back the map up to slot numbers; [`VertexSplitRecord::undo`]
+/// [`collapse_edge`] of `record.edge()` gives back the map up to slot numbers; [`VertexSplit::undo`]
 /// gives back the same arrays.
 ///
 /// ```
@@ -924,11 +947,11 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 /// let d1 = map.vertex_dart(w);
 /// let d2 = map.rotate_cw(map.rotate_cw(d1)); // kept arc: one dart strictly inside
 /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
-/// assert_eq!((map.valence(w), map.valence(rec.vertex)), (1 + 3, 3 + 3));
+/// assert_eq!((map.valence(w), map.valence(rec.created())), (1 + 3, 3 + 3));
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitRecord, Refusal> {
+pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplit, Refusal> {
     let p = split_plan(map, d1, d2)?;
     let lens = Lens::of(map);
     let (d1, t2) = (p.d1, p.d2 ^ 1);
@@ -1006,7 +1029,7 @@ pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitReco
     if fz != NONE && map.fdart[fz as usize] == t2 {
         map.fdart[fz as usize] = ot1;
     }
-    Ok(VertexSplitRecord {
+    Ok(VertexSplit {
         vertex: Vert(v),
         edge: Dart(h),
         old_w,
@@ -1016,7 +1039,37 @@ pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitReco
     })
 }
 
-impl VertexSplitRecord {
+impl VertexSplit {
+    /// The new vertex `v`, which took the moved arc.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri, Vert};
+    /// let mut map = gen::random_triangle(200, 1, 0, 3).map;
+    /// let d1 = map.vertex_dart(Vert::new(0));
+    /// let d2 = map.rotate_cw(map.rotate_cw(d1));
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
+    /// assert!(map.is_live_vertex(rec.created()));
+    /// ```
+    pub fn created(&self) -> Vert {
+        self.vertex
+    }
+
+    /// The new edge's dart from `v` to `w`: [`collapse_edge`] of it undoes the split up to
+    /// slot numbers (the same map up to isomorphism; `undo` restores the very same arrays).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri, Vert};
+    /// let mut map = gen::random_triangle(200, 1, 0, 3).map;
+    /// let w = Vert::new(0);
+    /// let d1 = map.vertex_dart(w);
+    /// let d2 = map.rotate_cw(map.rotate_cw(d1));
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
+    /// assert_eq!(map.dest(rec.edge()), w);
+    /// ```
+    pub fn edge(&self) -> Dart {
+        self.edge
+    }
+
     /// Undoes the split: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -1069,13 +1122,13 @@ impl VertexSplitRecord {
     }
 }
 
-impl Undo for VertexSplitRecord {
+impl Undo for VertexSplit {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        VertexSplitRecord::undo(self, map)
+        VertexSplit::undo(self, map)
     }
 }
 
-/// [`can_collapse`] and [`can_split_vertex`] with at most `small` neighbours on the stack, so
+/// [`can_collapse_edge`] and [`can_split_vertex`] with at most `small` neighbours on the stack, so
 /// that unit tests can compare the stack path with the fallback.
 #[cfg(test)]
 pub(super) fn can_with(map: &Map, h: Dart, d2: Option<Dart>, small: usize) -> Result<(), Refusal> {

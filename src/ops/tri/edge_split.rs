@@ -13,15 +13,14 @@ use crate::ops::Refusal;
 /// use zipmesh::{ops::tri, Dart, Map, Vert};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
 /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
-/// assert_eq!(map.valence(rec.vertex), 4);
-/// assert_eq!((map.origin(rec.dart), map.dest(rec.dart)), (rec.vertex, Vert::new(1)));
+/// assert_eq!(map.valence(rec.created()), 4);
+/// assert_eq!((map.origin(rec.dart()), map.dest(rec.dart())), (rec.created(), Vert::new(1)));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct EdgeSplitRecord {
-    /// The new vertex `m`.
-    pub vertex: Vert,
-    /// The new dart from `m` to `b` (the argument `h` now runs from `a` to `m`).
-    pub dart: Dart,
+pub struct EdgeSplit {
+    /// The new vertex and dart (see [`EdgeSplit::created`], [`EdgeSplit::dart`]).
+    vertex: Vert,
+    dart: Dart,
     /// `h`; `h1, h2, t1, t2` of the old triangles (`NONE` for an absent side).
     h: u32,
     darts: [u32; 4],
@@ -90,7 +89,7 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 ///         c                 c
 ///        / \               /|\
 ///       /   \             / | \
-///      a-h->-b    ==>    a-h-m->-b     record.dart runs from m to b
+///      a-h->-b    ==>    a-h-m->-b     record.dart() runs from m to b
 ///       \   /             \ | /
 ///        \ /               \|/
 ///         d                 d
@@ -99,7 +98,7 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// has valence 3. The apexes gain one; `a`, `b` and every other vertex keep their valence.
 /// `h` now runs from `a` to `m` and keeps its faces; the face of `twin(h)` (now `m -> a`)
 /// keeps its slot too. Every existing handle stays valid. Refusals: see [`can_split_edge`].
-/// The inverse is the collapse of `twin(h)` (`m` into `a`), exactly [`EdgeSplitRecord::undo`].
+/// The inverse is the collapse of `twin(h)` (`m` into `a`), exactly [`EdgeSplit::undo`].
 /// O(1), plus O(d(b)) when the face is on the side of `h` only (finding `prev(twin h)`).
 ///
 /// ```
@@ -112,7 +111,7 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplitRecord, Refusal> {
+pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplit, Refusal> {
     let (h, l, r) = plan(map, h)?;
     let t = h ^ 1;
     let lens = Lens::of(map);
@@ -196,7 +195,7 @@ pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplitRecord, Refusal> {
     if old_vb == t {
         map.vdart[b as usize] = on;
     }
-    Ok(EdgeSplitRecord {
+    Ok(EdgeSplit {
         vertex: Vert(m),
         dart: Dart(n),
         h,
@@ -215,7 +214,31 @@ pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplitRecord, Refusal> {
     })
 }
 
-impl EdgeSplitRecord {
+impl EdgeSplit {
+    /// The new vertex `m` on the edge.
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
+    /// assert_eq!(map.dest(Dart::new(0)), rec.created());
+    /// ```
+    pub fn created(&self) -> Vert {
+        self.vertex
+    }
+
+    /// The new dart from `m` to `b` (the argument `h` now runs from `a` to `m`).
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map, Vert};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
+    /// assert_eq!(map.dest(rec.dart()), Vert::new(1));
+    /// ```
+    pub fn dart(&self) -> Dart {
+        self.dart
+    }
+
     /// Undoes the split: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -366,8 +389,8 @@ impl EdgeSplitRecord {
     }
 }
 
-impl Undo for EdgeSplitRecord {
+impl Undo for EdgeSplit {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        EdgeSplitRecord::undo(self, map)
+        EdgeSplit::undo(self, map)
     }
 }

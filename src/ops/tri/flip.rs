@@ -4,25 +4,25 @@ use super::{distinct_corners, fc, joined, min_valence, nx, on_boundary, org, tri
 use crate::map::{Dart, Map, NONE};
 use crate::ops::Refusal;
 
-/// Record of an [`flip`]: the flipped dart and what its exact undo needs.
+/// Record of an [`flip_edge`]: the flipped dart and what its exact undo needs.
 ///
 /// ```
 /// use zipmesh::{ops::tri, Dart, Map};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
-/// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
-/// assert_eq!((map.origin(rec.dart).index(), map.dest(rec.dart).index()), (3, 2));
+/// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
+/// assert_eq!((map.origin(rec.dart()).index(), map.dest(rec.dart()).index()), (3, 2));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct FlipRecord {
-    /// The flipped dart: it ran from `a` to `b`, it now runs from `d` to `c`.
-    pub dart: Dart,
+pub struct EdgeFlip {
+    /// The flipped dart (see [`EdgeFlip::dart`]).
+    dart: Dart,
     /// Before the flip: `vdart[a]`, `vdart[b]`, `fdart[f0]`, `fdart[f1]`.
     old: [u32; 4],
     /// After the flip: the ends `d`, `c` of the dart (tells a flipped edge from a restored one).
     ends: [u32; 2],
 }
 
-/// Checks whether [`flip`] applies to the edge of `h`, without changing anything.
+/// Checks whether [`flip_edge`] applies to the edge of `h`, without changing anything.
 ///
 /// With `h` running from `a` to `b`, `(a, b, c)` the triangle of `h` and `(b, a, d)` the
 /// triangle of `twin(h)`, the rules, in the order checked:
@@ -38,10 +38,10 @@ pub struct FlipRecord {
 /// ```
 /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
 /// let map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
-/// assert_eq!(tri::can_flip(&map, Dart::new(0)), Ok(()));
-/// assert_eq!(tri::can_flip(&map, Dart::new(2)), Err(Refusal::Boundary));
+/// assert_eq!(tri::can_flip_edge(&map, Dart::new(0)), Ok(()));
+/// assert_eq!(tri::can_flip_edge(&map, Dart::new(2)), Err(Refusal::Boundary));
 /// ```
-pub fn can_flip(map: &Map, h: Dart) -> Result<(), Refusal> {
+pub fn can_flip_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
     plan(map, h).map(|_| ())
 }
 
@@ -59,21 +59,21 @@ pub fn can_flip(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// ```
 /// V, E and F do not change; `a` and `b` lose one valence, `c` and `d` gain one; no other
 /// vertex changes. Face `face(h)` becomes `(d, c, a)` and `face(twin h)` becomes `(c, d, b)`;
-/// every handle stays valid. Refusals: see [`can_flip`]; on refusal the map is unchanged.
+/// every handle stays valid. Refusals: see [`can_flip_edge`]; on refusal the map is unchanged.
 /// Flipping the same dart twice gives back the map up to the names of `h` and `twin(h)`;
-/// [`FlipRecord::undo`] restores it exactly. O(valence of `c`).
+/// [`EdgeFlip::undo`] restores it exactly. O(valence of `c`).
 ///
 /// ```
 /// use zipmesh::{ops::tri, Dart, Map, Vert};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
 /// let before = map.clone();
-/// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
+/// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
 /// assert_eq!(map.valence(Vert::new(0)), 2);
 /// assert_eq!(map.valence(Vert::new(2)), 3);
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn flip(map: &mut Map, h: Dart) -> Result<FlipRecord, Refusal> {
+pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
     let [h, h1, h2, t, t1, t2] = plan(map, h)?;
     let (f0, f1) = (fc(map, h), fc(map, t));
     let (a, b, c, d) = (org(map, h), org(map, t), org(map, h2), org(map, t2));
@@ -107,7 +107,7 @@ pub fn flip(map: &mut Map, h: Dart) -> Result<FlipRecord, Refusal> {
     if old[3] == t1 {
         map.fdart[f1 as usize] = t;
     }
-    Ok(FlipRecord {
+    Ok(EdgeFlip {
         dart: Dart(h),
         old,
         ends: [d, c],
@@ -145,7 +145,19 @@ fn plan(map: &Map, h: Dart) -> Result<[u32; 6], Refusal> {
     Ok([h, l[1], l[2], t, r[1], r[2]])
 }
 
-impl FlipRecord {
+impl EdgeFlip {
+    /// The flipped dart, the argument `h`: it ran from `a` to `b`, it now runs from `d` to
+    /// `c`.
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// assert_eq!(tri::flip_edge(&mut map, Dart::new(0)).unwrap().dart(), Dart::new(0));
+    /// ```
+    pub fn dart(&self) -> Dart {
+        self.dart
+    }
+
     /// Undoes the flip: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -156,7 +168,7 @@ impl FlipRecord {
     /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
     /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
     /// let before = map.clone();
-    /// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
+    /// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
     /// assert_eq!(rec.undo(&mut Map::new()), Err(Refusal::StaleRecord));
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
@@ -217,8 +229,8 @@ impl FlipRecord {
     }
 }
 
-impl Undo for FlipRecord {
+impl Undo for EdgeFlip {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        FlipRecord::undo(self, map)
+        EdgeFlip::undo(self, map)
     }
 }

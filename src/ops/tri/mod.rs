@@ -3,15 +3,15 @@
 //!
 //! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
 //! the same [`Refusal`] and leaves the map untouched, or applies and returns a record whose
-//! `undo` restores the map exactly (`==`, free lists included). [`mesh`] wraps each operator
-//! for a [`crate::Mesh`] and places new vertices.
+//! `undo` restores the map exactly (`==`, free lists included). The `mesh_*` wrappers (see
+//! [`Placed`]) apply each operator to a [`crate::Mesh`] and place new vertices.
 //!
 //! ```
 //! use zipmesh::{gen, ops::tri};
 //! let mut map = gen::random_triangle(500, 1, 0, 7).map;
 //! let before = map.clone();
-//! let h = map.darts().find(|&d| tri::can_flip(&map, d).is_ok()).unwrap();
-//! let flip = tri::flip(&mut map, h).unwrap();
+//! let h = map.darts().find(|&d| tri::can_flip_edge(&map, d).is_ok()).unwrap();
+//! let flip = tri::flip_edge(&mut map, h).unwrap();
 //! let split = tri::split_edge(&mut map, h).unwrap();
 //! assert!(map.check().is_ok());
 //! split.undo(&mut map).unwrap(); // records are undone in reverse order
@@ -33,9 +33,9 @@
 //! # Changes in counts (V, E, F) and valences, as tested
 //! | operator | V | E | F | valences |
 //! |---|---|---|---|---|
-//! | [`flip`] of a-b (apexes c, d) | 0 | 0 | 0 | a, b: -1; c, d: +1 |
-//! | [`collapse`] of v→u, interior edge | -1 | -3 | -2 | u: d(u) + d(v) - 4; apexes -1 |
-//! | [`collapse`] of v→u, boundary edge | -1 | -2 | -1 | u: d(u) + d(v) - 3; apex -1 |
+//! | [`flip_edge`] of a-b (apexes c, d) | 0 | 0 | 0 | a, b: -1; c, d: +1 |
+//! | [`collapse_edge`] of v→u, interior edge | -1 | -3 | -2 | u: d(u) + d(v) - 4; apexes -1 |
+//! | [`collapse_edge`] of v→u, boundary edge | -1 | -2 | -1 | u: d(u) + d(v) - 3; apex -1 |
 //! | [`split_vertex`] of w at w→a, w→b | +1 | +3 | +2 | w: k_w + 3, new v: k_v + 3; a, b: +1 |
 //! | [`split_edge`] of a-b, interior edge | +1 | +3 | +2 | new m: 4; apexes +1 |
 //! | [`split_edge`] of a-b, boundary edge | +1 | +2 | +1 | new m: 3; apex +1 |
@@ -57,14 +57,15 @@ use crate::map::{Dart, Face, Map, Vert, NONE};
 mod collapse;
 mod edge_split;
 mod flip;
-pub mod mesh;
+mod mesh;
 #[cfg(test)]
 mod tests;
 
-pub use collapse::{can_collapse, can_split_vertex, collapse, split_vertex};
-pub use collapse::{CollapseRecord, VertexSplitRecord};
-pub use edge_split::{can_split_edge, split_edge, EdgeSplitRecord};
-pub use flip::{can_flip, flip, FlipRecord};
+pub use collapse::{can_collapse_edge, can_split_vertex, collapse_edge, split_vertex};
+pub use collapse::{EdgeCollapse, VertexSplit};
+pub use edge_split::{can_split_edge, split_edge, EdgeSplit};
+pub use flip::{can_flip_edge, flip_edge, EdgeFlip};
+pub use mesh::{mesh_collapse_edge, mesh_flip_edge, mesh_split_edge, mesh_split_vertex, Placed};
 
 pub use super::Undo;
 
@@ -83,9 +84,9 @@ pub use super::Undo;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TriOp {
-    /// [`flip`] of the dart's edge.
+    /// [`flip_edge`] of the dart's edge.
     Flip(Dart),
-    /// [`collapse`] of the dart's origin into its destination.
+    /// [`collapse_edge`] of the dart's origin into its destination.
     Collapse(Dart),
     /// [`split_vertex`] along the two darts.
     SplitVertex(Dart, Dart),
@@ -111,8 +112,8 @@ impl TriOp {
     /// See [`TriOp`] for an example.
     pub fn can(self, m: &Map) -> Result<(), Refusal> {
         match self {
-            TriOp::Flip(d) => can_flip(m, d),
-            TriOp::Collapse(d) => can_collapse(m, d),
+            TriOp::Flip(d) => can_flip_edge(m, d),
+            TriOp::Collapse(d) => can_collapse_edge(m, d),
             TriOp::SplitVertex(a, b) => can_split_vertex(m, a, b),
             TriOp::SplitEdge(d) => can_split_edge(m, d),
         }
@@ -123,8 +124,8 @@ impl TriOp {
     /// See [`TriOp`] for an example.
     pub fn apply(self, m: &mut Map) -> Result<TriRecord, Refusal> {
         Ok(match self {
-            TriOp::Flip(d) => TriRecord::Flip(flip(m, d)?),
-            TriOp::Collapse(d) => TriRecord::Collapse(collapse(m, d)?),
+            TriOp::Flip(d) => TriRecord::Flip(flip_edge(m, d)?),
+            TriOp::Collapse(d) => TriRecord::Collapse(collapse_edge(m, d)?),
             TriOp::SplitVertex(a, b) => TriRecord::SplitVertex(split_vertex(m, a, b)?),
             TriOp::SplitEdge(d) => TriRecord::SplitEdge(split_edge(m, d)?),
         })
@@ -136,14 +137,14 @@ impl TriOp {
 /// See [`TriOp`] for an example.
 #[derive(Clone, Copy, Debug)]
 pub enum TriRecord {
-    /// A [`flip`].
-    Flip(FlipRecord),
-    /// A [`collapse`].
-    Collapse(CollapseRecord),
+    /// A [`flip_edge`].
+    Flip(EdgeFlip),
+    /// A [`collapse_edge`].
+    Collapse(EdgeCollapse),
     /// A [`split_vertex`].
-    SplitVertex(VertexSplitRecord),
+    SplitVertex(VertexSplit),
     /// A [`split_edge`].
-    SplitEdge(EdgeSplitRecord),
+    SplitEdge(EdgeSplit),
 }
 
 impl TriRecord {
