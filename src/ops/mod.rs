@@ -14,7 +14,9 @@
 
 use core::fmt;
 
+mod guard;
 pub mod quad;
+mod slots;
 pub mod tri;
 
 /// Why an operator refuses. Each variant's documentation says which rule it enforces.

@@ -208,10 +208,7 @@ pub fn collapse_quad(map: &mut Map, d: Dart) -> Result<QuadCollapse, Refusal> {
         ],
     };
     collapse_raw(map, &p);
-    map.free_edge(h1);
-    map.free_edge(h3);
-    map.free_vert(p.v[2]);
-    map.free_face(face);
+    Slots::deleted(&[h1, h3], p.v[2], &[face]).free(map);
     Ok(rec)
 }
 
@@ -315,7 +312,7 @@ impl QuadCollapse {
             return Err(Refusal::StaleRecord);
         }
         let plan = plan_split(map, h0, h2).map_err(|_| Refusal::StaleRecord)?;
-        Slots::reclaim(map, [h1, h3], c, self.face)?;
+        Slots::deleted(&[h1, h3], c, &[self.face]).reclaim(map)?;
         split_raw(map, &plan, h1, h3, c, self.face);
         for (v, old) in self.v.into_iter().zip(self.old_vdart) {
             restore_vdart(map, v, old);
@@ -499,12 +496,12 @@ fn split_with_plan(map: &mut Map, p: &SplitPlan) -> VertexSplit {
     let faces = [map.face(h0), map.face(h2)];
     let old_fdart = faces.map(|f| fdart_of(map, f));
     let old_vdart = [p.w, b, d].map(|v| map.vertex_dart(v));
-    let slots = Slots::alloc(map);
-    let [h1, h3] = slots.edges;
-    split_raw(map, p, h1, h3, slots.vert, slots.face);
+    let slots = Slots::alloc(map, 2, 1);
+    let [h1, h3] = [slots.edge(0), slots.edge(1)];
+    split_raw(map, p, h1, h3, slots.vert(), slots.face(0));
     VertexSplit {
         h: [h0, h1, h2, h3],
-        v: [p.w, b, slots.vert, d],
+        v: [p.w, b, slots.vert(), d],
         slots,
         faces,
         old_vdart,
@@ -568,7 +565,7 @@ impl VertexSplit {
     /// assert_eq!(map.face(s1), Some(r.face()));
     /// ```
     pub fn face(&self) -> Face {
-        self.slots.face
+        self.slots.face(0)
     }
 
     /// The new quad's darts counter-clockwise from `s1`: `[s1, a→w', s2, b→w]`; the second
@@ -609,7 +606,9 @@ impl VertexSplit {
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         let [h0, ..] = self.h;
         let plan = match plan_collapse(map, h0) {
-            Ok(p) if p.h == self.h && p.v == self.v && map.face(h0) == Some(self.slots.face) => p,
+            Ok(p) if p.h == self.h && p.v == self.v && map.face(h0) == Some(self.slots.face(0)) => {
+                p
+            }
             _ => return Err(Refusal::StaleRecord),
         };
         if !self.slots.releasable(map) {

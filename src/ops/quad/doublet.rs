@@ -139,10 +139,7 @@ pub fn remove_valence2(map: &mut Map, x: Dart) -> Result<Valence2Removal, Refusa
         old_fdart: [map.face_dart(f), map.face_dart(g)],
     };
     removal_raw(map, &p);
-    map.free_edge(x);
-    map.free_edge(y);
-    map.free_vert(v);
-    map.free_face(g);
+    Slots::deleted(&[x, y], v, &[g]).free(map);
     Ok(rec)
 }
 
@@ -225,7 +222,7 @@ impl Valence2Removal {
             Ok(q) if q == merged => {}
             _ => return Err(Refusal::StaleRecord),
         }
-        Slots::reclaim(map, [x, y], v, self.faces[1])?;
+        Slots::deleted(&[x, y], v, &[self.faces[1]]).reclaim(map)?;
         insertion_raw(map, merged, x, y, v, self.faces[1]);
         for (u, old) in self.v.into_iter().zip(self.old_vdart) {
             restore_vdart(map, u, old);
@@ -324,9 +321,9 @@ pub fn insert_doublet(map: &mut Map, d: Dart) -> Result<DoubletInsertion, Refusa
     let (pv, qv) = (map.origin(q[0]), map.origin(q[2]));
     let old_vdart = [map.vertex_dart(pv), map.vertex_dart(qv)];
     let old_fdart = fdart_of(map, Some(f));
-    let slots = Slots::alloc(map);
-    let [x, y] = slots.edges;
-    insertion_raw(map, q, x, y, slots.vert, slots.face);
+    let slots = Slots::alloc(map, 2, 1);
+    let [x, y] = [slots.edge(0), slots.edge(1)];
+    insertion_raw(map, q, x, y, slots.vert(), slots.face(0));
     Ok(DoubletInsertion {
         q,
         slots,
@@ -358,7 +355,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.valence(r.vertex()), 2);
     /// ```
     pub fn vertex(&self) -> Vert {
-        self.slots.vert
+        self.slots.vert()
     }
 
     /// The new face (the half without `d`).
@@ -372,7 +369,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.degree(r.face()), 4);
     /// ```
     pub fn face(&self) -> Face {
-        self.slots.face
+        self.slots.face(0)
     }
 
     /// The new darts leaving the new vertex: to `p` (in the old face) and to `q` (in the new
@@ -387,7 +384,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.dest(to_p), map.origin(d));
     /// ```
     pub fn darts(&self) -> [Dart; 2] {
-        self.slots.edges
+        [self.slots.edge(0), self.slots.edge(1)]
     }
 
     /// Undoes the insertion: the valence-2 removal of the new vertex keeping the old face,
@@ -406,14 +403,14 @@ impl DoubletInsertion {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [x, y] = self.slots.edges;
+        let [x, y] = self.darts();
         let [x1, x2, y1, y2] = self.q;
         let plan = match plan_removal(map, x) {
             Ok(p)
                 if p.qx == [x, x1, x2, y.twin()]
                     && p.qy == [y, y1, y2, x.twin()]
                     && map.face(x) == Some(self.face)
-                    && map.face(y) == Some(self.slots.face) =>
+                    && map.face(y) == Some(self.slots.face(0)) =>
             {
                 p
             }

@@ -1,7 +1,7 @@
 //! Edge flip: the diagonal of the two triangles at an edge turns a quarter turn.
 
-use super::{distinct_corners, fc, joined, min_valence, nx, on_boundary, org, triangle, Undo};
-use crate::map::{Dart, Map, NONE};
+use super::{joined, min_valence, sides, valence_at_least, Undo};
+use crate::map::{Dart, Face, Map, Vert, NONE};
 use crate::ops::Refusal;
 
 /// Record of an [`flip_edge`]: the flipped dart and what its exact undo needs.
@@ -17,9 +17,9 @@ pub struct EdgeFlip {
     /// The flipped dart (see [`EdgeFlip::dart`]).
     dart: Dart,
     /// Before the flip: `vdart[a]`, `vdart[b]`, `fdart[f0]`, `fdart[f1]`.
-    old: [u32; 4],
+    old: [Dart; 4],
     /// After the flip: the ends `d`, `c` of the dart (tells a flipped edge from a restored one).
-    ends: [u32; 2],
+    ends: [Vert; 2],
 }
 
 /// Checks whether [`flip_edge`] applies to the edge of `h`, without changing anything.
@@ -75,61 +75,64 @@ pub fn can_flip_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// ```
 pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
     let [h, h1, h2, t, t1, t2] = plan(map, h)?;
-    let (f0, f1) = (fc(map, h), fc(map, t));
-    let (a, b, c, d) = (org(map, h), org(map, t), org(map, h2), org(map, t2));
+    let (f0, f1) = (map.face(h), map.face(t));
+    let (a, b, c, d) = (map.origin(h), map.origin(t), map.origin(h2), map.origin(t2));
     let old = [
-        map.vdart[a as usize],
-        map.vdart[b as usize],
-        map.fdart[f0 as usize],
-        map.fdart[f1 as usize],
+        map.vertex_dart(a),
+        map.vertex_dart(b),
+        face_dart(map, f0),
+        face_dart(map, f1),
     ];
-    map.next[h as usize] = h2;
-    map.next[h2 as usize] = t1;
-    map.next[t1 as usize] = h;
-    map.next[t as usize] = t2;
-    map.next[t2 as usize] = h1;
-    map.next[h1 as usize] = t;
-    map.vert[h as usize] = d;
-    map.vert[t as usize] = c;
-    map.face[t1 as usize] = f0;
-    map.face[h1 as usize] = f1;
+    rewire(map, [h, h2, t1], d, f0);
+    rewire(map, [t, t2, h1], c, f1);
     // a and b lose h and t; their records must name a dart they keep. h and t are interior,
     // so a boundary record is never one of them.
     if old[0] == h {
-        map.vdart[a as usize] = t1;
+        map.set_vertex_dart(a, t1);
     }
     if old[1] == t {
-        map.vdart[b as usize] = h1;
+        map.set_vertex_dart(b, h1);
     }
     if old[2] == h1 {
-        map.fdart[f0 as usize] = h;
+        map.set_face_dart(f0, h);
     }
     if old[3] == t1 {
-        map.fdart[f1 as usize] = t;
+        map.set_face_dart(f1, t);
     }
     Ok(EdgeFlip {
-        dart: Dart(h),
+        dart: h,
         old,
         ends: [d, c],
     })
 }
 
+/// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`.
+fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>) {
+    for i in 0..3 {
+        map.set_next(x[i], x[(i + 1) % 3]);
+        map.set_face(x[i], f);
+    }
+    map.set_origin(x[0], o);
+}
+
+/// The record of face `f` (`NONE` for none).
+fn face_dart(map: &Map, f: Option<Face>) -> Dart {
+    f.map_or(Dart(NONE), |f| map.face_dart(f))
+}
+
 /// The six darts `[h, h1, h2, t, t1, t2]` of the two triangles, if the flip applies.
-fn plan(map: &Map, h: Dart) -> Result<[u32; 6], Refusal> {
+fn plan(map: &Map, h: Dart) -> Result<[Dart; 6], Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
-    let h = h.0;
-    let t = h ^ 1;
-    if fc(map, h) == NONE || fc(map, t) == NONE {
+    let t = h.twin();
+    if map.face(h).is_none() || map.face(t).is_none() {
         return Err(Refusal::Boundary);
     }
-    let l = triangle(map, h)?;
-    let r = triangle(map, t)?;
-    if !distinct_corners(map, l) || !distinct_corners(map, r) {
-        return Err(Refusal::DegenerateTriangle);
-    }
-    let (c, d) = (org(map, l[2]), org(map, r[2]));
+    let [Some(l), Some(r)] = sides(map, h)? else {
+        return Err(Refusal::Boundary); // unreachable: both faces exist
+    };
+    let (c, d) = (map.origin(l[2]), map.origin(r[2]));
     if c == d {
         return Err(Refusal::Loop);
     }
@@ -137,8 +140,8 @@ fn plan(map: &Map, h: Dart) -> Result<[u32; 6], Refusal> {
         return Err(Refusal::MultiEdge);
     }
     for x in [h, t] {
-        let v = org(map, x);
-        if !super::valence_at_least(map, x, min_valence(on_boundary(map, v)) + 1) {
+        let boundary = map.is_boundary_vertex(map.origin(x));
+        if !valence_at_least(map, x, min_valence(boundary) + 1) {
             return Err(Refusal::ValenceTooLow);
         }
     }
@@ -174,58 +177,57 @@ impl EdgeFlip {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let h = self.dart.0;
-        let t = h ^ 1;
-        if !map.is_live_dart(self.dart) {
+        let [h, h1, h2, t, t1, t2] = self.flipped(map).ok_or(Refusal::StaleRecord)?;
+        let (f0, f1) = (map.face(h), map.face(t));
+        let (a, b) = (map.origin(t1), map.origin(h1));
+        if !self.records_fit(map, [h, h1, h2, t, t1, t2]) {
             return Err(Refusal::StaleRecord);
         }
-        let (f0, f1) = (fc(map, h), fc(map, t));
-        if f0 == NONE || f1 == NONE {
-            return Err(Refusal::StaleRecord);
+        rewire(map, [h, h1, h2], a, f0);
+        rewire(map, [t, t1, t2], b, f1);
+        let [va, vb, fa, fb] = self.old;
+        map.set_vertex_dart(a, va);
+        map.set_vertex_dart(b, vb);
+        map.set_face_dart(f0, fa);
+        map.set_face_dart(f1, fb);
+        Ok(())
+    }
+
+    /// The darts `[h, h1, h2, t, t1, t2]` of the flipped pair as the flip left them (the
+    /// triangles `h -> h2 -> t1` and `t -> t2 -> h1`, the record's ends), if they are so.
+    fn flipped(&self, map: &Map) -> Option<[Dart; 6]> {
+        let h = self.dart;
+        let t = h.twin();
+        if !map.is_live_dart(h) || map.face(h).is_none() || map.face(t).is_none() {
+            return None;
         }
-        let (h2, t2) = (nx(map, h), nx(map, t));
-        let (t1, h1) = (nx(map, h2), nx(map, t2));
-        if nx(map, t1) != h
-            || nx(map, h1) != t
-            || [h2, t1, t2, h1].iter().any(|&x| x >> 1 == h >> 1)
-            || [org(map, h), org(map, t)] != self.ends
+        let (h2, t2) = (map.next(h), map.next(t));
+        let (t1, h1) = (map.next(h2), map.next(t2));
+        let fits = map.next(t1) == h
+            && map.next(h1) == t
+            && [h2, t1, t2, h1].iter().all(|x| x.edge() != h.edge())
+            && [map.origin(h), map.origin(t)] == self.ends
             // d and c lose h and t again: their records must not name them.
-            || map.vdart[org(map, h) as usize] == h
-            || map.vdart[org(map, t) as usize] == t
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        let (a, b) = (org(map, t1), org(map, h1));
-        // A restored record names a dart of its vertex, the boundary one if there is one
-        // (the undo changes no vertex's boundary status).
-        let leaves = |x: u32, v: u32, own: u32| {
+            && map.vertex_dart(map.origin(h)) != h
+            && map.vertex_dart(map.origin(t)) != t;
+        fits.then_some([h, h1, h2, t, t1, t2])
+    }
+
+    /// Whether the old records name darts of their elements after the undo: a restored
+    /// vertex record a dart of its vertex, the boundary one if there is one (the undo
+    /// changes no vertex's boundary status), a face record a dart of its triangle.
+    fn records_fit(&self, map: &Map, [h, h1, h2, t, t1, t2]: [Dart; 6]) -> bool {
+        let (a, b) = (map.origin(t1), map.origin(h1));
+        let leaves = |x: Dart, v: Vert, own: Dart| {
             let of_v =
-                x == own || (map.is_live_dart(Dart(x)) && org(map, x) == v && x >> 1 != h >> 1);
-            of_v && (fc(map, x) == NONE) == on_boundary(map, v)
+                x == own || (map.is_live_dart(x) && map.origin(x) == v && x.edge() != h.edge());
+            of_v && map.face(x).is_none() == map.is_boundary_vertex(v)
         };
         let [va, vb, fa, fb] = self.old;
-        if !leaves(va, a, h)
-            || !leaves(vb, b, t)
-            || ![h, h1, h2].contains(&fa)
-            || ![t, t1, t2].contains(&fb)
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        map.next[h as usize] = h1;
-        map.next[h1 as usize] = h2;
-        map.next[h2 as usize] = h;
-        map.next[t as usize] = t1;
-        map.next[t1 as usize] = t2;
-        map.next[t2 as usize] = t;
-        map.vert[h as usize] = a;
-        map.vert[t as usize] = b;
-        map.face[h1 as usize] = f0;
-        map.face[t1 as usize] = f1;
-        map.vdart[a as usize] = va;
-        map.vdart[b as usize] = vb;
-        map.fdart[f0 as usize] = fa;
-        map.fdart[f1 as usize] = fb;
-        Ok(())
+        leaves(va, a, h)
+            && leaves(vb, b, t)
+            && [h, h1, h2].contains(&fa)
+            && [t, t1, t2].contains(&fb)
     }
 }
 
