@@ -45,3 +45,51 @@ impl Guard {
         }
     }
 }
+
+/// Test support: which check of a record's guard catches each of a set of edits.
+#[cfg(test)]
+pub(crate) mod pin {
+    use crate::map::Map;
+    use crate::ops::Refusal;
+    use alloc::collections::BTreeSet;
+
+    /// Applies each edit to a copy of `after` (the map as the record's operation left it)
+    /// and returns the names of the checks that caught them. Checks the contract on the way:
+    /// the untouched map passes every check; when a check fails the undo refuses with
+    /// [`Refusal::StaleRecord`] and changes nothing; when none fails the undo succeeds, and
+    /// on a valid map (every `legit` edit gives one) leaves a valid map.
+    pub(crate) fn caught(
+        after: &Map,
+        edits: &[(bool, &dyn Fn(&mut Map))],
+        reason: &dyn Fn(&Map) -> Option<&'static str>,
+        undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
+    ) -> BTreeSet<&'static str> {
+        assert_eq!(
+            reason(after),
+            None,
+            "the record's own map must pass every check"
+        );
+        let mut names = BTreeSet::new();
+        for (legit, edit) in edits {
+            let mut m = after.clone();
+            edit(&mut m);
+            let r = reason(&m);
+            let snapshot = m.clone();
+            let res = undo(&mut m);
+            match r {
+                Some(name) => {
+                    assert_eq!(res, Err(Refusal::StaleRecord), "{name}");
+                    assert_eq!(m, snapshot, "{name}: a refused undo changed the map");
+                    names.insert(name);
+                }
+                None => {
+                    assert_eq!(res, Ok(()));
+                    if *legit {
+                        assert_eq!(m.check(), Ok(()), "an undo that fits left an invalid map");
+                    }
+                }
+            }
+        }
+        names
+    }
+}

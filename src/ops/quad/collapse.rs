@@ -11,6 +11,7 @@ use super::{
     valence_at_most_2, Neighbours, Slots,
 };
 use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
 /// The smallest valence [`split_high_valence`] splits.
@@ -38,7 +39,7 @@ fn arc(map: &Map, from: Dart, to: Dart, mut visit: impl FnMut(Dart)) -> Result<D
 
 /// What a quad collapse needs, found by its check.
 #[derive(Clone, Copy, Debug)]
-struct CollapsePlan {
+pub(super) struct CollapsePlan {
     h: [Dart; 4],
     /// a, b, c, d.
     v: [Vert; 4],
@@ -294,26 +295,12 @@ impl QuadCollapse {
     /// assert_eq!(r.undo(&mut map), Err(Refusal::StaleRecord));
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [h0, h1, h2, h3] = self.h;
-        let [a, b, c, d] = self.v;
-        if !map.is_live_dart(h0)
-            || !map.is_live_dart(h2)
-            || map.origin(h0) != a
-            || map.origin(h2) != a
-            || map.dest(h0) != b
-            || map.dest(h2) != d
-            || map.is_live_vertex(c)
-            || map.is_live_face(self.face)
-            || h1.index() >= map.dart_slots()
-            || h3.index() >= map.dart_slots()
-            || c.index() >= map.vertex_slots()
-            || self.face.index() >= map.face_slots()
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        let plan = plan_split(map, h0, h2).map_err(|_| Refusal::StaleRecord)?;
-        Slots::deleted(&[h1, h3], c, &[self.face]).reclaim(map)?;
-        split_raw(map, &plan, h1, h3, c, self.face);
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let plan = plan.ok_or(Refusal::StaleRecord)?;
+        let [_, h1, _, h3] = self.h;
+        self.deleted().reclaim(map)?;
+        split_raw(map, &plan, h1, h3, self.v[2], self.face);
         for (v, old) in self.v.into_iter().zip(self.old_vdart) {
             restore_vdart(map, v, old);
         }
@@ -322,11 +309,46 @@ impl QuadCollapse {
         restore_fdart(map, self.faces[1], self.old_fdart[2]);
         Ok(())
     }
+
+    /// The slots the collapse freed, in its order: the edges of `h1`, `h3`, `c`, the quad.
+    fn deleted(&self) -> Slots {
+        Slots::deleted(&[self.h[1], self.h[3]], self.v[2], &[self.face])
+    }
+
+    /// The staleness checks of [`QuadCollapse::undo`], in order, and the plan of the split
+    /// it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<SplitPlan>) {
+        let [h0, h1, h2, h3] = self.h;
+        let [a, b, c, d] = self.v;
+        let g = Guard::new()
+            .check("removed vertex in range", || c.index() < map.vertex_slots())
+            .check("face in range", || self.face.index() < map.face_slots())
+            .check("h1 in range", || h1.index() < map.dart_slots())
+            .check("h3 in range", || h3.index() < map.dart_slots())
+            .check("h0 live", || map.is_live_dart(h0))
+            .check("h2 live", || map.is_live_dart(h2))
+            .check("h0 leaves a", || map.origin(h0) == a)
+            .check("h2 leaves a", || map.origin(h2) == a)
+            .check("h0 ends at b", || map.dest(h0) == b)
+            .check("h2 ends at d", || map.dest(h2) == d)
+            .check("removed vertex dead", || !map.is_live_vertex(c))
+            .check("face dead", || !map.is_live_face(self.face));
+        if g.failed().is_some() {
+            return (g, None);
+        }
+        let plan = plan_split(map, h0, h2).ok();
+        let g = g
+            .check("split applies", || plan.is_some())
+            .check("freed slots on the free lists", || {
+                self.deleted().on_free_lists(map)
+            });
+        (g, plan)
+    }
 }
 
 /// What a vertex split needs, found by its check.
 #[derive(Clone, Copy, Debug)]
-struct SplitPlan {
+pub(super) struct SplitPlan {
     w: Vert,
     s: [Dart; 2],
     /// The clockwise predecessors of `s[0]` and `s[1]` around `w`.
@@ -604,16 +626,9 @@ impl VertexSplit {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [h0, ..] = self.h;
-        let plan = match plan_collapse(map, h0) {
-            Ok(p) if p.h == self.h && p.v == self.v && map.face(h0) == Some(self.slots.face(0)) => {
-                p
-            }
-            _ => return Err(Refusal::StaleRecord),
-        };
-        if !self.slots.releasable(map) {
-            return Err(Refusal::StaleRecord);
-        }
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let plan = plan.ok_or(Refusal::StaleRecord)?;
         collapse_raw(map, &plan);
         self.slots.release(map);
         let [w, a, _, b] = self.v;
@@ -623,6 +638,21 @@ impl VertexSplit {
         restore_fdart(map, self.faces[0], self.old_fdart[0]);
         restore_fdart(map, self.faces[1], self.old_fdart[1]);
         Ok(())
+    }
+
+    /// The staleness checks of [`VertexSplit::undo`], in order, and the plan of the
+    /// collapse it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<CollapsePlan>) {
+        let plan = plan_collapse(map, self.h[0]).ok();
+        let g = Guard::new()
+            .check("collapse applies", || plan.is_some())
+            .check("same quad", || plan.is_some_and(|p| p.h == self.h))
+            .check("same corners", || plan.is_some_and(|p| p.v == self.v))
+            .check("same face", || {
+                map.face(self.h[0]) == Some(self.slots.face(0))
+            })
+            .check("slots releasable", || self.slots.releasable(map));
+        (g, plan)
     }
 }
 

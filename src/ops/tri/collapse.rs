@@ -35,7 +35,7 @@ fn face_slot(map: &Map, d: Dart) -> Face {
 
 /// The darts and vertices of a collapse, found by [`plan`].
 #[derive(Clone, Copy, Debug)]
-struct Plan {
+pub(super) struct Plan {
     h: Dart,
     /// `h1`, `h2` of L, or [`NO_DART`] when `h` is a boundary dart.
     h1: Dart,
@@ -608,6 +608,19 @@ impl EdgeCollapse {
         self.darts[1] != NO_DART
     }
 
+    /// For the tests: the first moved dart and every dart index the record holds.
+    #[cfg(test)]
+    pub(super) fn held(&self) -> (Dart, alloc::vec::Vec<Dart>) {
+        let mut all = alloc::vec::Vec::new();
+        all.extend(self.darts);
+        all.extend(self.dead_next);
+        all.extend(self.old_vdart);
+        all.extend(self.old_fdart);
+        all.extend(self.writes.iter().flat_map(|&(a, b, c)| [a, b, c]));
+        all.retain(|&d| d != NO_DART);
+        (self.first, all)
+    }
+
     fn has_r(&self) -> bool {
         self.darts[3] != NO_DART
     }
@@ -626,7 +639,7 @@ impl EdgeCollapse {
     /// top of the free lists, the rewritten successors and the moved arc as the collapse left
     /// them, and every entry the undo restores consistent with its neighbours (so the result
     /// satisfies every axiom locally).
-    fn guard(&self, map: &Map) -> Guard {
+    pub(super) fn guard(&self, map: &Map) -> Guard {
         let g = Guard::new()
             .check("a side exists", || self.has_l() || self.has_r())
             .check("collapsed edge dead", || is_dead(map, self.darts[0]))
@@ -1219,20 +1232,30 @@ impl VertexSplit {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let p = plan(map, self.edge(), false).map_err(|_| Refusal::StaleRecord)?;
-        self.guard(map, &p).result()?;
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let p = plan.ok_or(Refusal::StaleRecord)?;
         apply(map, &p, Some(&self.slots));
         map.set_vertex_dart(p.u, self.old_w);
         Ok(())
     }
 
-    /// The staleness checks of [`VertexSplit::undo`] on the collapse `p` of the record's edge.
-    fn guard(&self, map: &Map, p: &Plan) -> Guard {
+    /// The staleness checks of [`VertexSplit::undo`], in order, and the plan of the collapse
+    /// of the record's edge that it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<Plan>) {
+        let plan = plan(map, self.edge(), false).ok();
+        let g = Guard::new().check("collapse of the edge applies", || plan.is_some());
+        let Some(p) = &plan else {
+            return (g, plan);
+        };
+        (self.guard_plan(g, map, p), plan)
+    }
+
+    fn guard_plan(&self, g: Guard, map: &Map, p: &Plan) -> Guard {
         let s = &self.slots;
         let (w, old_w) = (p.u, self.old_w);
         let new_edges = [s.edge(0).edge(), s.edge(1).edge(), s.edge(2).edge()];
-        Guard::new()
-            .check("new vertex", || p.v == s.vert())
+        g.check("new vertex", || p.v == s.vert())
             .check("both triangles", || p.has_l() && p.has_r())
             .check("new edges", || {
                 [p.h2.edge(), p.t1.edge()] == [new_edges[1], new_edges[2]]

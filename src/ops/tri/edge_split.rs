@@ -254,7 +254,7 @@ impl EdgeSplit {
 
     /// The staleness checks of [`EdgeSplit::undo`], in order: the map is as the split left
     /// it as far as the undo depends on it, which also makes every slot it writes live.
-    fn guard(&self, map: &Map) -> Guard {
+    pub(super) fn guard(&self, map: &Map) -> Guard {
         let (h, n, m) = (self.h, self.dart(), self.created());
         let t = h.twin();
         let live = |x: Dart| map.is_live_dart(x);

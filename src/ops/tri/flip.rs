@@ -2,6 +2,7 @@
 
 use super::{joined, min_valence, sides, valence_at_least, Undo};
 use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
 /// Record of an [`flip_edge`]: the flipped dart and what its exact undo needs.
@@ -177,12 +178,10 @@ impl EdgeFlip {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [h, h1, h2, t, t1, t2] = self.flipped(map).ok_or(Refusal::StaleRecord)?;
+        self.guard(map).result()?;
+        let [h, h1, h2, t, t1, t2] = self.darts(map);
         let (f0, f1) = (map.face(h), map.face(t));
         let (a, b) = (map.origin(t1), map.origin(h1));
-        if !self.records_fit(map, [h, h1, h2, t, t1, t2]) {
-            return Err(Refusal::StaleRecord);
-        }
         rewire(map, [h, h1, h2], a, f0);
         rewire(map, [t, t1, t2], b, f1);
         let [va, vb, fa, fb] = self.old;
@@ -193,41 +192,51 @@ impl EdgeFlip {
         Ok(())
     }
 
-    /// The darts `[h, h1, h2, t, t1, t2]` of the flipped pair as the flip left them (the
-    /// triangles `h -> h2 -> t1` and `t -> t2 -> h1`, the record's ends), if they are so.
-    fn flipped(&self, map: &Map) -> Option<[Dart; 6]> {
+    /// The darts `[h, h1, h2, t, t1, t2]` of the flipped pair, read as the flip left them
+    /// (the triangles `h -> h2 -> t1` and `t -> t2 -> h1`).
+    fn darts(&self, map: &Map) -> [Dart; 6] {
         let h = self.dart;
         let t = h.twin();
-        if !map.is_live_dart(h) || map.face(h).is_none() || map.face(t).is_none() {
-            return None;
-        }
         let (h2, t2) = (map.next(h), map.next(t));
         let (t1, h1) = (map.next(h2), map.next(t2));
-        let fits = map.next(t1) == h
-            && map.next(h1) == t
-            && [h2, t1, t2, h1].iter().all(|x| x.edge() != h.edge())
-            && [map.origin(h), map.origin(t)] == self.ends
-            // d and c lose h and t again: their records must not name them.
-            && map.vertex_dart(map.origin(h)) != h
-            && map.vertex_dart(map.origin(t)) != t;
-        fits.then_some([h, h1, h2, t, t1, t2])
+        [h, h1, h2, t, t1, t2]
     }
 
-    /// Whether the old records name darts of their elements after the undo: a restored
-    /// vertex record a dart of its vertex, the boundary one if there is one (the undo
-    /// changes no vertex's boundary status), a face record a dart of its triangle.
-    fn records_fit(&self, map: &Map, [h, h1, h2, t, t1, t2]: [Dart; 6]) -> bool {
+    /// The staleness checks of [`EdgeFlip::undo`], in order: the two triangles are as the
+    /// flip left them, and the old records name darts of their elements after the undo (a
+    /// vertex record a dart of its vertex, the boundary one if there is one: the undo changes
+    /// no vertex's boundary status; a face record a dart of its triangle).
+    pub(super) fn guard(&self, map: &Map) -> Guard {
+        let [h, h1, h2, t, t1, t2] = self.darts(map);
+        let [va, vb, fa, fb] = self.old;
         let (a, b) = (map.origin(t1), map.origin(h1));
         let leaves = |x: Dart, v: Vert, own: Dart| {
-            let of_v =
-                x == own || (map.is_live_dart(x) && map.origin(x) == v && x.edge() != h.edge());
-            of_v && map.face(x).is_none() == map.is_boundary_vertex(v)
+            x == own || (map.is_live_dart(x) && map.origin(x) == v && x.edge() != h.edge())
         };
-        let [va, vb, fa, fb] = self.old;
-        leaves(va, a, h)
-            && leaves(vb, b, t)
-            && [h, h1, h2].contains(&fa)
-            && [t, t1, t2].contains(&fb)
+        let boundary_ok = |x: Dart, v: Vert| map.face(x).is_none() == map.is_boundary_vertex(v);
+        Guard::new()
+            .check("dart live", || map.is_live_dart(h))
+            .check("face of h", || map.face(h).is_some())
+            .check("face of twin(h)", || map.face(t).is_some())
+            .check("triangle of h", || map.next(t1) == h)
+            .check("triangle of twin(h)", || map.next(h1) == t)
+            .check("edge once in its triangles", || {
+                [h2, t1, t2, h1].iter().all(|x| x.edge() != h.edge())
+            })
+            .check("ends", || [map.origin(h), map.origin(t)] == self.ends)
+            // d and c lose h and t again: their records must not name them.
+            .check("h not recorded", || map.vertex_dart(map.origin(h)) != h)
+            .check("twin(h) not recorded", || {
+                map.vertex_dart(map.origin(t)) != t
+            })
+            .check("old record of a leaves a", || leaves(va, a, h))
+            .check("old record of a on the boundary", || boundary_ok(va, a))
+            .check("old record of b leaves b", || leaves(vb, b, t))
+            .check("old record of b on the boundary", || boundary_ok(vb, b))
+            .check("old record of the face of h", || [h, h1, h2].contains(&fa))
+            .check("old record of the face of twin(h)", || {
+                [t, t1, t2].contains(&fb)
+            })
     }
 }
 

@@ -647,3 +647,279 @@ fn refusal_text() {
         "a triangle with a repeated corner is involved"
     );
 }
+
+// ---------------------------------------------------------------- undo guards, pinned
+//
+// As in the quad tests: each check of each undo guard has an edit of the map after the
+// operation that it is the first to catch: one more operator anywhere, or a raw change of
+// one array entry for the checks no operator reaches. Dropping or negating any check changes
+// the set of names found.
+
+use crate::map::NONE;
+use crate::ops::guard::pin;
+use alloc::boxed::Box;
+use alloc::collections::BTreeSet;
+
+type Edit = Box<dyn Fn(&mut Map)>;
+
+/// Every triangle operator at every dart of `m` (vertex splits at each dart and the next
+/// one or two clockwise).
+fn tri_ops(m: &Map) -> Vec<TriOp> {
+    let mut ops = Vec::new();
+    for d in m.darts() {
+        let e = m.rotate_cw(d);
+        ops.extend([
+            TriOp::Flip(d),
+            TriOp::Collapse(d),
+            TriOp::SplitEdge(d),
+            TriOp::SplitVertex(d, e),
+            TriOp::SplitVertex(d, m.rotate_cw(e)),
+        ]);
+    }
+    ops
+}
+
+fn caught_t(
+    after: &Map,
+    raw: Vec<Edit>,
+    reason: &dyn Fn(&Map) -> Option<&'static str>,
+    undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
+) -> BTreeSet<&'static str> {
+    let legit: Vec<Edit> = tri_ops(after)
+        .into_iter()
+        .map(|op| {
+            Box::new(move |m: &mut Map| {
+                let _ = op.apply(m);
+            }) as Edit
+        })
+        .collect();
+    let mut edits: Vec<(bool, &dyn Fn(&mut Map))> = legit.iter().map(|e| (true, &**e)).collect();
+    edits.extend(raw.iter().map(|e| (false, &**e)));
+    pin::caught(after, &edits, reason, undo)
+}
+
+fn set(n: &[&'static str]) -> BTreeSet<&'static str> {
+    n.iter().copied().collect()
+}
+
+#[test]
+fn edge_flip_undo_guard_pinned() {
+    let base = tri_grid(5);
+    let mut got = BTreeSet::new();
+    for h in base.darts().filter(|&h| can_flip_edge(&base, h).is_ok()) {
+        let (l2, r2) = (base.next(base.next(h)), base.next(base.next(h.twin())));
+        let (fa, fb) = (
+            base.face_dart(base.face(h).unwrap()),
+            base.face_dart(base.face(h.twin()).unwrap()),
+        );
+        let mut m = base.clone();
+        let r = flip_edge(&mut m, h).unwrap();
+        let t = h.twin();
+        let (h1, t1) = (m.next(m.next(t)), m.next(m.next(h)));
+        let (va, vb) = (
+            base.vertex_dart(m.origin(t1)),
+            base.vertex_dart(m.origin(h1)),
+        );
+        // A dart far from the flip, spliced into a triangle in place of its second dart.
+        let far = m
+            .darts()
+            .find(|&x| {
+                base.face(x) != base.face(h) && base.face(x) != base.face(t) && x.edge() != h.edge()
+            })
+            .unwrap();
+        let mut raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[h.index()] = NONE),
+            Box::new(move |m| m.face[h.index()] = NONE),
+            Box::new(move |m| m.face[t.index()] = NONE),
+            Box::new(move |m| m.next[h.index()] = h.0),
+            Box::new(move |m| m.next[t1.index()] = t1.0),
+            Box::new(move |m| m.next[h1.index()] = h1.0),
+            Box::new(move |m| {
+                let i = m.origin(h).index();
+                m.vdart[i] = h.0;
+            }),
+            Box::new(move |m| {
+                let i = m.origin(t).index();
+                m.vdart[i] = t.0;
+            }),
+        ];
+        if va != h && va != t1 {
+            raw.push(Box::new(move |m| {
+                let o = m.origin(h).0;
+                m.vert[va.index()] = o;
+            }));
+            raw.push(Box::new(move |m| m.face[va.index()] = NONE));
+        }
+        if vb != t && vb != h1 {
+            raw.push(Box::new(move |m| {
+                let o = m.origin(h).0;
+                m.vert[vb.index()] = o;
+            }));
+            raw.push(Box::new(move |m| m.face[vb.index()] = NONE));
+        }
+        if fa == l2 {
+            raw.push(Box::new(move |m| {
+                let t1 = m.next(m.next(h));
+                m.next[h.index()] = far.0;
+                m.next[far.index()] = t1.0;
+            }));
+        }
+        if fb == r2 {
+            raw.push(Box::new(move |m| {
+                let h1 = m.next(m.next(t));
+                m.next[t.index()] = far.0;
+                m.next[far.index()] = h1.0;
+            }));
+        }
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "dart live",
+        "face of h",
+        "face of twin(h)",
+        "triangle of h",
+        "triangle of twin(h)",
+        "edge once in its triangles",
+        "ends",
+        "h not recorded",
+        "twin(h) not recorded",
+        "old record of a leaves a",
+        "old record of a on the boundary",
+        "old record of b leaves b",
+        "old record of b on the boundary",
+        "old record of the face of h",
+        "old record of the face of twin(h)",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn edge_split_undo_guard_pinned() {
+    let base = tri_grid(4);
+    let mut got = BTreeSet::new();
+    for h in base.darts() {
+        let mut m = base.clone();
+        let r = split_edge(&mut m, h).unwrap();
+        let (n, mv) = (r.dart(), r.created());
+        let raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[n.index()] = NONE),
+            Box::new(move |m| m.vert[n.index()] = 0),
+            Box::new(move |m| m.vdart.truncate(mv.index())),
+            // The apex c's record names the new spoke c -> m.
+            Box::new(move |m| {
+                if m.face(h).is_some() {
+                    let g = m.next(h).twin();
+                    let c = m.origin(g).index();
+                    m.vdart[c] = g.0;
+                }
+            }),
+        ];
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "darts live",
+        "m is the origin of n and twin(h)",
+        "left triangles",
+        "right triangles",
+        "old records",
+        "spokes not recorded",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn vertex_split_undo_guard_pinned() {
+    let base = tri_grid(4);
+    let mut got = BTreeSet::new();
+    for d1 in base.darts() {
+        let d2 = base.rotate_cw(base.rotate_cw(d1));
+        let mut m = base.clone();
+        let Ok(r) = split_vertex(&mut m, d1, d2) else {
+            continue;
+        };
+        let e = r.edge();
+        let raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[e.index()] = NONE),
+            Box::new(move |m| m.face[e.index()] = 999),
+        ];
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).0.failed(), &|m| {
+            r.undo(m)
+        }));
+    }
+    let want = set(&[
+        "collapse of the edge applies",
+        "new vertex",
+        "both triangles",
+        "new edges",
+        "new faces",
+        "old record of w",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn edge_collapse_undo_guard_pinned() {
+    let base = tri_grid(5);
+    let mut got = BTreeSet::new();
+    for h in base
+        .darts()
+        .filter(|&h| can_collapse_edge(&base, h).is_ok())
+    {
+        let mut m = base.clone();
+        let r = collapse_edge(&mut m, h).unwrap();
+        let (u, v) = (r.kept(), r.removed());
+        let (first, held) = r.held();
+        let five = held[..5].iter().map(|d| d.index() | 1).max().unwrap();
+        let most = held.iter().map(|d| d.index() | 1).max().unwrap();
+        let h1 = base.next(h);
+        let interior = base.face(h).is_some() && base.face(h.twin()).is_some();
+        let mut raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[h.index()] = 0),
+            Box::new(move |m| m.vdart[u.index()] = NONE),
+            Box::new(move |m| m.vdart[v.index()] = 0),
+            Box::new(move |m| m.vdart.truncate(v.index())),
+            Box::new(move |m| {
+                let f = *m.free_faces.last().unwrap();
+                m.fdart.truncate(f as usize);
+            }),
+        ];
+        let cut = |m: &mut Map, at: usize| {
+            m.next.truncate(at);
+            m.vert.truncate(at);
+            m.face.truncate(at);
+        };
+        if first != Dart(NONE) && first.index() > five {
+            raw.push(Box::new(move |m| cut(m, first.index() & !1)));
+        }
+        if most > five.max(first.index() | 1) {
+            raw.push(Box::new(move |m| cut(m, most & !1)));
+        }
+        if interior {
+            // h1 keeps its place but leaves another vertex, or lies in another face.
+            let c = base.dest(h1);
+            raw.push(Box::new(move |m| m.vert[h1.index()] = c.0));
+            raw.push(Box::new(move |m| m.face[h1.index()] = 999));
+        }
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "collapsed edge dead",
+        "left side",
+        "right side",
+        "kept vertex live",
+        "removed vertex dead",
+        "apexes live",
+        "faces in range",
+        "moved arc in range",
+        "old values in range",
+        "rewritten successors",
+        "freed slots on the free lists",
+        "moved arc",
+        "restored successors",
+        "restored vertex records",
+        "restored face records",
+    ]);
+    assert_eq!(got, want);
+}
