@@ -51,16 +51,37 @@ impl Guard {
 pub(crate) mod pin {
     use crate::map::Map;
     use crate::ops::Refusal;
+    use alloc::boxed::Box;
     use alloc::collections::BTreeSet;
+    use alloc::vec::Vec;
+
+    /// A change of a map.
+    pub(crate) type Edit = Box<dyn Fn(&mut Map)>;
+
+    /// Each operator as an edit applying it (a refusal leaves the map as it is).
+    pub(crate) fn edits<T: Copy + 'static, R: 'static>(
+        ops: Vec<T>,
+        apply: fn(T, &mut Map) -> R,
+    ) -> Vec<Edit> {
+        ops.into_iter()
+            .map(|op| {
+                Box::new(move |m: &mut Map| {
+                    let _ = apply(op, m);
+                }) as Edit
+            })
+            .collect()
+    }
 
     /// Applies each edit to a copy of `after` (the map as the record's operation left it)
     /// and returns the names of the checks that caught them. Checks the contract on the way:
     /// the untouched map passes every check; when a check fails the undo refuses with
     /// [`Refusal::StaleRecord`] and changes nothing; when none fails the undo succeeds, and
-    /// on a valid map (every `legit` edit gives one) leaves a valid map.
+    /// after a `legit` edit (an operator: the map stays valid) leaves a valid map. `raw`
+    /// edits change array entries directly.
     pub(crate) fn caught(
         after: &Map,
-        edits: &[(bool, &dyn Fn(&mut Map))],
+        legit: &[Edit],
+        raw: &[Edit],
         reason: &dyn Fn(&Map) -> Option<&'static str>,
         undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
     ) -> BTreeSet<&'static str> {
@@ -70,7 +91,8 @@ pub(crate) mod pin {
             "the record's own map must pass every check"
         );
         let mut names = BTreeSet::new();
-        for (legit, edit) in edits {
+        let all = legit.iter().map(|e| (true, e));
+        for (legit, edit) in all.chain(raw.iter().map(|e| (false, e))) {
             let mut m = after.clone();
             edit(&mut m);
             let r = reason(&m);
@@ -84,7 +106,7 @@ pub(crate) mod pin {
                 }
                 None => {
                     assert_eq!(res, Ok(()));
-                    if *legit {
+                    if legit {
                         assert_eq!(m.check(), Ok(()), "an undo that fits left an invalid map");
                     }
                 }

@@ -676,7 +676,7 @@ use crate::ops::guard::Guard;
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
 
-type Edit = Box<dyn Fn(&mut Map)>;
+use pin::Edit;
 
 /// Every quad operator at every dart of `m` (splits at each dart and the dart two steps on).
 fn quad_ops(m: &Map) -> Vec<QuadOp> {
@@ -703,17 +703,8 @@ fn caught_q(
     reason: &dyn Fn(&Map) -> Option<&'static str>,
     undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
 ) -> BTreeSet<&'static str> {
-    let legit: Vec<Edit> = quad_ops(after)
-        .into_iter()
-        .map(|op| {
-            Box::new(move |m: &mut Map| {
-                let _ = op.apply(m);
-            }) as Edit
-        })
-        .collect();
-    let mut edits: Vec<(bool, &dyn Fn(&mut Map))> = legit.iter().map(|e| (true, &**e)).collect();
-    edits.extend(raw.iter().map(|e| (false, &**e)));
-    pin::caught(after, &edits, reason, undo)
+    let legit = pin::edits(quad_ops(after), QuadOp::apply);
+    pin::caught(after, &legit, &raw, reason, undo)
 }
 
 fn names(g: &Guard) -> Option<&'static str> {

@@ -660,7 +660,7 @@ use crate::ops::guard::pin;
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
 
-type Edit = Box<dyn Fn(&mut Map)>;
+use pin::Edit;
 
 /// Every triangle operator at every dart of `m` (vertex splits at each dart and the next
 /// one or two clockwise).
@@ -685,17 +685,8 @@ fn caught_t(
     reason: &dyn Fn(&Map) -> Option<&'static str>,
     undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
 ) -> BTreeSet<&'static str> {
-    let legit: Vec<Edit> = tri_ops(after)
-        .into_iter()
-        .map(|op| {
-            Box::new(move |m: &mut Map| {
-                let _ = op.apply(m);
-            }) as Edit
-        })
-        .collect();
-    let mut edits: Vec<(bool, &dyn Fn(&mut Map))> = legit.iter().map(|e| (true, &**e)).collect();
-    edits.extend(raw.iter().map(|e| (false, &**e)));
-    pin::caught(after, &edits, reason, undo)
+    let legit = pin::edits(tri_ops(after), TriOp::apply);
+    pin::caught(after, &legit, &raw, reason, undo)
 }
 
 fn set(n: &[&'static str]) -> BTreeSet<&'static str> {
