@@ -98,7 +98,7 @@ fn place<R>(mesh: &mut Mesh, record: R, v: u32, p: DVec3) -> Placed<R> {
     }
 }
 
-/// [`super::flip`] on a mesh; no position changes.
+/// [`super::flip_edge`] on a mesh; no position changes.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri, Dart};
@@ -118,7 +118,7 @@ pub fn mesh_flip_edge(mesh: &mut Mesh, h: Dart) -> Result<Placed<EdgeFlip>, Refu
     })
 }
 
-/// [`super::collapse`] on a mesh; the kept vertex moves to the edge's midpoint.
+/// [`super::collapse_edge`] on a mesh; the kept vertex moves to the edge's midpoint.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri};
