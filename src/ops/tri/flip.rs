@@ -84,8 +84,8 @@ pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
         face_dart(map, f0),
         face_dart(map, f1),
     ];
-    rewire(map, [h, h2, t1], d, f0);
-    rewire(map, [t, t2, h1], c, f1);
+    rewire(map, [h, h2, t1], d, f0, 2);
+    rewire(map, [t, t2, h1], c, f1, 2);
     // a and b lose h and t; their records must name a dart they keep. h and t are interior,
     // so a boundary record is never one of them.
     if old[0] == h {
@@ -107,13 +107,14 @@ pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
     })
 }
 
-/// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`.
-fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>) {
-    for i in 0..3 {
-        map.set_next(x[i], x[(i + 1) % 3]);
-        map.set_face(x[i], f);
-    }
+/// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`;
+/// `x[joins]` is the one dart that comes from the other face (the others are in `f`).
+fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
+    map.set_next(x[0], x[1]);
+    map.set_next(x[1], x[2]);
+    map.set_next(x[2], x[0]);
     map.set_origin(x[0], o);
+    map.set_face(x[joins], f);
 }
 
 /// The record of face `f` (`NONE` for none).
@@ -182,8 +183,8 @@ impl EdgeFlip {
         let [h, h1, h2, t, t1, t2] = self.darts(map);
         let (f0, f1) = (map.face(h), map.face(t));
         let (a, b) = (map.origin(t1), map.origin(h1));
-        rewire(map, [h, h1, h2], a, f0);
-        rewire(map, [t, t1, t2], b, f1);
+        rewire(map, [h, h1, h2], a, f0, 1);
+        rewire(map, [t, t1, t2], b, f1, 1);
         let [va, vb, fa, fb] = self.old;
         map.set_vertex_dart(a, va);
         map.set_vertex_dart(b, vb);
