@@ -38,10 +38,10 @@ fn operators(c: &mut Criterion) {
         ds[i]
     };
     g.bench_function("tri flip", |b| {
-        b.iter(|| tri::flip(&mut m, next()).map(|r| r.undo(&mut m)))
+        b.iter(|| tri::flip_edge(&mut m, next()).map(|r| r.undo(&mut m)))
     });
     g.bench_function("tri collapse", |b| {
-        b.iter(|| tri::collapse(&mut m, next()).map(|r| r.undo(&mut m)))
+        b.iter(|| tri::collapse_edge(&mut m, next()).map(|r| r.undo(&mut m)))
     });
     g.bench_function("tri edge split", |b| {
         b.iter(|| tri::split_edge(&mut m, next()).map(|r| r.undo(&mut m)))

@@ -443,8 +443,8 @@ fn main() {
     };
     type Op = fn(&mut Map, Dart) -> bool;
     let tri_ops: [(&str, Op); 4] = [
-        ("op_flip", |m, d| tri::flip(m, d).is_ok()),
-        ("op_collapse", |m, d| tri::collapse(m, d).is_ok()),
+        ("op_flip", |m, d| tri::flip_edge(m, d).is_ok()),
+        ("op_collapse", |m, d| tri::collapse_edge(m, d).is_ok()),
         ("op_edge_split", |m, d| tri::split_edge(m, d).is_ok()),
         ("op_vertex_split", |m, d| {
             let d2 = (0..3).fold(d, |x, _| m.rotate_cw(x));

@@ -125,10 +125,10 @@ fn random_op(m: &Map, rng: &mut Rng, hot: &[Dart]) -> Op {
 fn touched(m: &Map, op: Op, rec: &Rec) -> Vec<Dart> {
     let mut out = vec![];
     match (op, rec) {
-        (_, Rec::Flip(r)) => out.push(r.dart),
-        (_, Rec::Collapse(r)) => out.push(m.vertex_dart(r.kept)),
-        (_, Rec::SplitVertex(r)) => out.push(r.edge),
-        (_, Rec::SplitEdge(r)) => out.push(r.dart),
+        (_, Rec::Flip(r)) => out.push(r.dart()),
+        (_, Rec::Collapse(r)) => out.push(m.vertex_dart(r.kept())),
+        (_, Rec::SplitVertex(r)) => out.push(r.edge()),
+        (_, Rec::SplitEdge(r)) => out.push(r.dart()),
     }
     out
 }
@@ -251,22 +251,22 @@ proptest! {
             let pos = |m: &Mesh, v: zipmesh::Vert| m.positions[v.index()];
             match op {
                 Op::Flip(h) => {
-                    if let Ok(p) = tri::mesh::flip(&mut mesh, h) {
+                    if let Ok(p) = tri::mesh_flip_edge(&mut mesh, h) {
                         prop_assert_eq!(&mesh.positions, &before.positions);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }
                 Op::Collapse(h) => {
-                    if let Ok(p) = tri::mesh::collapse(&mut mesh, h) {
+                    if let Ok(p) = tri::mesh_collapse_edge(&mut mesh, h) {
                         let (v, u) = (before.map.origin(h), before.map.dest(h));
                         prop_assert_eq!(pos(&mesh, u), (pos(&before, u) + pos(&before, v)) * 0.5);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }
                 Op::SplitVertex(d1, d2) => {
-                    if let Ok(p) = tri::mesh::split_vertex(&mut mesh, d1, d2) {
+                    if let Ok(p) = tri::mesh_split_vertex(&mut mesh, d1, d2) {
                         let w = before.map.origin(d1);
-                        let v = p.record.vertex;
+                        let v = p.record.created();
                         prop_assert_eq!(pos(&mesh, w), pos(&before, w));
                         let ns: Vec<_> = mesh.map.vertex_darts(v).map(|d| mesh.map.dest(d)).filter(|&x| x != w).collect();
                         let avg = ns.iter().map(|&x| pos(&mesh, x)).sum::<glam::DVec3>() / ns.len() as f64;
@@ -276,9 +276,9 @@ proptest! {
                     }
                 }
                 Op::SplitEdge(h) => {
-                    if let Ok(p) = tri::mesh::split_edge(&mut mesh, h) {
+                    if let Ok(p) = tri::mesh_split_edge(&mut mesh, h) {
                         let (a, b) = (before.map.origin(h), before.map.dest(h));
-                        prop_assert_eq!(pos(&mesh, p.record.vertex), (pos(&before, a) + pos(&before, b)) * 0.5);
+                        prop_assert_eq!(pos(&mesh, p.record.created()), (pos(&before, a) + pos(&before, b)) * 0.5);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }
@@ -339,8 +339,8 @@ fn split_collapse_round_trips_on_the_regular_torus() {
                 continue;
             };
             // Valence 6 split along d1, d2: w gets k_w + 3, v gets k_v + 3, k_w + k_v = 4.
-            assert_eq!(m.valence(w) + m.valence(rec.vertex), 6 + 4);
-            tri::collapse(&mut m, rec.edge).unwrap();
+            assert_eq!(m.valence(w) + m.valence(rec.created()), 6 + 4);
+            tri::collapse_edge(&mut m, rec.edge()).unwrap();
             assert_eq!(CanonicalCode::of(&m), code);
         }
     }
@@ -351,16 +351,16 @@ fn split_collapse_round_trips_on_the_regular_torus() {
         .chain(darts.iter().map(|d| d.twin()).collect::<Vec<_>>().iter())
     {
         let mut m = map.clone();
-        let rec = tri::collapse(&mut m, h).unwrap();
-        assert_eq!(m.valence(rec.kept), 8);
+        let rec = tri::collapse_edge(&mut m, h).unwrap();
+        assert_eq!(m.valence(rec.kept()), 8);
         let h1 = map.next(h);
         let t2 = map.next(map.next(h.twin()));
         tri::split_vertex(&mut m, h1, t2.twin()).unwrap();
         assert_eq!(CanonicalCode::of(&m), code);
         // Flip twice: the same map up to isomorphism.
         let mut f = map.clone();
-        tri::flip(&mut f, h).unwrap();
-        tri::flip(&mut f, h).unwrap();
+        tri::flip_edge(&mut f, h).unwrap();
+        tri::flip_edge(&mut f, h).unwrap();
         assert_eq!(CanonicalCode::of(&f), code);
     }
 }

@@ -287,7 +287,7 @@ pub fn operators() -> Vec<Property> {
 /// use zipmesh::campaign::{self, undo_property, Config};
 /// use zipmesh::ops::tri;
 /// // The kernel's own triangle flip passes; plug in your operator the same way.
-/// let p = undo_property("my-flip", 3, |map, d| tri::flip(map, d));
+/// let p = undo_property("my-flip", 3, |map, d| tri::flip_edge(map, d));
 /// let report = campaign::run(&Config { cases: 10, max_faces: 300, ..Config::default() }, &[p]);
 /// assert!(report.passed());
 /// assert!(report.rows[0].checks > 0);
@@ -745,8 +745,8 @@ fn tri_flip(case: &Case) -> Outcome {
         let d = before.origin(before.next(before.next(t)));
         let vals: Vec<usize> = [a, b, c, d].iter().map(|&x| before.valence(x)).collect();
         let counts = vef(before);
-        let can = tri::can_flip(work, h);
-        let res = tri::flip(work, h);
+        let can = tri::can_flip_edge(work, h);
+        let res = tri::flip_edge(work, h);
         settle(before, work, can, res, |m| {
             deltas(counts, m, [0, 0, 0])?;
             valence_is(m, a, vals[0].saturating_sub(1), "end a")?;
@@ -772,8 +772,8 @@ fn tri_collapse(case: &Case) -> Outcome {
         let vc = c.map(|x| before.valence(x));
         let vd = d.map(|x| before.valence(x));
         let counts = vef(before);
-        let can = tri::can_collapse(work, h);
-        let res = tri::collapse(work, h);
+        let can = tri::can_collapse_edge(work, h);
+        let res = tri::collapse_edge(work, h);
         settle(before, work, can, res, |m| {
             if interior {
                 deltas(counts, m, [-1, -3, -2])?;

@@ -160,3 +160,54 @@ impl Map {
         self.free_faces.push(f.0);
     }
 }
+
+/// The operators' writes: one entry of one array each. Callers have checked that the slots
+/// are in range (live, or just allocated); the writes do not keep any axiom by themselves.
+impl Map {
+    /// Sets `next(d) = n`.
+    #[inline]
+    pub(crate) fn set_next(&mut self, d: Dart, n: Dart) {
+        self.next[d.index()] = n.0;
+    }
+
+    /// Sets `origin(d) = v`.
+    #[inline]
+    pub(crate) fn set_origin(&mut self, d: Dart, v: Vert) {
+        self.vert[d.index()] = v.0;
+    }
+
+    /// Sets `face(d) = f` (`None`: a boundary dart).
+    #[inline]
+    pub(crate) fn set_face(&mut self, d: Dart, f: impl Into<Option<Face>>) {
+        self.face[d.index()] = f.into().map_or(NONE, |f| f.0);
+    }
+
+    /// Sets all three fields of dart `d`.
+    #[inline]
+    pub(crate) fn set_dart(
+        &mut self,
+        d: Dart,
+        next: Dart,
+        origin: Vert,
+        f: impl Into<Option<Face>>,
+    ) {
+        self.set_next(d, next);
+        self.set_origin(d, origin);
+        self.set_face(d, f);
+    }
+
+    /// Sets the record of vertex `v` to `d`.
+    #[inline]
+    pub(crate) fn set_vertex_dart(&mut self, v: Vert, d: Dart) {
+        self.vdart[v.index()] = d.0;
+    }
+
+    /// Sets the record of face `f` to `d` (nothing for a boundary loop: `None`, or the
+    /// absent face `Face(NONE)` of a record).
+    #[inline]
+    pub(crate) fn set_face_dart(&mut self, f: impl Into<Option<Face>>, d: Dart) {
+        if let Some(f) = f.into().filter(|f| f.0 != NONE) {
+            self.fdart[f.index()] = d.0;
+        }
+    }
+}

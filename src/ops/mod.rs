@@ -14,10 +14,29 @@
 
 use core::fmt;
 
+mod guard;
 pub mod quad;
+mod slots;
 pub mod tri;
 
-/// Why an operator refuses. Each variant's documentation says which rule it enforces.
+/// Why an operator refuses, or why an undo does not fit. Each variant's documentation says
+/// which rule it enforces. One taxonomy for both families, in five groups:
+///
+/// * **Argument errors** (the call itself is wrong): [`Refusal::DeadHandle`],
+///   [`Refusal::BadArguments`].
+/// * **Rules shared by both families** (the result would not be a mesh the operators
+///   accept): [`Refusal::Boundary`], [`Refusal::WrongDegree`], [`Refusal::FaceTooSmall`],
+///   [`Refusal::ValenceTooLow`], [`Refusal::MultiEdge`], [`Refusal::Loop`].
+/// * **Quad only** ([`quad`]): [`Refusal::CornersCoincide`], [`Refusal::BoundaryPinch`],
+///   [`Refusal::WrongValence`], [`Refusal::SameFace`].
+/// * **Triangle only** ([`tri`]): [`Refusal::LinkCondition`],
+///   [`Refusal::DegenerateTriangle`].
+/// * **Record errors** (from `undo`, never from an operator): [`Refusal::StaleRecord`]. Every
+///   undo runs its record's checks in order (one mechanism for every record, see
+///   `ops/guard.rs`); the first that fails makes the undo refuse with the map unchanged.
+///   The checks are structural (the elements the record names are as its operation left
+///   them, the slots it gives back are where it left them), so a record that passes them
+///   restores a valid map even when it comes from another map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Refusal {

@@ -93,7 +93,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             add(&mut want, b, -1);
             add(&mut want, c, 1);
             add(&mut want, d, 1);
-            assert_eq!(r.dart, h);
+            assert_eq!(r.dart(), h);
             assert_eq!(
                 (after.origin(h), after.dest(h)),
                 (d, c),
@@ -106,7 +106,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             let has_l = before.face(h).is_some();
             let has_r = before.face(h.twin()).is_some();
             let interior = has_l && has_r;
-            assert_eq!((r.kept, r.removed), (u, v));
+            assert_eq!((r.kept(), r.removed()), (u, v));
             want[u.index()] = Some(val(u) + val(v) - if interior { 4 } else { 3 });
             want[v.index()] = None;
             dead_verts.push(v);
@@ -139,7 +139,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             let kept = arc(d1, d2);
             let moved = arc(d2, d1);
             assert_eq!(kept.len() + moved.len() + 2, val(w) as usize);
-            let v = r.vertex;
+            let v = r.created();
             assert!(
                 !before.is_live_vertex(v),
                 "the new vertex reused a live slot"
@@ -149,7 +149,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             want[w.index()] = Some(kept.len() as i64 + 3);
             add(&mut want, a, 1);
             add(&mut want, b, 1);
-            assert_eq!((after.origin(r.edge), after.dest(r.edge)), (v, w));
+            assert_eq!((after.origin(r.edge()), after.dest(r.edge())), (v, w));
             for &x in &moved {
                 assert_eq!(after.origin(x), v, "{op:?}: moved dart {x:?}");
             }
@@ -158,15 +158,15 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             }
             // The new triangles (v, w, a) and (w, v, b).
             let corners = |d: Dart| [after.origin(d), after.dest(d), apex(after, d)];
-            assert_eq!(corners(r.edge), [v, w, a]);
-            assert_eq!(corners(r.edge.twin()), [w, v, b]);
+            assert_eq!(corners(r.edge()), [v, w, a]);
+            assert_eq!(corners(r.edge().twin()), [w, v, b]);
             dc = [1, 3, 2];
         }
         (Op::SplitEdge(h), Rec::SplitEdge(r)) => {
             let (a, b) = (before.origin(h), before.dest(h));
             let has_l = before.face(h).is_some();
             let has_r = before.face(h.twin()).is_some();
-            let m = r.vertex;
+            let m = r.created();
             assert!(
                 !before.is_live_vertex(m),
                 "the new vertex reused a live slot"
@@ -179,7 +179,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
                 add(&mut want, apex(before, h.twin()), 1);
             }
             assert_eq!((after.origin(h), after.dest(h)), (a, m));
-            assert_eq!((after.origin(r.dart), after.dest(r.dart)), (m, b));
+            assert_eq!((after.origin(r.dart()), after.dest(r.dart())), (m, b));
             dc = if has_l && has_r { [1, 3, 2] } else { [1, 2, 1] };
         }
         _ => unreachable!("record kind does not match the operator"),
@@ -187,7 +187,7 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
     // The valence minimum: no vertex is newly left below it (3 inside, 2 on the boundary):
     // every vertex that is new, that lost darts, or that is the kept end of a collapse.
     let kept = match rec {
-        Rec::Collapse(r) => Some(r.kept),
+        Rec::Collapse(r) => Some(r.kept()),
         _ => None,
     };
     for v in after.vertices() {
@@ -308,7 +308,7 @@ pub fn inverse(before: &Map, after: &Map, op: Op, rec: &Rec) {
             let w = before.origin(d1);
             let (a, b) = (before.dest(d1), before.dest(d2));
             let ok = [w, a, b].iter().all(|&x| meets_minimum(before, x));
-            (Op::Collapse(r.edge), ok)
+            (Op::Collapse(r.edge()), ok)
         }
         (Op::SplitEdge(h), _) => {
             // The collapse lowers a (kept), c and d back: promised when they meet the minimum.

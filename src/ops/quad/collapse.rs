@@ -11,6 +11,7 @@ use super::{
     valence_at_most_2, Neighbours, Slots,
 };
 use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
 /// The smallest valence [`split_high_valence`] splits.
@@ -38,7 +39,7 @@ fn arc(map: &Map, from: Dart, to: Dart, mut visit: impl FnMut(Dart)) -> Result<D
 
 /// What a quad collapse needs, found by its check.
 #[derive(Clone, Copy, Debug)]
-struct CollapsePlan {
+pub(super) struct CollapsePlan {
     h: [Dart; 4],
     /// a, b, c, d.
     v: [Vert; 4],
@@ -208,10 +209,7 @@ pub fn collapse_quad(map: &mut Map, d: Dart) -> Result<QuadCollapse, Refusal> {
         ],
     };
     collapse_raw(map, &p);
-    map.free_edge(h1);
-    map.free_edge(h3);
-    map.free_vert(p.v[2]);
-    map.free_face(face);
+    Slots::deleted(&[h1, h3], p.v[2], &[face]).free(map);
     Ok(rec)
 }
 
@@ -297,26 +295,12 @@ impl QuadCollapse {
     /// assert_eq!(r.undo(&mut map), Err(Refusal::StaleRecord));
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [h0, h1, h2, h3] = self.h;
-        let [a, b, c, d] = self.v;
-        if !map.is_live_dart(h0)
-            || !map.is_live_dart(h2)
-            || map.origin(h0) != a
-            || map.origin(h2) != a
-            || map.dest(h0) != b
-            || map.dest(h2) != d
-            || map.is_live_vertex(c)
-            || map.is_live_face(self.face)
-            || h1.index() >= map.dart_slots()
-            || h3.index() >= map.dart_slots()
-            || c.index() >= map.vertex_slots()
-            || self.face.index() >= map.face_slots()
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        let plan = plan_split(map, h0, h2).map_err(|_| Refusal::StaleRecord)?;
-        Slots::reclaim(map, [h1, h3], c, self.face)?;
-        split_raw(map, &plan, h1, h3, c, self.face);
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let plan = plan.ok_or(Refusal::StaleRecord)?;
+        let [_, h1, _, h3] = self.h;
+        self.deleted().reclaim(map)?;
+        split_raw(map, &plan, h1, h3, self.v[2], self.face);
         for (v, old) in self.v.into_iter().zip(self.old_vdart) {
             restore_vdart(map, v, old);
         }
@@ -325,11 +309,46 @@ impl QuadCollapse {
         restore_fdart(map, self.faces[1], self.old_fdart[2]);
         Ok(())
     }
+
+    /// The slots the collapse freed, in its order: the edges of `h1`, `h3`, `c`, the quad.
+    fn deleted(&self) -> Slots {
+        Slots::deleted(&[self.h[1], self.h[3]], self.v[2], &[self.face])
+    }
+
+    /// The staleness checks of [`QuadCollapse::undo`], in order, and the plan of the split
+    /// it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<SplitPlan>) {
+        let [h0, h1, h2, h3] = self.h;
+        let [a, b, c, d] = self.v;
+        let g = Guard::new()
+            .check("removed vertex in range", || c.index() < map.vertex_slots())
+            .check("face in range", || self.face.index() < map.face_slots())
+            .check("h1 in range", || h1.index() < map.dart_slots())
+            .check("h3 in range", || h3.index() < map.dart_slots())
+            .check("h0 live", || map.is_live_dart(h0))
+            .check("h2 live", || map.is_live_dart(h2))
+            .check("h0 leaves a", || map.origin(h0) == a)
+            .check("h2 leaves a", || map.origin(h2) == a)
+            .check("h0 ends at b", || map.dest(h0) == b)
+            .check("h2 ends at d", || map.dest(h2) == d)
+            .check("removed vertex dead", || !map.is_live_vertex(c))
+            .check("face dead", || !map.is_live_face(self.face));
+        if g.failed().is_some() {
+            return (g, None);
+        }
+        let plan = plan_split(map, h0, h2).ok();
+        let g = g
+            .check("split applies", || plan.is_some())
+            .check("freed slots on the free lists", || {
+                self.deleted().on_free_lists(map)
+            });
+        (g, plan)
+    }
 }
 
 /// What a vertex split needs, found by its check.
 #[derive(Clone, Copy, Debug)]
-struct SplitPlan {
+pub(super) struct SplitPlan {
     w: Vert,
     s: [Dart; 2],
     /// The clockwise predecessors of `s[0]` and `s[1]` around `w`.
@@ -499,12 +518,12 @@ fn split_with_plan(map: &mut Map, p: &SplitPlan) -> VertexSplit {
     let faces = [map.face(h0), map.face(h2)];
     let old_fdart = faces.map(|f| fdart_of(map, f));
     let old_vdart = [p.w, b, d].map(|v| map.vertex_dart(v));
-    let slots = Slots::alloc(map);
-    let [h1, h3] = slots.edges;
-    split_raw(map, p, h1, h3, slots.vert, slots.face);
+    let slots = Slots::alloc(map, 2, 1);
+    let [h1, h3] = [slots.edge(0), slots.edge(1)];
+    split_raw(map, p, h1, h3, slots.vert(), slots.face(0));
     VertexSplit {
         h: [h0, h1, h2, h3],
-        v: [p.w, b, slots.vert, d],
+        v: [p.w, b, slots.vert(), d],
         slots,
         faces,
         old_vdart,
@@ -568,7 +587,7 @@ impl VertexSplit {
     /// assert_eq!(map.face(s1), Some(r.face()));
     /// ```
     pub fn face(&self) -> Face {
-        self.slots.face
+        self.slots.face(0)
     }
 
     /// The new quad's darts counter-clockwise from `s1`: `[s1, a→w', s2, b→w]`; the second
@@ -607,14 +626,9 @@ impl VertexSplit {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [h0, ..] = self.h;
-        let plan = match plan_collapse(map, h0) {
-            Ok(p) if p.h == self.h && p.v == self.v && map.face(h0) == Some(self.slots.face) => p,
-            _ => return Err(Refusal::StaleRecord),
-        };
-        if !self.slots.releasable(map) {
-            return Err(Refusal::StaleRecord);
-        }
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let plan = plan.ok_or(Refusal::StaleRecord)?;
         collapse_raw(map, &plan);
         self.slots.release(map);
         let [w, a, _, b] = self.v;
@@ -624,6 +638,21 @@ impl VertexSplit {
         restore_fdart(map, self.faces[0], self.old_fdart[0]);
         restore_fdart(map, self.faces[1], self.old_fdart[1]);
         Ok(())
+    }
+
+    /// The staleness checks of [`VertexSplit::undo`], in order, and the plan of the
+    /// collapse it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<CollapsePlan>) {
+        let plan = plan_collapse(map, self.h[0]).ok();
+        let g = Guard::new()
+            .check("collapse applies", || plan.is_some())
+            .check("same quad", || plan.is_some_and(|p| p.h == self.h))
+            .check("same corners", || plan.is_some_and(|p| p.v == self.v))
+            .check("same face", || {
+                map.face(self.h[0]) == Some(self.slots.face(0))
+            })
+            .check("slots releasable", || self.slots.releasable(map));
+        (g, plan)
     }
 }
 

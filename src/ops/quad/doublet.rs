@@ -7,6 +7,7 @@
 
 use super::{fdart_of, quad_of, replace_vdart, restore_fdart, restore_vdart, Slots};
 use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
 /// Whether the vertices are pairwise distinct.
@@ -16,7 +17,7 @@ fn distinct<const N: usize>(v: [Vert; N]) -> bool {
 
 /// What a removal needs: the two quads from `x` and from `y`.
 #[derive(Clone, Copy, Debug)]
-struct RemovalPlan {
+pub(super) struct RemovalPlan {
     qx: [Dart; 4],
     qy: [Dart; 4],
 }
@@ -139,10 +140,7 @@ pub fn remove_valence2(map: &mut Map, x: Dart) -> Result<Valence2Removal, Refusa
         old_fdart: [map.face_dart(f), map.face_dart(g)],
     };
     removal_raw(map, &p);
-    map.free_edge(x);
-    map.free_edge(y);
-    map.free_vert(v);
-    map.free_face(g);
+    Slots::deleted(&[x, y], v, &[g]).free(map);
     Ok(rec)
 }
 
@@ -207,32 +205,42 @@ impl Valence2Removal {
     /// assert_eq!(rem.undo(&mut map), Err(Refusal::StaleRecord));
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.guard(map).result()?;
         let [x, x1, x2, _] = self.qx;
         let [y, y1, y2, _] = self.qy;
-        let merged = [x1, x2, y1, y2];
         let [v, ..] = self.v;
-        if x.index() >= map.dart_slots()
-            || y.index() >= map.dart_slots()
-            || v.index() >= map.vertex_slots()
-            || self.faces[1].index() >= map.face_slots()
-            || map.is_live_dart(x)
-            || map.is_live_dart(y)
-            || map.face(x1) != Some(self.faces[0])
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        match plan_insertion(map, x1) {
-            Ok(q) if q == merged => {}
-            _ => return Err(Refusal::StaleRecord),
-        }
-        Slots::reclaim(map, [x, y], v, self.faces[1])?;
-        insertion_raw(map, merged, x, y, v, self.faces[1]);
+        Slots::deleted(&[x, y], v, &[self.faces[1]]).reclaim(map)?;
+        insertion_raw(map, [x1, x2, y1, y2], x, y, v, self.faces[1]);
         for (u, old) in self.v.into_iter().zip(self.old_vdart) {
             restore_vdart(map, u, old);
         }
         restore_fdart(map, Some(self.faces[0]), self.old_fdart[0]);
         restore_fdart(map, Some(self.faces[1]), self.old_fdart[1]);
         Ok(())
+    }
+
+    /// The staleness checks of [`Valence2Removal::undo`], in order.
+    pub(super) fn guard(&self, map: &Map) -> Guard {
+        let [x, x1, x2, _] = self.qx;
+        let [y, y1, y2, _] = self.qy;
+        let [v, ..] = self.v;
+        let g = Guard::new()
+            .check("x in range", || x.index() < map.dart_slots())
+            .check("y in range", || y.index() < map.dart_slots())
+            .check("removed vertex in range", || v.index() < map.vertex_slots())
+            .check("face in range", || self.faces[1].index() < map.face_slots())
+            .check("x dead", || !map.is_live_dart(x))
+            .check("y dead", || !map.is_live_dart(y))
+            .check("merged face kept", || map.face(x1) == Some(self.faces[0]));
+        if g.failed().is_some() {
+            return g;
+        }
+        let plan = plan_insertion(map, x1);
+        g.check("insertion applies", || plan.is_ok())
+            .check("same quad", || plan == Ok([x1, x2, y1, y2]))
+            .check("freed slots on the free lists", || {
+                Slots::deleted(&[x, y], v, &[self.faces[1]]).on_free_lists(map)
+            })
     }
 }
 
@@ -324,9 +332,9 @@ pub fn insert_doublet(map: &mut Map, d: Dart) -> Result<DoubletInsertion, Refusa
     let (pv, qv) = (map.origin(q[0]), map.origin(q[2]));
     let old_vdart = [map.vertex_dart(pv), map.vertex_dart(qv)];
     let old_fdart = fdart_of(map, Some(f));
-    let slots = Slots::alloc(map);
-    let [x, y] = slots.edges;
-    insertion_raw(map, q, x, y, slots.vert, slots.face);
+    let slots = Slots::alloc(map, 2, 1);
+    let [x, y] = [slots.edge(0), slots.edge(1)];
+    insertion_raw(map, q, x, y, slots.vert(), slots.face(0));
     Ok(DoubletInsertion {
         q,
         slots,
@@ -358,7 +366,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.valence(r.vertex()), 2);
     /// ```
     pub fn vertex(&self) -> Vert {
-        self.slots.vert
+        self.slots.vert()
     }
 
     /// The new face (the half without `d`).
@@ -372,7 +380,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.degree(r.face()), 4);
     /// ```
     pub fn face(&self) -> Face {
-        self.slots.face
+        self.slots.face(0)
     }
 
     /// The new darts leaving the new vertex: to `p` (in the old face) and to `q` (in the new
@@ -387,7 +395,7 @@ impl DoubletInsertion {
     /// assert_eq!(map.dest(to_p), map.origin(d));
     /// ```
     pub fn darts(&self) -> [Dart; 2] {
-        self.slots.edges
+        [self.slots.edge(0), self.slots.edge(1)]
     }
 
     /// Undoes the insertion: the valence-2 removal of the new vertex keeping the old face,
@@ -406,22 +414,9 @@ impl DoubletInsertion {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let [x, y] = self.slots.edges;
-        let [x1, x2, y1, y2] = self.q;
-        let plan = match plan_removal(map, x) {
-            Ok(p)
-                if p.qx == [x, x1, x2, y.twin()]
-                    && p.qy == [y, y1, y2, x.twin()]
-                    && map.face(x) == Some(self.face)
-                    && map.face(y) == Some(self.slots.face) =>
-            {
-                p
-            }
-            _ => return Err(Refusal::StaleRecord),
-        };
-        if !self.slots.releasable(map) {
-            return Err(Refusal::StaleRecord);
-        }
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let plan = plan.ok_or(Refusal::StaleRecord)?;
         removal_raw(map, &plan);
         self.slots.release(map);
         for (u, old) in self.ends.into_iter().zip(self.old_vdart) {
@@ -429,5 +424,25 @@ impl DoubletInsertion {
         }
         restore_fdart(map, Some(self.face), self.old_fdart);
         Ok(())
+    }
+
+    /// The staleness checks of [`DoubletInsertion::undo`], in order, and the plan of the
+    /// removal it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<RemovalPlan>) {
+        let [x, y] = self.darts();
+        let [x1, x2, y1, y2] = self.q;
+        let plan = plan_removal(map, x).ok();
+        let g = Guard::new()
+            .check("removal applies", || plan.is_some())
+            .check("same quad of x", || {
+                plan.is_some_and(|p| p.qx == [x, x1, x2, y.twin()])
+            })
+            .check("same quad of y", || {
+                plan.is_some_and(|p| p.qy == [y, y1, y2, x.twin()])
+            })
+            .check("same face of x", || map.face(x) == Some(self.face))
+            .check("same face of y", || map.face(y) == Some(self.slots.face(0)))
+            .check("slots releasable", || self.slots.releasable(map));
+        (g, plan)
     }
 }

@@ -38,6 +38,7 @@
 //! assert_eq!(map, before);
 //! ```
 
+use super::slots::Slots;
 use super::Refusal;
 use crate::map::{Dart, Face, Map, Vert, NONE};
 use alloc::vec::Vec;
@@ -346,99 +347,6 @@ fn replace_fdart(map: &mut Map, f: u32, from: Dart, to: Dart) {
 fn replace_vdart(map: &mut Map, v: Vert, from: Dart, to: Dart) {
     if map.vdart[v.index()] == from.0 {
         map.vdart[v.index()] = to.0;
-    }
-}
-
-/// Slots for the elements an operator creates: taken from the free lists (last-in first-out)
-/// or appended; `appended` says which, so that undo can give them back exactly.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Slots {
-    /// Two fresh edges (their even darts), a vertex and a face.
-    edges: [Dart; 2],
-    vert: Vert,
-    face: Face,
-    /// Per element (edge 0, edge 1, vertex, face): appended rather than reused.
-    appended: [bool; 4],
-}
-
-impl Slots {
-    /// Allocates two edges, then a vertex, then a face.
-    fn alloc(map: &mut Map) -> Slots {
-        let mut appended = [false; 4];
-        appended[0] = map.free_edges.is_empty();
-        let e0 = map.alloc_edge();
-        appended[1] = map.free_edges.is_empty();
-        let e1 = map.alloc_edge();
-        appended[2] = map.free_verts.is_empty();
-        let vert = map.alloc_vert();
-        appended[3] = map.free_faces.is_empty();
-        let face = map.alloc_face();
-        Slots {
-            edges: [e0, e1],
-            vert,
-            face,
-            appended,
-        }
-    }
-
-    /// Takes back exactly the given slots from the tops of the free lists (the state a
-    /// deleting operator left them in), or refuses if they are not there.
-    fn reclaim(map: &mut Map, edges: [Dart; 2], vert: Vert, face: Face) -> Result<(), Refusal> {
-        let fe = &map.free_edges;
-        let n = fe.len();
-        if n < 2
-            || fe[n - 2] as usize != edges[0].edge().index()
-            || fe[n - 1] as usize != edges[1].edge().index()
-            || map.free_verts.last() != Some(&vert.0)
-            || map.free_faces.last() != Some(&face.0)
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        map.free_edges.truncate(n - 2);
-        map.free_verts.pop();
-        map.free_faces.pop();
-        Ok(())
-    }
-
-    /// Whether the slots can be given back as `release` will: appended ones must be the
-    /// last slots of their arrays.
-    fn releasable(&self, map: &Map) -> bool {
-        let last_edge = map.next.len() / 2;
-        let e = [self.edges[0].edge().index(), self.edges[1].edge().index()];
-        let edges_ok = match (self.appended[0], self.appended[1]) {
-            (true, true) => e[0] + 2 == last_edge && e[1] + 1 == last_edge,
-            (false, true) => e[1] + 1 == last_edge,
-            (true, false) => e[0] + 1 == last_edge,
-            (false, false) => true,
-        };
-        edges_ok
-            && (!self.appended[2] || self.vert.index() + 1 == map.vdart.len())
-            && (!self.appended[3] || self.face.index() + 1 == map.fdart.len())
-    }
-
-    /// Frees the slots in reverse order of allocation: appended slots are cut off the arrays,
-    /// reused ones go back on the free lists, which restores both exactly.
-    fn release(&self, map: &mut Map) {
-        if self.appended[3] {
-            map.fdart.pop();
-        } else {
-            map.free_face(self.face);
-        }
-        if self.appended[2] {
-            map.vdart.pop();
-        } else {
-            map.free_vert(self.vert);
-        }
-        for i in [1, 0] {
-            if self.appended[i] {
-                let n = map.next.len() - 2;
-                map.next.truncate(n);
-                map.vert.truncate(n);
-                map.face.truncate(n);
-            } else {
-                map.free_edge(self.edges[i]);
-            }
-        }
     }
 }
 

@@ -8,6 +8,7 @@
 
 use super::{quad_of, replace_fdart, replace_vdart, restore_fdart, restore_vdart};
 use crate::map::{Dart, Face, Map, Vert};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
 /// The direction an edge rotation turns the edge (seen from the front, where faces are
@@ -36,7 +37,7 @@ impl Rotation {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct RotationPlan {
+pub(super) struct RotationPlan {
     h: [Dart; 4],
     t: [Dart; 4],
 }
@@ -243,18 +244,10 @@ impl EdgeRotation {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let back = self.dir.reverse();
-        let p = plan_rotation(map, self.h, back).map_err(|_| Refusal::StaleRecord)?;
-        // The reverse rotation's new ends must be the old ends.
-        let o = |d: Dart| map.origin(d);
-        let new_ends = match back {
-            Rotation::CounterClockwise => [o(p.t[2]), o(p.h[2])],
-            Rotation::Clockwise => [o(p.h[3]), o(p.t[3])],
-        };
-        if new_ends != self.ends || [map.face(self.h), map.face(self.h.twin())] != self.faces {
-            return Err(Refusal::StaleRecord);
-        }
-        rotation_raw(map, &p, back);
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let p = plan.ok_or(Refusal::StaleRecord)?;
+        rotation_raw(map, &p, self.dir.reverse());
         for (v, old) in self.ends.into_iter().zip(self.old_vdart) {
             restore_vdart(map, v, old);
         }
@@ -262,5 +255,25 @@ impl EdgeRotation {
             restore_fdart(map, f, old);
         }
         Ok(())
+    }
+
+    /// The staleness checks of [`EdgeRotation::undo`], in order, and the plan of the
+    /// reverse rotation it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<RotationPlan>) {
+        let back = self.dir.reverse();
+        let plan = plan_rotation(map, self.h, back).ok();
+        let o = |d: Dart| map.origin(d);
+        // The reverse rotation's new ends must be the old ends.
+        let new_ends = plan.map(|p| match back {
+            Rotation::CounterClockwise => [o(p.t[2]), o(p.h[2])],
+            Rotation::Clockwise => [o(p.h[3]), o(p.t[3])],
+        });
+        let g = Guard::new()
+            .check("reverse rotation applies", || plan.is_some())
+            .check("new ends are the old ends", || new_ends == Some(self.ends))
+            .check("same faces", || {
+                [map.face(self.h), map.face(self.h.twin())] == self.faces
+            });
+        (g, plan)
     }
 }

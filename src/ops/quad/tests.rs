@@ -663,3 +663,223 @@ fn mesh_wrappers_place_and_restore() {
     assert_eq!(t, t0);
     assert!(t.positions.iter().all(|p| *p != DVec3::splat(f64::NAN)));
 }
+
+// ---------------------------------------------------------------- undo guards, pinned
+//
+// Each check of each undo guard has an edit of the map after the operation that it alone
+// catches (it is the first check to fail): one more operator anywhere on the map, or, for
+// the checks no operator reaches (indices out of range, records that cannot arise), a raw
+// change of one array entry. Dropping or negating any check changes the set of names found.
+
+use crate::ops::guard::pin;
+use crate::ops::guard::Guard;
+use alloc::boxed::Box;
+use alloc::collections::BTreeSet;
+
+use pin::Edit;
+
+/// Every quad operator at every dart of `m` (splits at each dart and the dart two steps on).
+fn quad_ops(m: &Map) -> Vec<QuadOp> {
+    let mut ops = Vec::new();
+    for d in m.darts() {
+        ops.extend([
+            QuadOp::Collapse(d),
+            QuadOp::HighValence(d),
+            QuadOp::RemoveValence2(d),
+            QuadOp::InsertDoublet(d),
+            QuadOp::Rotate(d, Rotation::Clockwise),
+            QuadOp::Rotate(d, Rotation::CounterClockwise),
+            QuadOp::Split(d, m.rotate_cw(m.rotate_cw(d))),
+            QuadOp::Split(d, m.rotate_cw(d)),
+        ]);
+    }
+    ops
+}
+
+/// The names of the checks that catch one more operator anywhere, or one of the `raw` edits.
+fn caught_q(
+    after: &Map,
+    raw: Vec<Edit>,
+    reason: &dyn Fn(&Map) -> Option<&'static str>,
+    undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
+) -> BTreeSet<&'static str> {
+    let legit = pin::edits(quad_ops(after), QuadOp::apply);
+    pin::caught(after, &legit, &raw, reason, undo)
+}
+
+fn names(g: &Guard) -> Option<&'static str> {
+    g.failed()
+}
+
+fn set(n: &[&'static str]) -> BTreeSet<&'static str> {
+    n.iter().copied().collect()
+}
+
+/// Cuts the dart arrays off at `d` (so `d` and every later dart are out of range).
+fn cut_darts(m: &mut Map, d: Dart) {
+    m.next.truncate(d.index());
+    m.vert.truncate(d.index());
+    m.face.truncate(d.index());
+}
+
+#[test]
+fn quad_collapse_undo_guard_pinned() {
+    let base = gen::torus_grid(4, 4).map;
+    // A collapse whose first freed edge comes before the second (so each can be cut alone).
+    let (m, r) = base
+        .darts()
+        .find_map(|d| {
+            let mut m = base.clone();
+            let r = collapse_quad(&mut m, d).ok()?;
+            let n = m.free_edges.len();
+            (m.free_edges[n - 2] < m.free_edges[n - 1]).then_some((m, r))
+        })
+        .unwrap();
+    let n = m.free_edges.len();
+    let (h1, h3) = (Dart(2 * m.free_edges[n - 2]), Dart(2 * m.free_edges[n - 1]));
+    let [h0, h2] = r.merged_edges();
+    let (a, c, f) = (r.kept(), r.removed(), r.face());
+    let (b, d) = (m.dest(h0), m.dest(h2));
+    let other = m.vertex_darts(a).find(|&x| x != h0 && x != h2).unwrap();
+    let raw: Vec<Edit> = vec![
+        Box::new(move |m| m.vdart.truncate(c.index())),
+        Box::new(move |m| m.fdart.truncate(f.index())),
+        Box::new(move |m| cut_darts(m, h1)),
+        Box::new(move |m| cut_darts(m, h3)),
+        Box::new(move |m| m.next[h0.index()] = NONE),
+        Box::new(move |m| m.next[h2.index()] = NONE),
+        Box::new(move |m| m.vert[h0.index()] = b.0),
+        Box::new(move |m| m.vert[h2.index()] = b.0),
+        Box::new(move |m| m.vert[h0.twin().index()] = d.0),
+        Box::new(move |m| m.vert[h2.twin().index()] = b.0),
+        Box::new(move |m| m.vdart[c.index()] = 0),
+        Box::new(move |m| m.fdart[f.index()] = 0),
+        // A second edge a-b: the split refuses the multi-edge.
+        Box::new(move |m| m.vert[other.twin().index()] = b.0),
+    ];
+    let got = caught_q(&m, raw, &|m| names(&r.guard(m).0), &|m| r.undo(m));
+    let want = set(&[
+        "removed vertex in range",
+        "face in range",
+        "h1 in range",
+        "h3 in range",
+        "h0 live",
+        "h2 live",
+        "h0 leaves a",
+        "h2 leaves a",
+        "h0 ends at b",
+        "h2 ends at d",
+        "removed vertex dead",
+        "face dead",
+        "split applies",
+        "freed slots on the free lists",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn vertex_split_undo_guard_pinned() {
+    let mut m = gen::torus_grid(4, 4).map;
+    let s1 = m.vertex_dart(Vert(5));
+    let s2 = m.rotate_cw(m.rotate_cw(s1));
+    let r = split_vertex(&mut m, s1, s2).unwrap();
+    let [h0, ..] = r.quad();
+    let other = m.face(h0.twin()).unwrap();
+    let raw: Vec<Edit> = vec![
+        Box::new(move |m| m.next[h0.index()] = NONE),
+        Box::new(move |m| m.face[h0.index()] = other.0),
+    ];
+    let got = caught_q(&m, raw, &|m| names(&r.guard(m).0), &|m| r.undo(m));
+    let want = set(&[
+        "collapse applies",
+        "same quad",
+        "same corners",
+        "same face",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn valence2_removal_undo_guard_pinned() {
+    let base = gen::torus_grid(4, 4).map;
+    let (m, r) = base
+        .darts()
+        .find_map(|d| {
+            let mut m = base.clone();
+            let ins = insert_doublet(&mut m, d).ok()?;
+            let x = m.vertex_dart(ins.vertex());
+            let r = remove_valence2(&mut m, x).ok()?;
+            let n = m.free_edges.len();
+            (m.free_edges[n - 2] < m.free_edges[n - 1]).then_some((m, r))
+        })
+        .unwrap();
+    let n = m.free_edges.len();
+    let (x, y) = (Dart(2 * m.free_edges[n - 2]), Dart(2 * m.free_edges[n - 1]));
+    let (v, g) = (r.removed(), Face(*m.free_faces.last().unwrap()));
+    let kept = r.face();
+    let raw: Vec<Edit> = vec![
+        Box::new(move |m| cut_darts(m, x)),
+        Box::new(move |m| cut_darts(m, y)),
+        Box::new(move |m| m.vdart.truncate(v.index())),
+        Box::new(move |m| m.fdart.truncate(g.index())),
+        Box::new(move |m| m.next[x.index()] = 0),
+        Box::new(move |m| m.next[y.index()] = 0),
+        // Two equal corners in the merged quad: the insertion refuses.
+        Box::new(move |m| {
+            let q = m.face_dart(kept);
+            let (i, o) = (m.next(q).index(), m.origin(q).0);
+            m.vert[i] = o;
+        }),
+    ];
+    let got = caught_q(&m, raw, &|m| names(&r.guard(m)), &|m| r.undo(m));
+    let want = set(&[
+        "x in range",
+        "y in range",
+        "removed vertex in range",
+        "face in range",
+        "x dead",
+        "y dead",
+        "merged face kept",
+        "insertion applies",
+        "same quad",
+        "freed slots on the free lists",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn doublet_insertion_undo_guard_pinned() {
+    let mut m = gen::torus_grid(4, 4).map;
+    let r = insert_doublet(&mut m, Dart(0)).unwrap();
+    let [x, y] = r.darts();
+    let raw: Vec<Edit> = vec![
+        Box::new(move |m| m.face[x.index()] = 999),
+        Box::new(move |m| m.face[y.index()] = 999),
+    ];
+    let got = caught_q(&m, raw, &|m| names(&r.guard(m).0), &|m| r.undo(m));
+    let want = set(&[
+        "removal applies",
+        "same quad of x",
+        "same quad of y",
+        "same face of x",
+        "same face of y",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn edge_rotation_undo_guard_pinned() {
+    let mut m = gen::torus_grid(4, 4).map;
+    let r = rotate_edge(&mut m, Dart(0), Rotation::Clockwise).unwrap();
+    let h = r.dart();
+    let raw: Vec<Edit> = vec![Box::new(move |m| m.face[h.index()] = 999)];
+    let got = caught_q(&m, raw, &|m| names(&r.guard(m).0), &|m| r.undo(m));
+    let want = set(&[
+        "reverse rotation applies",
+        "new ends are the old ends",
+        "same faces",
+    ]);
+    assert_eq!(got, want);
+}

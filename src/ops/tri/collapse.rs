@@ -15,35 +15,85 @@
 //! A boundary edge has only one of L and R.
 
 use super::{
-    distinct_corners, fc, fresh_tail, gather, joined, min_valence, nx, on_boundary, org, prev_of,
-    release_edge, release_face, release_vert, rot, triangle, valence_at_least, Lens, Undo, SMALL,
+    gather, joined, min_valence, prev_of, sides, triangle, valence_at_least, Ends, Undo, SMALL,
 };
-use crate::map::{Dart, Map, Vert, NONE};
+use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
+use crate::ops::slots::Slots;
 use crate::ops::Refusal;
+
+/// An absent dart, vertex or face in a plan or a record (a boundary edge has one side only).
+const NO_DART: Dart = Dart(NONE);
+const NO_VERT: Vert = Vert(NONE);
+const NO_FACE: Face = Face(NONE);
+
+/// The face of `d` as a slot, [`NO_FACE`] for a boundary dart (the records keep faces so).
+#[inline]
+fn face_slot(map: &Map, d: Dart) -> Face {
+    map.face(d).unwrap_or(NO_FACE)
+}
 
 /// The darts and vertices of a collapse, found by [`plan`].
 #[derive(Clone, Copy, Debug)]
-struct Plan {
-    h: u32,
-    /// `h1`, `h2` of L, or `NONE` when `h` is a boundary dart.
-    h1: u32,
-    h2: u32,
-    /// `t1`, `t2` of R, or `NONE` when `twin(h)` is a boundary dart.
-    t1: u32,
-    t2: u32,
-    u: u32,
-    v: u32,
-    /// Apexes of L and R (`NONE` when absent).
-    c: u32,
-    d: u32,
+pub(super) struct Plan {
+    h: Dart,
+    /// `h1`, `h2` of L, or [`NO_DART`] when `h` is a boundary dart.
+    h1: Dart,
+    h2: Dart,
+    /// `t1`, `t2` of R, or [`NO_DART`] when `twin(h)` is a boundary dart.
+    t1: Dart,
+    t2: Dart,
+    u: Vert,
+    v: Vert,
+    /// Apexes of L and R ([`NO_VERT`] when absent).
+    c: Vert,
+    d: Vert,
     /// The moved darts: `count` darts clockwise from `first`; `last` is the dart just
     /// before `oh2` (or before `h` when there is no L) in the rotation of `v`.
-    first: u32,
+    first: Dart,
     count: u32,
-    last: u32,
+    last: Dart,
 }
 
-/// Finds the collapse's darts; with `policy`, also applies every rule of [`can_collapse`].
+impl Plan {
+    fn has_l(&self) -> bool {
+        self.h1 != NO_DART
+    }
+
+    fn has_r(&self) -> bool {
+        self.t1 != NO_DART
+    }
+
+    /// `twin(h2)` and `twin(t1)`, [`NO_DART`] for an absent side.
+    fn outer(&self) -> [Dart; 2] {
+        [
+            if self.has_l() {
+                self.h2.twin()
+            } else {
+                NO_DART
+            },
+            if self.has_r() {
+                self.t1.twin()
+            } else {
+                NO_DART
+            },
+        ]
+    }
+
+    /// The dart that takes the place of `x`: h1 that of twin(h2), t2 that of twin(t1).
+    fn replacement(&self, x: Dart) -> Dart {
+        let [oh2, ot1] = self.outer();
+        if x == oh2 && self.has_l() {
+            self.h1
+        } else if x == ot1 && self.has_r() {
+            self.t2
+        } else {
+            x
+        }
+    }
+}
+
+/// Finds the collapse's darts; with `policy`, also applies every rule of [`can_collapse_edge`].
 /// Without it (undoing a vertex split) only the rules that keep the map valid apply (proper
 /// triangles, not both ends on the boundary of an interior edge, distinct apexes).
 fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
@@ -51,62 +101,78 @@ fn plan(map: &Map, hd: Dart, policy: bool) -> Result<Plan, Refusal> {
 }
 
 /// [`plan`] with the limit of neighbours gathered on the stack.
-fn plan_with(map: &Map, hd: Dart, policy: bool, small: usize) -> Result<Plan, Refusal> {
-    if !map.is_live_dart(hd) {
+fn plan_with(map: &Map, h: Dart, policy: bool, small: usize) -> Result<Plan, Refusal> {
+    if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
-    let h = hd.0;
-    let t = h ^ 1;
-    let l = if fc(map, h) != NONE {
-        Some(triangle(map, h)?)
-    } else {
-        None
-    };
-    let r = if fc(map, t) != NONE {
-        Some(triangle(map, t)?)
-    } else {
-        None
-    };
-    if l.is_some_and(|x| !distinct_corners(map, x)) || r.is_some_and(|x| !distinct_corners(map, x))
-    {
-        return Err(Refusal::DegenerateTriangle);
-    }
-    let (v, u) = (org(map, h), org(map, t));
+    let t = h.twin();
+    let [l, r] = sides(map, h)?;
+    let (v, u) = (map.origin(h), map.origin(t));
     let interior = l.is_some() && r.is_some();
-    let (bu, bv) = (on_boundary(map, u), on_boundary(map, v));
+    let boundary = [map.is_boundary_vertex(u), map.is_boundary_vertex(v)];
     // These two rules keep the result a valid map, so they hold even without `policy`.
-    if interior && bu && bv {
+    if interior && boundary[0] && boundary[1] {
         return Err(Refusal::Boundary);
     }
-    let c = l.map_or(NONE, |x| org(map, x[2]));
-    let d = r.map_or(NONE, |x| org(map, x[2]));
+    let c = l.map_or(NO_VERT, |x| map.origin(x[2]));
+    let d = r.map_or(NO_VERT, |x| map.origin(x[2]));
     if interior && c == d {
         return Err(Refusal::LinkCondition);
     }
     // The rotation of v clockwise from h: h, [t1], moved darts, [twin(h2)], back to h.
     let start = r.map_or(h, |x| x[1]);
-    let stop = l.map_or(h, |x| x[2] ^ 1);
-    let first = rot(map, start);
+    let stop = l.map_or(h, |x| x[2].twin());
+    let first = map.rotate_cw(start);
     // The neighbours of u, when u has few; otherwise each candidate's rotation is walked
     // instead of u's, so that a growing u (repeated collapses into it) costs nothing more.
     let near_u = if policy {
-        gather(map, t, NONE, small)
+        gather(map, t, None, small)
     } else {
         None
     };
+    let link = policy.then_some((u, &near_u));
+    let (last, count) = moved_arc(map, [first, start, stop], link)?;
+    let pick = |x: Option<[Dart; 3]>, i: usize| x.map_or(NO_DART, |x| x[i]);
+    let p = Plan {
+        h,
+        h1: pick(l, 1),
+        h2: pick(l, 2),
+        t1: pick(r, 1),
+        t2: pick(r, 2),
+        u,
+        v,
+        c,
+        d,
+        first: if count > 0 { first } else { NO_DART },
+        count,
+        last,
+    };
+    if policy {
+        policy_rules(map, &p, boundary[0] || boundary[1], &near_u)?;
+    }
+    Ok(p)
+}
+
+/// Walks the moved darts of `v`, clockwise from `first` up to `stop`: returns the last one
+/// (`start` if there is none) and their number. With `link` (`u` and its gathered
+/// neighbours), also applies the vertex part of the link condition: a neighbour of v other
+/// than u, c, d must not be u nor a neighbour of u.
+fn moved_arc(
+    map: &Map,
+    [first, start, stop]: [Dart; 3],
+    link: Option<(Vert, &Option<Ends>)>,
+) -> Result<(Dart, u32), Refusal> {
     let (mut y, mut last, mut count) = (first, start, 0u32);
     while y != stop {
-        if count as usize > map.next.len() {
+        if count as usize > map.dart_slots() {
             // Unreachable in a valid map: the rotation of v holds `stop`.
             return Err(Refusal::StaleRecord);
         }
-        if policy {
-            // Vertex part of the link condition: a neighbour of v other than u, c, d must
-            // not be u nor a neighbour of u.
-            let x = org(map, y ^ 1);
-            let adjacent = match &near_u {
+        if let Some((u, near_u)) = link {
+            let x = map.dest(y);
+            let adjacent = match near_u {
                 Some(n) => n.contains(x),
-                None => joined(map, y ^ 1, u),
+                None => joined(map, y.twin(), u),
             };
             if x == u || adjacent {
                 return Err(Refusal::LinkCondition);
@@ -114,106 +180,98 @@ fn plan_with(map: &Map, hd: Dart, policy: bool, small: usize) -> Result<Plan, Re
         }
         last = y;
         count += 1;
-        y = rot(map, y);
+        y = map.rotate_cw(y);
     }
-    if policy {
-        if let (Some(l), true) = (l, interior) {
-            // Edge part: the edge c-d lies in a triangle with u and in one with v, as in a
-            // tetrahedron; collapsing would fold two triangles onto each other.
-            if third_corner(map, l[1] ^ 1) == d && third_corner(map, l[2] ^ 1) == d {
-                return Err(Refusal::LinkCondition);
-            }
+    Ok((last, count))
+}
+
+/// The rules of [`can_collapse_edge`] past the ones that keep the map valid: the edge part
+/// of the link condition and the valence minimum (`boundary`: u or v is on the boundary).
+fn policy_rules(map: &Map, p: &Plan, boundary: bool, near_u: &Option<Ends>) -> Result<(), Refusal> {
+    let interior = p.has_l() && p.has_r();
+    // Edge part: the edge c-d lies in a triangle with u and in one with v, as in a
+    // tetrahedron; collapsing would fold two triangles onto each other.
+    if interior && third_corner(map, p.h1.twin()) == p.d && third_corner(map, p.h2.twin()) == p.d {
+        return Err(Refusal::LinkCondition);
+    }
+    let dv = p.count as usize + 1 + usize::from(p.has_l()) + usize::from(p.has_r());
+    let loss = if interior { 4 } else { 3 };
+    let need_u = (min_valence(boundary) + loss).saturating_sub(dv);
+    let enough = match near_u {
+        Some(n) => n.len() >= need_u,
+        None => valence_at_least(map, p.h.twin(), need_u),
+    };
+    if !enough {
+        return Err(Refusal::ValenceTooLow);
+    }
+    for apex in [p.h2, p.t2] {
+        if apex == NO_DART {
+            continue;
         }
-        let dv = count as usize + 1 + usize::from(l.is_some()) + usize::from(r.is_some());
-        let loss = if interior { 4 } else { 3 };
-        let need_u = (min_valence(bu || bv) + loss).saturating_sub(dv);
-        let enough = match &near_u {
-            Some(n) => n.len() >= need_u,
-            None => valence_at_least(map, t, need_u),
-        };
-        if !enough {
+        let need = min_valence(map.is_boundary_vertex(map.origin(apex))) + 1;
+        if !valence_at_least(map, apex, need) {
             return Err(Refusal::ValenceTooLow);
         }
-        for apex in [l.map(|x| x[2]), r.map(|x| x[2])].into_iter().flatten() {
-            let need = min_valence(on_boundary(map, org(map, apex))) + 1;
-            if !valence_at_least(map, apex, need) {
-                return Err(Refusal::ValenceTooLow);
-            }
-        }
     }
-    Ok(Plan {
-        h,
-        h1: l.map_or(NONE, |x| x[1]),
-        h2: l.map_or(NONE, |x| x[2]),
-        t1: r.map_or(NONE, |x| x[1]),
-        t2: r.map_or(NONE, |x| x[2]),
-        u,
-        v,
-        c,
-        d,
-        first: if count > 0 { first } else { NONE },
-        count,
-        last,
-    })
+    Ok(())
 }
 
 /// The face of `x` once the planned collapse is applied: h1 takes the face of twin(h2), t2
 /// that of twin(t1); every other surviving dart keeps its face.
-fn face_after_collapse(map: &Map, p: &Plan, x: u32) -> u32 {
-    if x == p.h1 && p.h1 != NONE {
-        fc(map, p.h2 ^ 1)
-    } else if x == p.t2 && p.t2 != NONE {
-        fc(map, p.t1 ^ 1)
+fn face_after_collapse(map: &Map, p: &Plan, x: Dart) -> Option<Face> {
+    if x == p.h1 && p.has_l() {
+        map.face(p.h2.twin())
+    } else if x == p.t2 && p.has_r() {
+        map.face(p.t1.twin())
     } else {
-        fc(map, x)
+        map.face(x)
     }
 }
 
 /// The corner opposite the edge of `x` in its face, if that face is a triangle.
-fn third_corner(map: &Map, x: u32) -> u32 {
-    if fc(map, x) == NONE {
-        return NONE;
+fn third_corner(map: &Map, x: Dart) -> Vert {
+    if map.face(x).is_none() {
+        return NO_VERT;
     }
-    triangle(map, x).map_or(NONE, |tr| org(map, tr[2]))
+    triangle(map, x).map_or(NO_VERT, |tr| map.origin(tr[2]))
 }
 
-/// Record of a [`collapse`]: the kept and removed vertices, and what the exact undo needs.
+/// Record of a [`collapse_edge`]: the kept and removed vertices, and what the exact undo needs.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri, Dart};
 /// let mut mesh = gen::random_triangle(200, 1, 0, 5);
-/// let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
+/// let h = mesh.map.darts().find(|&d| tri::can_collapse_edge(&mesh.map, d).is_ok()).unwrap();
 /// let (v, u) = (mesh.map.origin(h), mesh.map.dest(h));
-/// let rec = tri::collapse(&mut mesh.map, h).unwrap();
-/// assert_eq!((rec.kept, rec.removed), (u, v));
+/// let rec = tri::collapse_edge(&mut mesh.map, h).unwrap();
+/// assert_eq!((rec.kept(), rec.removed()), (u, v));
 /// assert!(!mesh.map.is_live_vertex(v));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct CollapseRecord {
-    /// The vertex that stays (`dest(h)`); it received every dart of the removed one.
-    pub kept: Vert,
-    /// The vertex that was removed (`origin(h)`); its slot is free.
-    pub removed: Vert,
-    /// `h, h1, h2, t1, t2` before the collapse (`NONE` for an absent side).
-    darts: [u32; 5],
+pub struct EdgeCollapse {
+    /// `dest(h)` and `origin(h)` (see [`EdgeCollapse::kept`], [`EdgeCollapse::removed`]).
+    kept: Vert,
+    removed: Vert,
+    /// `h, h1, h2, t1, t2` before the collapse ([`NO_DART`] for an absent side).
+    darts: [Dart; 5],
     /// Apexes c and d.
-    apex: [u32; 2],
+    apex: [Vert; 2],
     /// Faces L, R, and X, Z: the faces of `twin(h2)` and `twin(t1)` before.
-    faces: [u32; 4],
+    faces: [Face; 4],
     /// Every `next` entry rewritten in a surviving dart: (dart, old, new).
-    writes: [(u32, u32, u32); 5],
+    writes: [(Dart, Dart, Dart); 5],
     n_writes: u8,
     /// Old `next` of the removed darts `h, t, h2, twin h2, t1, twin t1`.
-    dead_next: [u32; 6],
+    dead_next: [Dart; 6],
     /// The moved darts: `count` clockwise from `first` in the restored rotation of v.
-    first: u32,
+    first: Dart,
     count: u32,
     /// Old vertex records of u, v, c, d and face records of L, R, X, Z.
-    old_vdart: [u32; 4],
-    old_fdart: [u32; 4],
+    old_vdart: [Dart; 4],
+    old_fdart: [Dart; 4],
 }
 
-/// Checks whether [`collapse`] applies to the dart `h`, without changing anything.
+/// Checks whether [`collapse_edge`] applies to the dart `h`, without changing anything.
 ///
 /// `h` runs from the vertex `v` that is removed to the vertex `u` that is kept. With `L =
 /// (v, u, c)` the triangle of `h` and `R = (u, v, d)` that of `twin(h)` (one of them absent
@@ -240,9 +298,9 @@ pub struct CollapseRecord {
 /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
 /// // A tetrahedron: every collapse fails the link condition.
 /// let tet = Map::from_polygons(4, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]]).unwrap();
-/// assert!(tet.darts().all(|d| tri::can_collapse(&tet, d) == Err(Refusal::LinkCondition)));
+/// assert!(tet.darts().all(|d| tri::can_collapse_edge(&tet, d) == Err(Refusal::LinkCondition)));
 /// ```
-pub fn can_collapse(map: &Map, h: Dart) -> Result<(), Refusal> {
+pub fn can_collapse_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
     plan(map, h, true).map(|_| ())
 }
 
@@ -263,195 +321,221 @@ pub fn can_collapse(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// Boundary edge: V -1, E -2, F -1; `d(u)` becomes `d(u) + d(v) - 3`; the apex loses one.
 /// Every other vertex keeps its valence. Handles of `u`, of the edges `u-c`, `u-d`, of every
 /// other element stay valid; `v`, L, R, the edge `u-v` and the edges `v-c`, `v-d` are freed.
-/// Refusals: see [`can_collapse`]; on refusal the map is unchanged. The inverse is
+/// Refusals: see [`can_collapse_edge`]; on refusal the map is unchanged. The inverse is
 /// [`split_vertex`] at `u`'s darts to `c` and `d` (interior edges) or, exactly,
-/// [`CollapseRecord::undo`].
+/// [`EdgeCollapse::undo`].
 ///
 /// ```
 /// use zipmesh::{gen, invariants::Counts, ops::tri};
 /// let mut map = gen::random_triangle(300, 1, 0, 1).map;
 /// let before = map.clone();
-/// let h = map.darts().find(|&d| tri::can_collapse(&map, d).is_ok()).unwrap();
-/// let rec = tri::collapse(&mut map, h).unwrap();
+/// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+/// let rec = tri::collapse_edge(&mut map, h).unwrap();
 /// assert!(map.check().is_ok());
 /// assert_eq!(Counts::of(&map).genus, 1);
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn collapse(map: &mut Map, h: Dart) -> Result<CollapseRecord, Refusal> {
+pub fn collapse_edge(map: &mut Map, h: Dart) -> Result<EdgeCollapse, Refusal> {
     let p = plan(map, h, true)?;
     Ok(apply(map, &p, None))
 }
 
-/// Applies a planned collapse. With `release`, the removed slots are un-allocated (undo of a
-/// vertex split that allocated them after `release`) instead of freed.
-fn apply(map: &mut Map, p: &Plan, release: Option<Lens>) -> CollapseRecord {
-    let (h, t) = (p.h, p.h ^ 1);
-    let has_l = p.h1 != NONE;
-    let has_r = p.t1 != NONE;
-    let oh2 = if has_l { p.h2 ^ 1 } else { NONE };
-    let ot1 = if has_r { p.t1 ^ 1 } else { NONE };
+/// Applies a planned collapse. With `created`, the removed slots are un-allocated (undo of
+/// the vertex split that allocated them) instead of freed.
+fn apply(map: &mut Map, p: &Plan, created: Option<&Slots>) -> EdgeCollapse {
+    let (writes, n_writes) = next_writes(map, p);
+    let rec = EdgeCollapse::before(map, p, writes, n_writes);
+    let bv = map.is_boundary_vertex(p.v);
+    rewire_collapse(map, p, &rec, bv);
+    match created {
+        None => rec.deleted().free(map),
+        Some(slots) => slots.release(map),
+    }
+    rec
+}
+
+/// The `next` entries a planned collapse rewrites, as (dart, old, new): the predecessors of
+/// the replaced and vanishing darts, and the replaced darts themselves (their successor goes
+/// to the replacement). At most five.
+fn next_writes(map: &Map, p: &Plan) -> ([(Dart, Dart, Dart); 5], usize) {
+    let t = p.h.twin();
+    let [oh2, ot1] = p.outer();
     // A boundary dart of the edge vanishes from its loop without replacement.
-    let vanish = if !has_l {
-        h
-    } else if !has_r {
+    let vanish = if !p.has_l() {
+        p.h
+    } else if !p.has_r() {
         t
     } else {
-        NONE
+        NO_DART
     };
-    // h1 takes the place of twin(h2), t2 that of twin(t1).
-    let repl = |x: u32| {
-        if x == oh2 && has_l {
-            p.h1
-        } else if x == ot1 && has_r {
-            p.t2
-        } else {
-            x
-        }
-    };
-    // Darts whose successor changes: the predecessors of the replaced and vanishing darts,
-    // and the replaced darts themselves (their successor goes to the replacement).
-    let mut pos = [NONE; 5];
+    let mut pos = [NO_DART; 5];
     let mut np = 0;
-    let mut push = |x: u32| {
+    let mut push = |x: Dart| {
         pos[np] = x;
         np += 1;
     };
-    push(p.last ^ 1); // prev(twin h2), or prev(h) when there is no L
-    if has_l {
+    push(p.last.twin()); // prev(twin h2), or prev(h) when there is no L
+    if p.has_l() {
         push(oh2);
     }
-    if has_r {
+    if p.has_r() {
         push(prev_of(map, ot1));
         push(ot1);
     }
     if vanish == t {
         push(prev_of(map, t));
     }
-    let mut writes = [(NONE, NONE, NONE); 5];
+    let mut writes = [(NO_DART, NO_DART, NO_DART); 5];
     let mut nw = 0;
     for &y in &pos[..np] {
         if y == vanish {
             continue; // its predecessor is in the list and skips it
         }
-        let mut s = nx(map, y);
+        let mut s = map.next(y);
         if s == vanish {
-            s = nx(map, s);
+            s = map.next(s);
         }
-        let cell = repl(y);
-        writes[nw] = (cell, nx(map, cell), repl(s));
+        let cell = p.replacement(y);
+        writes[nw] = (cell, map.next(cell), p.replacement(s));
         nw += 1;
     }
-    let dead = [h, t, p.h2, oh2, p.t1, ot1];
-    let mut dead_next = [NONE; 6];
-    for (k, &x) in dead.iter().enumerate() {
-        if x != NONE {
-            dead_next[k] = nx(map, x);
-        }
-    }
-    let (fl, fr) = (fc(map, h), fc(map, t));
-    let fx = if has_l { fc(map, oh2) } else { NONE };
-    let fz = if has_r { fc(map, ot1) } else { NONE };
-    let fd = |map: &Map, f: u32| {
-        if f == NONE {
-            NONE
-        } else {
-            map.fdart[f as usize]
-        }
-    };
-    let old_fdart = [fd(map, fl), fd(map, fr), fd(map, fx), fd(map, fz)];
-    let vd = |map: &Map, v: u32| {
-        if v == NONE {
-            NONE
-        } else {
-            map.vdart[v as usize]
-        }
-    };
-    let bv = on_boundary(map, p.v);
-    let old_vdart = [vd(map, p.u), vd(map, p.v), vd(map, p.c), vd(map, p.d)];
+    (writes, nw)
+}
 
-    // Rewrite. The moved darts first, while the rotation of v is intact.
+/// Rewrites the map for a planned collapse whose record `rec` was taken (`bv`: `v` is on
+/// the boundary); leaves the removed slots for the caller.
+fn rewire_collapse(map: &mut Map, p: &Plan, rec: &EdgeCollapse, bv: bool) {
+    let t = p.h.twin();
+    let [oh2, ot1] = p.outer();
+    let [.., fx, fz] = rec.faces;
+    let [ou, ov, oc, od] = rec.old_vdart;
+    // The moved darts first, while the rotation of v is intact.
     let mut y = p.first;
     for _ in 0..p.count {
-        map.vert[y as usize] = p.u;
-        y = rot(map, y);
+        map.set_origin(y, p.u);
+        y = map.rotate_cw(y);
     }
-    for &(cell, _, new) in &writes[..nw] {
-        map.next[cell as usize] = new;
+    for &(cell, _, new) in &rec.writes[..rec.n_writes as usize] {
+        map.set_next(cell, new);
     }
-    if has_l {
-        map.face[p.h1 as usize] = fx;
+    if p.has_l() {
+        map.set_face(p.h1, fx);
     }
-    if has_r {
-        map.face[p.t2 as usize] = fz;
+    if p.has_r() {
+        map.set_face(p.t2, fz);
     }
     // The kept vertex records its boundary dart if it has one: v's when v is on the
     // boundary and L exists (without R, u's own boundary dart t vanishes and v's is
     // next(t)); without L, v's boundary dart h vanishes and u keeps its own.
-    let new_u = if has_l && (!has_r || bv) {
-        repl(old_vdart[1])
-    } else if old_vdart[0] == t {
+    let new_u = if p.has_l() && (!p.has_r() || bv) {
+        p.replacement(ov)
+    } else if ou == t {
         p.h1
     } else {
-        old_vdart[0]
+        ou
     };
-    map.vdart[p.u as usize] = new_u;
-    if has_l && old_vdart[2] == p.h2 {
-        map.vdart[p.c as usize] = p.h1 ^ 1;
+    map.set_vertex_dart(p.u, new_u);
+    if p.has_l() && oc == p.h2 {
+        map.set_vertex_dart(p.c, p.h1.twin());
     }
-    if has_r && old_vdart[3] == ot1 {
-        map.vdart[p.d as usize] = p.t2;
+    if p.has_r() && od == ot1 {
+        map.set_vertex_dart(p.d, p.t2);
     }
-    if fx != NONE && old_fdart[2] == oh2 {
-        map.fdart[fx as usize] = p.h1;
+    if fx != NO_FACE && rec.old_fdart[2] == oh2 {
+        map.set_face_dart(fx, p.h1);
     }
-    if fz != NONE && old_fdart[3] == ot1 {
-        map.fdart[fz as usize] = p.t2;
-    }
-    match release {
-        None => {
-            map.free_edge(Dart(h));
-            if has_l {
-                map.free_edge(Dart(p.h2));
-            }
-            if has_r {
-                map.free_edge(Dart(p.t1));
-            }
-            map.free_vert(Vert(p.v));
-            if has_l {
-                map.free_face(crate::map::Face(fl));
-            }
-            if has_r {
-                map.free_face(crate::map::Face(fr));
-            }
-        }
-        Some(lens) => {
-            // Reverse of the split's allocation order: edges h, h2, t1, vertex, faces L, R.
-            release_face(map, fr, lens);
-            release_face(map, fl, lens);
-            release_vert(map, p.v, lens);
-            release_edge(map, p.t1, lens);
-            release_edge(map, p.h2, lens);
-            release_edge(map, h, lens);
-        }
-    }
-    CollapseRecord {
-        kept: Vert(p.u),
-        removed: Vert(p.v),
-        darts: [h, p.h1, p.h2, p.t1, p.t2],
-        apex: [p.c, p.d],
-        faces: [fl, fr, fx, fz],
-        writes,
-        n_writes: nw as u8,
-        dead_next,
-        first: p.first,
-        count: p.count,
-        old_vdart,
-        old_fdart,
+    if fz != NO_FACE && rec.old_fdart[3] == ot1 {
+        map.set_face_dart(fz, p.t2);
     }
 }
 
-impl CollapseRecord {
+impl EdgeCollapse {
+    /// The record of a planned collapse, taken before the map changes.
+    fn before(map: &Map, p: &Plan, writes: [(Dart, Dart, Dart); 5], nw: usize) -> EdgeCollapse {
+        let (h, t) = (p.h, p.h.twin());
+        let [oh2, ot1] = p.outer();
+        let dead = [h, t, p.h2, oh2, p.t1, ot1];
+        let (fl, fr) = (face_slot(map, h), face_slot(map, t));
+        let fx = if p.has_l() {
+            face_slot(map, oh2)
+        } else {
+            NO_FACE
+        };
+        let fz = if p.has_r() {
+            face_slot(map, ot1)
+        } else {
+            NO_FACE
+        };
+        let faces = [fl, fr, fx, fz];
+        EdgeCollapse {
+            kept: p.u,
+            removed: p.v,
+            darts: [h, p.h1, p.h2, p.t1, p.t2],
+            apex: [p.c, p.d],
+            faces,
+            writes,
+            n_writes: nw as u8,
+            dead_next: dead.map(|x| if x == NO_DART { NO_DART } else { map.next(x) }),
+            first: p.first,
+            count: p.count,
+            old_vdart: [p.u, p.v, p.c, p.d].map(|v| map.vertex_dart(v)),
+            old_fdart: faces.map(|f| map.face_dart(f)),
+        }
+    }
+
+    /// The slots the collapse frees, in the order it frees them: the edges of `h`, `h2`,
+    /// `t1`, the vertex `v`, the faces L, R (absent sides left out).
+    fn deleted(&self) -> Slots {
+        let [h, _, h2, t1, _] = self.darts;
+        let [fl, fr, ..] = self.faces;
+        let mut edges = [h; 3];
+        let mut ne = 1;
+        for x in [h2, t1] {
+            if x != NO_DART {
+                edges[ne] = x;
+                ne += 1;
+            }
+        }
+        let mut faces = [fl; 2];
+        let mut nf = 0;
+        for f in [fl, fr] {
+            if f != NO_FACE {
+                faces[nf] = f;
+                nf += 1;
+            }
+        }
+        Slots::deleted(&edges[..ne], self.removed, &faces[..nf])
+    }
+}
+
+impl EdgeCollapse {
+    /// The vertex that stays (`dest(h)`); it received every dart of the removed one.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri};
+    /// let mut map = gen::random_triangle(200, 1, 0, 5).map;
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let u = map.dest(h);
+    /// assert_eq!(tri::collapse_edge(&mut map, h).unwrap().kept(), u);
+    /// ```
+    pub fn kept(&self) -> Vert {
+        self.kept
+    }
+
+    /// The vertex that was removed (`origin(h)`); its slot is free.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri};
+    /// let mut map = gen::random_triangle(200, 1, 0, 5).map;
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let r = tri::collapse_edge(&mut map, h).unwrap();
+    /// assert!(!map.is_live_vertex(r.removed()));
+    /// ```
+    pub fn removed(&self) -> Vert {
+        self.removed
+    }
+
     /// Undoes the collapse: the map becomes equal (`==`) to the one before, free lists
     /// included, provided it has not been changed since (other records undone in reverse
     /// order are fine).
@@ -464,35 +548,21 @@ impl CollapseRecord {
     /// use zipmesh::{gen, ops::{tri, Refusal}, Map};
     /// let mut map = gen::random_triangle(100, 0, 1, 2).map;
     /// let before = map.clone();
-    /// let h = map.darts().find(|&d| tri::can_collapse(&map, d).is_ok()).unwrap();
-    /// let rec = tri::collapse(&mut map, h).unwrap();
+    /// let h = map.darts().find(|&d| tri::can_collapse_edge(&map, d).is_ok()).unwrap();
+    /// let rec = tri::collapse_edge(&mut map, h).unwrap();
     /// assert_eq!(rec.undo(&mut Map::new()), Err(Refusal::StaleRecord));
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        if !self.fits(map) {
-            return Err(Refusal::StaleRecord);
-        }
+        self.guard(map).result()?;
+        self.deleted().reclaim(map)?;
         let [h, h1, h2, t1, t2] = self.darts;
-        let t = h ^ 1;
-        let (u, v) = (self.kept.0, self.removed.0);
+        let t = h.twin();
+        let (u, v) = (self.kept, self.removed);
         let [c, d] = self.apex;
         let [fl, fr, fx, fz] = self.faces;
-        let has_l = h1 != NONE;
-        let has_r = t1 != NONE;
-        // Take the freed slots back, last freed first.
-        if has_r {
-            map.free_faces.pop();
-        }
-        if has_l {
-            map.free_faces.pop();
-        }
-        map.free_verts.pop();
-        map.free_edges
-            .truncate(map.free_edges.len() - 1 - usize::from(has_l) - usize::from(has_r));
-        let oh2 = if has_l { h2 ^ 1 } else { NONE };
-        let ot1 = if has_r { t1 ^ 1 } else { NONE };
+        let [oh2, ot1] = self.outer();
         let dead = [
             (h, v, fl),
             (t, u, fr),
@@ -501,235 +571,330 @@ impl CollapseRecord {
             (t1, v, fr),
             (ot1, d, fz),
         ];
-        for (k, &(x, o, f)) in dead.iter().enumerate() {
-            if x != NONE {
-                map.next[x as usize] = self.dead_next[k];
-                map.vert[x as usize] = o;
-                map.face[x as usize] = f;
+        for (&(x, o, f), &n) in dead.iter().zip(&self.dead_next) {
+            if x != NO_DART {
+                map.set_dart(x, n, o, f);
             }
         }
         for &(cell, old, _) in self.writes[..self.n_writes as usize].iter().rev() {
-            map.next[cell as usize] = old;
+            map.set_next(cell, old);
         }
-        if has_l {
-            map.face[h1 as usize] = fl;
+        if self.has_l() {
+            map.set_face(h1, fl);
         }
-        if has_r {
-            map.face[t2 as usize] = fr;
+        if self.has_r() {
+            map.set_face(t2, fr);
         }
         let mut y = self.first;
         for _ in 0..self.count {
-            let Some(o) = map.vert.get_mut(y as usize) else {
+            if y.index() >= map.dart_slots() {
                 break;
-            };
-            *o = v;
-            y = map.next.get((y ^ 1) as usize).copied().unwrap_or(NONE);
+            }
+            map.set_origin(y, v);
+            y = map.rotate_cw(y);
         }
-        for (k, &x) in [u, v, c, d].iter().enumerate() {
-            if x != NONE {
-                map.vdart[x as usize] = self.old_vdart[k];
+        for (&x, &old) in [u, v, c, d].iter().zip(&self.old_vdart) {
+            if x != NO_VERT {
+                map.set_vertex_dart(x, old);
             }
         }
-        for (k, &f) in self.faces.iter().enumerate() {
-            if f != NONE {
-                map.fdart[f as usize] = self.old_fdart[k];
-            }
+        for (&f, &old) in self.faces.iter().zip(&self.old_fdart) {
+            map.set_face_dart(f, old);
         }
         Ok(())
     }
 
-    /// Whether the map is as the collapse left it, as far as the undo depends on it: every
-    /// index in range, the freed slots on top of the free lists, the rewritten successors
-    /// and the moved arc as the collapse left them, and every entry the undo restores
-    /// consistent with its neighbours (so the result satisfies every axiom locally).
-    fn fits(&self, map: &Map) -> bool {
-        let nd = map.next.len();
-        let live = |x: u32| (x as usize) < nd && map.next[x as usize] != NONE;
-        let dead = |x: u32| (x as usize) < nd && map.next[x as usize] == NONE;
-        let in_range = |x: u32| (x as usize) < nd;
-        let [h, h1, h2, t1, t2] = self.darts;
-        let [fl, fr, fx, fz] = self.faces;
-        let [c, d] = self.apex;
-        let has_l = h1 != NONE;
-        let has_r = t1 != NONE;
-        let (u, v) = (self.kept.0, self.removed.0);
-        let nw = self.n_writes as usize;
-        let vert_ok = |x: u32, present: bool| {
-            if present {
-                (x as usize) < map.vdart.len() && (x == v || map.vdart[x as usize] != NONE)
-            } else {
-                x == NONE
-            }
-        };
-        let face_ok = |x: u32| x == NONE || (x as usize) < map.fdart.len();
-        let shape = (has_l || has_r)
-            && dead(h)
-            && (!has_l || (live(h1) && dead(h2) && fl != NONE))
-            && (has_l || (h2 == NONE && fl == NONE && fx == NONE))
-            && (!has_r || (live(t2) && dead(t1) && fr != NONE))
-            && (has_r || (t2 == NONE && fr == NONE && fz == NONE))
-            && vert_ok(u, true)
-            && map.vdart[u as usize] != NONE
-            && vert_ok(v, true)
-            && map.vdart[v as usize] == NONE
-            && vert_ok(c, has_l)
-            && vert_ok(d, has_r)
-            && self.faces.iter().all(|&f| face_ok(f))
-            && self.count as usize <= nd
-            && (self.count == 0 || in_range(self.first))
-            && nw <= self.writes.len();
-        if !shape {
-            return false;
+    fn has_l(&self) -> bool {
+        self.darts[1] != NO_DART
+    }
+
+    /// For the tests: the first moved dart and every dart index the record holds.
+    #[cfg(test)]
+    pub(super) fn held(&self) -> (Dart, alloc::vec::Vec<Dart>) {
+        let mut all = alloc::vec::Vec::new();
+        all.extend(self.darts);
+        all.extend(self.dead_next);
+        all.extend(self.old_vdart);
+        all.extend(self.old_fdart);
+        all.extend(self.writes.iter().flat_map(|&(a, b, c)| [a, b, c]));
+        all.retain(|&d| d != NO_DART);
+        (self.first, all)
+    }
+
+    fn has_r(&self) -> bool {
+        self.darts[3] != NO_DART
+    }
+
+    /// `twin(h2)` and `twin(t1)`, [`NO_DART`] for an absent side.
+    fn outer(&self) -> [Dart; 2] {
+        let [_, _, h2, t1, _] = self.darts;
+        [
+            if self.has_l() { h2.twin() } else { NO_DART },
+            if self.has_r() { t1.twin() } else { NO_DART },
+        ]
+    }
+
+    /// The staleness checks of [`EdgeCollapse::undo`], in order: the map is as the collapse
+    /// left it, as far as the undo depends on it: every index in range, the freed slots on
+    /// top of the free lists, the rewritten successors and the moved arc as the collapse left
+    /// them, and every entry the undo restores consistent with its neighbours (so the result
+    /// satisfies every axiom locally).
+    pub(super) fn guard(&self, map: &Map) -> Guard {
+        let g = Guard::new()
+            .check("a side exists", || self.has_l() || self.has_r())
+            .check("collapsed edge dead", || is_dead(map, self.darts[0]))
+            .check("left side", || self.left_fits(map))
+            .check("right side", || self.right_fits(map))
+            .check("kept vertex live", || map.is_live_vertex(self.kept))
+            .check("removed vertex dead", || {
+                self.removed.index() < map.vertex_slots() && !map.is_live_vertex(self.removed)
+            })
+            .check("apexes live", || {
+                let [c, d] = self.apex;
+                let fits = |x: Vert, present: bool| {
+                    if present {
+                        x.index() < map.vertex_slots()
+                            && (x == self.removed || map.is_live_vertex(x))
+                    } else {
+                        x == NO_VERT
+                    }
+                };
+                fits(c, self.has_l()) && fits(d, self.has_r())
+            })
+            .check("faces in range", || {
+                self.faces
+                    .iter()
+                    .all(|&f| f == NO_FACE || f.index() < map.face_slots())
+            })
+            .check("moved arc in range", || {
+                self.count as usize <= map.dart_slots()
+                    && (self.count == 0 || self.first.index() < map.dart_slots())
+            })
+            .check("old values in range", || self.olds_in_range(map))
+            .check("rewritten successors", || {
+                self.writes[..self.n_writes as usize]
+                    .iter()
+                    .all(|&(c, _, new)| map.is_live_dart(c) && map.next(c) == new)
+            })
+            .check("freed slots on the free lists", || {
+                self.deleted().on_free_lists(map)
+            });
+        if g.failed().is_some() {
+            return g;
         }
-        let oh2 = if has_l { h2 ^ 1 } else { NONE };
-        let ot1 = if has_r { t1 ^ 1 } else { NONE };
-        let removed = [h, h ^ 1, h2, oh2, t1, ot1];
-        let olds_ok = removed
+        let restored = self.restored(map);
+        let g = g.check("moved arc", || restored.is_some());
+        let Some(r) = restored else {
+            return g;
+        };
+        g.check("restored successors", || self.successors_fit(map, &r))
+            .check("restored vertex records", || {
+                self.vertex_records_fit(map, &r)
+            })
+            .check("restored face records", || self.face_records_fit(map))
+    }
+
+    /// With L: `h1` live, `h2` dead, L a face; without: no `h2`, L, X.
+    fn left_fits(&self, map: &Map) -> bool {
+        let [_, h1, h2, ..] = self.darts;
+        let [fl, _, fx, _] = self.faces;
+        if self.has_l() {
+            map.is_live_dart(h1) && is_dead(map, h2) && fl != NO_FACE
+        } else {
+            h2 == NO_DART && fl == NO_FACE && fx == NO_FACE
+        }
+    }
+
+    /// With R: `t2` live, `t1` dead, R a face; without: no `t2`, R, Z.
+    fn right_fits(&self, map: &Map) -> bool {
+        let [.., t1, t2] = self.darts;
+        let [_, fr, _, fz] = self.faces;
+        if self.has_r() {
+            map.is_live_dart(t2) && is_dead(map, t1) && fr != NO_FACE
+        } else {
+            t2 == NO_DART && fr == NO_FACE && fz == NO_FACE
+        }
+    }
+
+    /// Every old value the undo writes back is a dart slot of this map.
+    fn olds_in_range(&self, map: &Map) -> bool {
+        let in_range = |x: Dart| x.index() < map.dart_slots();
+        let [oh2, ot1] = self.outer();
+        let [h, _, h2, t1, _] = self.darts;
+        let removed = [h, h.twin(), h2, oh2, t1, ot1];
+        removed
             .iter()
             .zip(self.dead_next)
-            .all(|(&x, n)| x == NONE || in_range(n))
+            .all(|(&x, n)| x == NO_DART || in_range(n))
             && self
                 .old_vdart
                 .iter()
-                .zip([true, true, has_l, has_r])
+                .zip([true, true, self.has_l(), self.has_r()])
                 .all(|(&x, p)| !p || in_range(x))
             && self
                 .old_fdart
                 .iter()
                 .zip(self.faces)
-                .all(|(&x, f)| f == NONE || in_range(x))
-            && self.writes[..nw]
+                .all(|(&x, f)| f == NO_FACE || in_range(x))
+            && self.writes[..self.n_writes as usize]
                 .iter()
-                .all(|&(c, old, new)| live(c) && in_range(old) && map.next[c as usize] == new);
-        // The freed slots are on top of the free lists, in the order they were freed.
-        let mut edges = [NONE; 3];
-        let mut ne = 0;
-        for x in [h, h2, t1] {
-            if x != NONE {
-                edges[ne] = x >> 1;
-                ne += 1;
+                .all(|&(_, old, _)| in_range(old))
+    }
+
+    /// The successors the undo restores (removed darts and rewritten cells with their old
+    /// `next`), and which of the darts whose origin the undo decides are in the moved arc;
+    /// `None` unless the moved darts are still the arc of u that ends just before h1 (or
+    /// before u's own boundary dart, the old next of h, when there is no L).
+    fn restored(&self, map: &Map) -> Option<Restored> {
+        let [h, h1, h2, t1, _] = self.darts;
+        let [oh2, ot1] = self.outer();
+        let mut r = Restored {
+            pairs: [(NO_DART, NO_DART); 11],
+            np: 0,
+            moved: [false; 24],
+            record_moves: false,
+            moved_boundary: false,
+        };
+        for (&x, n) in [h, h.twin(), h2, oh2, t1, ot1].iter().zip(self.dead_next) {
+            if x != NO_DART {
+                r.pairs[r.np] = (x, n);
+                r.np += 1;
             }
         }
-        let mut faces = [NONE; 2];
-        let mut nf = 0;
-        for f in [fl, fr] {
-            if f != NONE {
-                faces[nf] = f;
-                nf += 1;
-            }
+        for &(cell, old, _) in &self.writes[..self.n_writes as usize] {
+            r.pairs[r.np] = (cell, old);
+            r.np += 1;
         }
-        if !olds_ok
-            || !map.free_edges.ends_with(&edges[..ne])
-            || !map.free_verts.ends_with(&[v])
-            || !map.free_faces.ends_with(&faces[..nf])
-        {
-            return false;
-        }
-        // The successors the undo restores, and the darts whose origin after the undo
-        // depends on whether they are among the moved ones (probes).
-        let mut pairs = [(NONE, NONE); 11];
-        let mut np = 0;
-        for (&x, n) in removed.iter().zip(self.dead_next) {
-            if x != NONE {
-                pairs[np] = (x, n);
-                np += 1;
-            }
-        }
-        for &(cell, old, _) in &self.writes[..nw] {
-            pairs[np] = (cell, old);
-            np += 1;
-        }
-        let [ou, ov, oc, od] = self.old_vdart;
-        let mut probes = [NONE; 24];
-        for (k, &(x, n)) in pairs[..np].iter().enumerate() {
-            probes[2 * k] = x ^ 1;
+        // Probes: per pair, twin(x) and next; then the old records of u and v.
+        let mut probes = [NO_DART; 24];
+        for (k, &(x, n)) in r.pairs[..r.np].iter().enumerate() {
+            probes[2 * k] = x.twin();
             probes[2 * k + 1] = n;
         }
-        probes[22] = ou;
-        probes[23] = ov;
-        let mut moved = [false; 24];
-        // The moved darts are still the arc of u that ends just before h1 (or before u's own
-        // boundary dart, the old next of h, when there is no L); where it starts is pinned
-        // by a rewritten successor (of t2, or of prev(t) without R).
-        let arc_end = if has_l { h1 } else { self.dead_next[0] };
+        probes[22] = self.old_vdart[0];
+        probes[23] = self.old_vdart[1];
+        let arc_end = if self.has_l() { h1 } else { self.dead_next[0] };
+        let u = self.kept;
         let mut y = self.first;
-        let (mut record_moves, mut moved_boundary) = (false, false);
         for _ in 0..self.count {
-            if !live(y) || map.vert[y as usize] != u {
-                return false;
+            if !map.is_live_dart(y) || map.origin(y) != u {
+                return None;
             }
-            record_moves |= map.vdart[u as usize] == y;
-            moved_boundary |= map.face[y as usize] == NONE;
-            for (p, m) in probes.iter().zip(moved.iter_mut()) {
+            r.record_moves |= map.vertex_dart(u) == y;
+            r.moved_boundary |= map.face(y).is_none();
+            for (p, m) in probes.iter().zip(r.moved.iter_mut()) {
                 *m |= *p == y;
             }
-            y = map.next[(y ^ 1) as usize];
+            y = map.rotate_cw(y);
         }
-        if self.count > 0 && y != arc_end {
-            return false;
+        (self.count == 0 || y == arc_end).then_some(r)
+    }
+
+    /// The origin of `x` after the undo (`is_moved`: `x` is in the moved arc).
+    fn vert_after(&self, map: &Map, x: Dart, is_moved: bool) -> Vert {
+        let [h, _, h2, t1, _] = self.darts;
+        let [oh2, ot1] = self.outer();
+        let v = self.removed;
+        match x {
+            _ if is_moved || x == h || x == oh2 || x == t1 => v,
+            _ if x == h.twin() => self.kept,
+            _ if x == h2 => self.apex[0],
+            _ if x == ot1 => self.apex[1],
+            _ => map.origin(x),
         }
-        // Origins and faces after the undo.
-        let vert_after = |x: u32, is_moved: bool| match x {
-            _ if is_moved => v,
-            _ if x == h => v,
-            _ if x == (h ^ 1) => u,
-            _ if x == h2 => c,
-            _ if x == oh2 => v,
-            _ if x == t1 => v,
-            _ if x == ot1 => d,
-            _ => map.vert[x as usize],
-        };
-        let face_after = |x: u32| match x {
-            _ if x == h => fl,
-            _ if x == (h ^ 1) => fr,
-            _ if x == h1 || x == h2 => fl,
-            _ if x == t1 || x == t2 => fr,
+    }
+
+    /// The face of `x` after the undo.
+    fn face_after(&self, map: &Map, x: Dart) -> Face {
+        let [h, h1, h2, t1, t2] = self.darts;
+        let [oh2, ot1] = self.outer();
+        let [fl, fr, fx, fz] = self.faces;
+        match x {
+            _ if x == h || x == h1 || x == h2 => fl,
+            _ if x == h.twin() || x == t1 || x == t2 => fr,
             _ if x == oh2 => fx,
             _ if x == ot1 => fz,
-            _ => map.face[x as usize],
-        };
-        // Each restored successor: origin(twin x) == origin(next x), one face along next.
-        for (k, &(x, n)) in pairs[..np].iter().enumerate() {
-            if vert_after(x ^ 1, moved[2 * k]) != vert_after(n, moved[2 * k + 1])
-                || face_after(x) != face_after(n)
-            {
-                return false;
-            }
+            _ => face_slot(map, x),
         }
-        // Each restored record must name a dart of its element after the undo, the boundary
-        // one for a boundary vertex. u's present boundary dart stays with u unless it moves
-        // to v or is h1 (back to L).
-        let u_keeps = on_boundary(map, u) && !record_moves && map.vdart[u as usize] != h1;
-        let u_boundary = u_keeps || !has_r;
-        let v_boundary = !has_l || fx == NONE || moved_boundary;
-        let leaves_u = ou == (h ^ 1) || (!moved[22] && live(ou) && map.vert[ou as usize] == u);
-        let leaves_v = moved[23] || (ov != NONE && [h, t1, oh2].contains(&ov));
-        let records_ok = leaves_u
-            && (face_after(ou) == NONE) == u_boundary
+    }
+
+    /// Each restored successor: origin(twin x) == origin(next x), one face along next.
+    fn successors_fit(&self, map: &Map, r: &Restored) -> bool {
+        r.pairs[..r.np].iter().enumerate().all(|(k, &(x, n))| {
+            self.vert_after(map, x.twin(), r.moved[2 * k])
+                == self.vert_after(map, n, r.moved[2 * k + 1])
+                && self.face_after(map, x) == self.face_after(map, n)
+        })
+    }
+
+    /// Each restored vertex record names a dart of its vertex after the undo, the boundary
+    /// one for a boundary vertex. u's present boundary dart stays with u unless it moves to
+    /// v or is h1 (back to L).
+    fn vertex_records_fit(&self, map: &Map, r: &Restored) -> bool {
+        let [h, h1, h2, t1, _] = self.darts;
+        let [_, ot1] = self.outer();
+        let [.., fx, _] = self.faces;
+        let (u, [c, d]) = (self.kept, self.apex);
+        let [ou, ov, oc, od] = self.old_vdart;
+        let boundary_after = |x: Dart| self.face_after(map, x) == NO_FACE;
+        let u_keeps = map.is_boundary_vertex(u) && !r.record_moves && map.vertex_dart(u) != h1;
+        let u_boundary = u_keeps || !self.has_r();
+        let v_boundary = !self.has_l() || fx == NO_FACE || r.moved_boundary;
+        let leaves_u =
+            ou == h.twin() || (!r.moved[22] && map.is_live_dart(ou) && map.origin(ou) == u);
+        let leaves_v = r.moved[23] || (ov != NO_DART && [h, t1, self.outer()[0]].contains(&ov));
+        let apex_ok = |o: Dart, own: Dart, x: Vert| {
+            (o == own || (map.is_live_dart(o) && map.origin(o) == x))
+                && boundary_after(o) == map.is_boundary_vertex(x)
+        };
+        leaves_u
+            && boundary_after(ou) == u_boundary
             && leaves_v
-            && (face_after(ov) == NONE) == v_boundary
-            && (!has_l
-                || ((oc == h2 || (live(oc) && map.vert[oc as usize] == c))
-                    && (face_after(oc) == NONE) == on_boundary(map, c)))
-            && (!has_r
-                || ((od == ot1 || (live(od) && map.vert[od as usize] == d))
-                    && (face_after(od) == NONE) == on_boundary(map, d)));
-        let in_face =
-            |x: u32, f: u32| x != NONE && (live(x) || removed.contains(&x)) && face_after(x) == f;
-        records_ok
-            && self
-                .faces
-                .iter()
-                .zip(self.old_fdart)
-                .all(|(&f, x)| f == NONE || in_face(x, f))
-            && (!has_l || map.face[h1 as usize] == fx)
-            && (!has_r || map.face[t2 as usize] == fz)
+            && boundary_after(ov) == v_boundary
+            && (!self.has_l() || apex_ok(oc, h2, c))
+            && (!self.has_r() || apex_ok(od, ot1, d))
+    }
+
+    /// Each restored face record names a dart of its face after the undo, and h1, t2 are
+    /// still in the faces X, Z the collapse gave them.
+    fn face_records_fit(&self, map: &Map) -> bool {
+        let [h, h1, h2, t1, t2] = self.darts;
+        let [oh2, ot1] = self.outer();
+        let [.., fx, fz] = self.faces;
+        let removed = [h, h.twin(), h2, oh2, t1, ot1];
+        let in_face = |x: Dart, f: Face| {
+            x != NO_DART
+                && (map.is_live_dart(x) || removed.contains(&x))
+                && self.face_after(map, x) == f
+        };
+        self.faces
+            .iter()
+            .zip(self.old_fdart)
+            .all(|(&f, x)| f == NO_FACE || in_face(x, f))
+            && (!self.has_l() || face_slot(map, h1) == fx)
+            && (!self.has_r() || face_slot(map, t2) == fz)
     }
 }
 
-impl Undo for CollapseRecord {
+/// What [`EdgeCollapse::restored`] finds.
+struct Restored {
+    pairs: [(Dart, Dart); 11],
+    np: usize,
+    /// Per probe (twin and next of each pair, then the old records of u and v): moved.
+    moved: [bool; 24],
+    /// The present record of u is a moved dart; a moved dart is a boundary dart.
+    record_moves: bool,
+    moved_boundary: bool,
+}
+
+/// Whether `x` is a dead dart slot of this map.
+fn is_dead(map: &Map, x: Dart) -> bool {
+    x.index() < map.dart_slots() && !map.is_live_dart(x)
+}
+
+impl Undo for EdgeCollapse {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        CollapseRecord::undo(self, map)
+        EdgeCollapse::undo(self, map)
     }
 }
 
@@ -742,32 +907,27 @@ impl Undo for CollapseRecord {
 /// let d1 = map.vertex_dart(w);
 /// let d2 = map.rotate_cw(map.rotate_cw(map.rotate_cw(d1)));
 /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
-/// assert_eq!(map.origin(rec.edge), rec.vertex);
-/// assert_eq!(map.dest(rec.edge), w);
+/// assert_eq!(map.origin(rec.edge()), rec.created());
+/// assert_eq!(map.dest(rec.edge()), w);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct VertexSplitRecord {
-    /// The new vertex `v`.
-    pub vertex: Vert,
-    /// The new edge's dart from `v` to `w`: [`collapse`] of it undoes the split up to slot
-    /// numbers (the same map up to isomorphism; `undo` restores the very same arrays).
-    pub edge: Dart,
-    /// Old record of w; the new edges of `a` and `b`; faces L, R; slot counts before.
-    old_w: u32,
-    edges: [u32; 2],
-    faces: [u32; 2],
-    lens: Lens,
+pub struct VertexSplit {
+    /// Old record of w.
+    old_w: Dart,
+    /// The new edges `v->w` (the record's edge), `a->v`, `v->b`, the new vertex `v` and the
+    /// new faces L, R.
+    slots: Slots,
 }
 
 /// The checked arguments of a vertex split.
 struct SplitPlan {
-    d1: u32,
-    d2: u32,
-    w: u32,
-    a: u32,
-    b: u32,
-    first: u32,
-    last: u32,
+    d1: Dart,
+    d2: Dart,
+    w: Vert,
+    a: Vert,
+    b: Vert,
+    first: Dart,
+    last: Dart,
     count: u32,
     /// Whether the record of `w` is among the moved darts.
     record_moves: bool,
@@ -788,7 +948,7 @@ struct SplitPlan {
 ///    at `a` or `b`; [`Refusal::LinkCondition`] if `y` ends at a vertex that a kept dart of
 ///    `w` also reaches (the two copies would share a neighbour other than `a`, `b`).
 ///
-/// These are exactly the cases where the new edge would fail [`can_collapse`]'s link
+/// These are exactly the cases where the new edge would fail [`can_collapse_edge`]'s link
 /// condition, so every allowed split can be collapsed back, except that the collapse also
 /// requires the valence minimum of `w`, `a` and `b` before the split (a split never lowers a
 /// valence, so it does not ask for it). In a simple mesh whose vertices meet the valence
@@ -814,12 +974,11 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
     if !map.is_live_dart(d1) || !map.is_live_dart(d2) {
         return Err(Refusal::DeadHandle);
     }
-    let (d1, d2) = (d1.0, d2.0);
-    let w = org(map, d1);
-    if d1 == d2 || org(map, d2) != w {
+    let w = map.origin(d1);
+    if d1 == d2 || map.origin(d2) != w {
         return Err(Refusal::BadArguments);
     }
-    let (a, b) = (org(map, d1 ^ 1), org(map, d2 ^ 1));
+    let (a, b) = (map.dest(d1), map.dest(d2));
     if a == w || b == w {
         return Err(Refusal::DegenerateTriangle);
     }
@@ -828,68 +987,75 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
     }
     // Edge part of the new edge's link condition (see `plan`): the triangles on both sides
     // of d1 have b as third corner, so a-b would lie in the links of both v and w.
-    if third_corner(map, d1) == b && third_corner(map, d1 ^ 1) == b {
+    if third_corner(map, d1) == b && third_corner(map, d1.twin()) == b {
         return Err(Refusal::LinkCondition);
     }
-    let first = rot(map, d2);
-    let rec = map.vdart[w as usize];
-    // The ends of the kept darts (d1 through d2), when there are few; otherwise each moved
-    // dart's end is searched for an edge back to w.
-    let kept = gather(map, d1, d2, small);
-    let (mut y, mut last, mut count, mut record_moves) = (first, d2, 0u32, false);
-    let in_moved = |z: u32| {
-        let mut x = first;
-        while x != d1 {
-            if x == z {
-                return true;
-            }
-            x = rot(map, x);
-        }
-        false
-    };
-    while y != d1 {
-        let x = org(map, y ^ 1);
-        if x == w {
-            return Err(Refusal::LinkCondition);
-        }
-        if x == a || x == b {
-            return Err(Refusal::MultiEdge);
-        }
-        // Another edge x-w whose w end stays with w: v and w would share the neighbour x.
-        let shared = match &kept {
-            Some(k) => k.contains(x),
-            None => {
-                let mut z = rot(map, y ^ 1);
-                let mut found = false;
-                while z != y ^ 1 && !found {
-                    found = org(map, z ^ 1) == w && !in_moved(z ^ 1);
-                    z = rot(map, z);
-                }
-                found
-            }
-        };
-        if shared {
-            return Err(Refusal::LinkCondition);
-        }
-        record_moves |= y == rec;
-        last = y;
-        count += 1;
-        y = rot(map, y);
-    }
-    Ok(SplitPlan {
+    let mut p = SplitPlan {
         d1,
         d2,
         w,
         a,
         b,
-        first,
-        last,
-        count,
-        record_moves,
-    })
+        first: map.rotate_cw(d2),
+        last: d2,
+        count: 0,
+        record_moves: false,
+    };
+    // The ends of the kept darts (d1 through d2), when there are few; otherwise each moved
+    // dart's end is searched for an edge back to w.
+    let kept = gather(map, d1, Some(d2), small);
+    let rec = map.vertex_dart(w);
+    let mut y = p.first;
+    while y != d1 {
+        moved_dart_rules(map, &p, y, &kept)?;
+        p.record_moves |= y == rec;
+        p.last = y;
+        p.count += 1;
+        y = map.rotate_cw(y);
+    }
+    Ok(p)
 }
 
-/// Splits the vertex `w = origin(d1) = origin(d2)` in two, the inverse of [`collapse`].
+/// The rules for one moved dart `y` of a planned split (rule 6 of [`can_split_vertex`]);
+/// `kept` holds the ends of the kept darts when there are few.
+fn moved_dart_rules(map: &Map, p: &SplitPlan, y: Dart, kept: &Option<Ends>) -> Result<(), Refusal> {
+    let x = map.dest(y);
+    if x == p.w {
+        return Err(Refusal::LinkCondition);
+    }
+    if x == p.a || x == p.b {
+        return Err(Refusal::MultiEdge);
+    }
+    // Another edge x-w whose w end stays with w: v and w would share the neighbour x.
+    let shared = match kept {
+        Some(k) => k.contains(x),
+        None => {
+            let in_moved = |z: Dart| {
+                let mut m = p.first;
+                while m != p.d1 {
+                    if m == z {
+                        return true;
+                    }
+                    m = map.rotate_cw(m);
+                }
+                false
+            };
+            let mut z = map.rotate_cw(y.twin());
+            let mut found = false;
+            while z != y.twin() && !found {
+                found = map.dest(z) == p.w && !in_moved(z.twin());
+                z = map.rotate_cw(z);
+            }
+            found
+        }
+    };
+    if shared {
+        return Err(Refusal::LinkCondition);
+    }
+    Ok(())
+}
+
+/// Splits the vertex `w = origin(d1) = origin(d2)` in two, the inverse of [`collapse_edge`].
 ///
 /// `w` keeps `d1`, `d2` and the darts clockwise after `d1` and before `d2` (the *kept arc*,
 /// `k_w` darts strictly inside); a new vertex `v` takes the darts clockwise after `d2` and
@@ -900,7 +1066,7 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 ///          a                     a
 ///          |                   /   \
 ///          d1                 /  L  d1
-///  moved - w - kept   ==>   v --e--> w - kept      e = record.edge, from v to w
+///  moved - w - kept   ==>   v --e--> w - kept      e = record.edge(), from v to w
 ///          d2       moved -   \  R  d2
 ///          |                   \   /
 ///          b                     b
@@ -911,7 +1077,7 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 /// dart is moved or is `d1`), the other becomes interior: so a split never pinches. Every
 /// existing handle stays valid; `w` keeps its handle. Refusals: see [`can_split_vertex`].
 ///
-/// [`collapse`] of `record.edge` gives back the map up to slot numbers; [`VertexSplitRecord::undo`]
+/// [`collapse_edge`] of `record.edge()` gives back the map up to slot numbers; [`VertexSplit::undo`]
 /// gives back the same arrays.
 ///
 /// ```
@@ -924,32 +1090,43 @@ fn split_plan_with(map: &Map, d1: Dart, d2: Dart, small: usize) -> Result<SplitP
 /// let d1 = map.vertex_dart(w);
 /// let d2 = map.rotate_cw(map.rotate_cw(d1)); // kept arc: one dart strictly inside
 /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
-/// assert_eq!((map.valence(w), map.valence(rec.vertex)), (1 + 3, 3 + 3));
+/// assert_eq!((map.valence(w), map.valence(rec.created())), (1 + 3, 3 + 3));
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitRecord, Refusal> {
+pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplit, Refusal> {
     let p = split_plan(map, d1, d2)?;
-    let lens = Lens::of(map);
-    let (d1, t2) = (p.d1, p.d2 ^ 1);
+    let t2 = p.d2.twin();
     // Old neighbourhood: d1 sits between p1 and s1 in face X, twin(d2) between q2 and r2.
-    let p1 = p.last ^ 1;
-    let s1 = nx(map, d1);
-    let q2 = prev_of(map, t2);
-    let r2 = nx(map, t2);
-    let (fx, fz) = (fc(map, d1), fc(map, t2));
-    let old_w = map.vdart[p.w as usize];
-    let boundary_w = fc(map, old_w) == NONE;
+    let around = [
+        p.last.twin(),
+        map.next(p.d1),
+        prev_of(map, t2),
+        map.next(t2),
+    ];
+    let rec = VertexSplit {
+        old_w: map.vertex_dart(p.w),
+        slots: Slots::alloc(map, 3, 2),
+    };
+    rewire_split(map, &p, &rec, around);
+    Ok(rec)
+}
 
-    let h = map.alloc_edge().0; // h: v -> w
-    let h2 = map.alloc_edge().0; // h2: a -> v
-    let t1 = map.alloc_edge().0; // t1: v -> b
-    let v = map.alloc_vert().0;
-    let fl = map.alloc_face().0;
-    let fr = map.alloc_face().0;
-    let (t, oh2, ot1) = (h ^ 1, h2 ^ 1, t1 ^ 1);
+/// Rewrites the map for a planned split into the record's fresh slots; `around` is the old
+/// `[p1, s1, q2, r2]`: the darts before and after `d1` in its face X and before and after
+/// `twin(d2)` in its face Z.
+fn rewire_split(map: &mut Map, p: &SplitPlan, rec: &VertexSplit, around: [Dart; 4]) {
+    let (d1, t2) = (p.d1, p.d2.twin());
+    let [p1, s1, q2, r2] = around;
+    let (fx, fz) = (map.face(d1), map.face(t2));
+    let old_w = rec.old_w;
+    let boundary_w = map.face(old_w).is_none();
+    let s = &rec.slots;
+    let [h, h2, t1] = [s.edge(0), s.edge(1), s.edge(2)]; // v -> w, a -> v, v -> b
+    let (v, fl, fr) = (s.vert(), s.face(0), s.face(1));
+    let (t, oh2, ot1) = (h.twin(), h2.twin(), t1.twin());
     // twin(h2) takes the place of d1 in X, twin(t1) that of twin(d2) in Z.
-    let repl = |x: u32| {
+    let repl = |x: Dart| {
         if x == d1 {
             oh2
         } else if x == t2 {
@@ -960,13 +1137,13 @@ pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitReco
     };
     let mut y = p.first;
     for _ in 0..p.count {
-        map.vert[y as usize] = v;
-        y = rot(map, y);
+        map.set_origin(y, v);
+        y = map.rotate_cw(y);
     }
-    map.next[repl(p1) as usize] = oh2;
-    map.next[oh2 as usize] = repl(s1);
-    map.next[repl(q2) as usize] = ot1;
-    map.next[ot1 as usize] = repl(r2);
+    map.set_next(repl(p1), oh2);
+    map.set_next(oh2, repl(s1));
+    map.set_next(repl(q2), ot1);
+    map.set_next(ot1, repl(r2));
     for (x, n, o, f) in [
         (h, d1, v, fl),
         (d1, h2, p.w, fl),
@@ -975,48 +1152,69 @@ pub fn split_vertex(map: &mut Map, d1: Dart, d2: Dart) -> Result<VertexSplitReco
         (t1, t2, v, fr),
         (t2, t, p.b, fr),
     ] {
-        map.next[x as usize] = n;
-        map.vert[x as usize] = o;
-        map.face[x as usize] = f;
+        map.set_dart(x, n, o, f);
     }
-    map.vert[oh2 as usize] = v;
-    map.face[oh2 as usize] = fx;
-    map.vert[ot1 as usize] = p.b;
-    map.face[ot1 as usize] = fz;
+    map.set_origin(oh2, v);
+    map.set_face(oh2, fx);
+    map.set_origin(ot1, p.b);
+    map.set_face(ot1, fz);
     // The boundary corner of w goes with the arc that holds it.
-    map.vdart[v as usize] = if boundary_w && p.record_moves {
+    let vd = if boundary_w && p.record_moves {
         old_w
     } else if boundary_w && old_w == d1 {
         oh2
     } else {
         h
     };
+    map.set_vertex_dart(v, vd);
     if p.record_moves {
-        map.vdart[p.w as usize] = d1;
+        map.set_vertex_dart(p.w, d1);
     }
     // twin(t1) replaces twin(d2), possibly as b's boundary dart.
-    if map.vdart[p.b as usize] == t2 {
-        map.vdart[p.b as usize] = ot1;
+    if map.vertex_dart(p.b) == t2 {
+        map.set_vertex_dart(p.b, ot1);
     }
-    map.fdart[fl as usize] = h;
-    map.fdart[fr as usize] = t;
-    if fx != NONE && map.fdart[fx as usize] == d1 {
-        map.fdart[fx as usize] = oh2;
+    map.set_face_dart(fl, h);
+    map.set_face_dart(fr, t);
+    if fx.is_some_and(|f| map.face_dart(f) == d1) {
+        map.set_face_dart(fx, oh2);
     }
-    if fz != NONE && map.fdart[fz as usize] == t2 {
-        map.fdart[fz as usize] = ot1;
+    if fz.is_some_and(|f| map.face_dart(f) == t2) {
+        map.set_face_dart(fz, ot1);
     }
-    Ok(VertexSplitRecord {
-        vertex: Vert(v),
-        edge: Dart(h),
-        old_w,
-        edges: [h2 >> 1, t1 >> 1],
-        faces: [fl, fr],
-        lens,
-    })
 }
 
-impl VertexSplitRecord {
+impl VertexSplit {
+    /// The new vertex `v`, which took the moved arc.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri, Vert};
+    /// let mut map = gen::random_triangle(200, 1, 0, 3).map;
+    /// let d1 = map.vertex_dart(Vert::new(0));
+    /// let d2 = map.rotate_cw(map.rotate_cw(d1));
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
+    /// assert!(map.is_live_vertex(rec.created()));
+    /// ```
+    pub fn created(&self) -> Vert {
+        self.slots.vert()
+    }
+
+    /// The new edge's dart from `v` to `w`: [`collapse_edge`] of it undoes the split up to
+    /// slot numbers (the same map up to isomorphism; `undo` restores the very same arrays).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::tri, Vert};
+    /// let mut map = gen::random_triangle(200, 1, 0, 3).map;
+    /// let w = Vert::new(0);
+    /// let d1 = map.vertex_dart(w);
+    /// let d2 = map.rotate_cw(map.rotate_cw(d1));
+    /// let rec = tri::split_vertex(&mut map, d1, d2).unwrap();
+    /// assert_eq!(map.dest(rec.edge()), w);
+    /// ```
+    pub fn edge(&self) -> Dart {
+        self.slots.edge(0)
+    }
+
     /// Undoes the split: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -1034,48 +1232,55 @@ impl VertexSplitRecord {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let p = match plan(map, self.edge, false) {
-            Ok(p) => p,
-            Err(_) => return Err(Refusal::StaleRecord),
-        };
-        let lens = self.lens;
-        let w = p.u;
-        let (h, h2, t1) = (p.h, p.h2, p.t1);
-        let [fl, fr] = self.faces;
-        let old_w = self.old_w;
-        if p.v != self.vertex.0
-            || p.h1 == NONE
-            || p.t1 == NONE
-            || [h2 >> 1, t1 >> 1] != self.edges
-            || [fc(map, h), fc(map, h ^ 1)] != self.faces
-            || !map.is_live_dart(Dart(old_w))
-            || [h >> 1, h2 >> 1, t1 >> 1].contains(&(old_w >> 1))
-            || (org(map, old_w) != w && org(map, old_w) != p.v)
-            || (face_after_collapse(map, &p, old_w) == NONE)
-                != (on_boundary(map, w) || on_boundary(map, p.v))
-            || !fresh_tail(
-                &[h >> 1, h2 >> 1, t1 >> 1],
-                lens.darts / 2,
-                map.next.len() / 2,
-            )
-            || !fresh_tail(&[p.v], lens.verts, map.vdart.len())
-            || !fresh_tail(&[fl, fr], lens.faces, map.fdart.len())
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        apply(map, &p, Some(lens));
-        map.vdart[w as usize] = self.old_w;
+        let (guard, plan) = self.guard(map);
+        guard.result()?;
+        let p = plan.ok_or(Refusal::StaleRecord)?;
+        apply(map, &p, Some(&self.slots));
+        map.set_vertex_dart(p.u, self.old_w);
         Ok(())
     }
-}
 
-impl Undo for VertexSplitRecord {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        VertexSplitRecord::undo(self, map)
+    /// The staleness checks of [`VertexSplit::undo`], in order, and the plan of the collapse
+    /// of the record's edge that it makes.
+    pub(super) fn guard(&self, map: &Map) -> (Guard, Option<Plan>) {
+        let plan = plan(map, self.edge(), false).ok();
+        let g = Guard::new().check("collapse of the edge applies", || plan.is_some());
+        let Some(p) = &plan else {
+            return (g, plan);
+        };
+        (self.guard_plan(g, map, p), plan)
+    }
+
+    fn guard_plan(&self, g: Guard, map: &Map, p: &Plan) -> Guard {
+        let s = &self.slots;
+        let (w, old_w) = (p.u, self.old_w);
+        let new_edges = [s.edge(0).edge(), s.edge(1).edge(), s.edge(2).edge()];
+        g.check("new vertex", || p.v == s.vert())
+            .check("both triangles", || p.has_l() && p.has_r())
+            .check("new edges", || {
+                [p.h2.edge(), p.t1.edge()] == [new_edges[1], new_edges[2]]
+            })
+            .check("new faces", || {
+                [map.face(p.h), map.face(p.h.twin())] == [Some(s.face(0)), Some(s.face(1))]
+            })
+            .check("old record of w", || {
+                map.is_live_dart(old_w)
+                    && !new_edges.contains(&old_w.edge())
+                    && (map.origin(old_w) == w || map.origin(old_w) == p.v)
+                    && face_after_collapse(map, p, old_w).is_none()
+                        == (map.is_boundary_vertex(w) || map.is_boundary_vertex(p.v))
+            })
+            .check("slots releasable", || s.releasable(map))
     }
 }
 
-/// [`can_collapse`] and [`can_split_vertex`] with at most `small` neighbours on the stack, so
+impl Undo for VertexSplit {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        VertexSplit::undo(self, map)
+    }
+}
+
+/// [`can_collapse_edge`] and [`can_split_vertex`] with at most `small` neighbours on the stack, so
 /// that unit tests can compare the stack path with the fallback.
 #[cfg(test)]
 pub(super) fn can_with(map: &Map, h: Dart, d2: Option<Dart>, small: usize) -> Result<(), Refusal> {

@@ -1,10 +1,9 @@
 //! Edge split: a new vertex on an edge, joined to the apexes of its triangles.
 
-use super::{
-    distinct_corners, fc, fresh_tail, nx, org, prev_of, release_edge, release_face, release_vert,
-    triangle, Lens, Undo,
-};
-use crate::map::{Dart, Map, Vert, NONE};
+use super::{prev_of, sides, Undo};
+use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
+use crate::ops::slots::Slots;
 use crate::ops::Refusal;
 
 /// Record of a [`split_edge`]: the new vertex and dart, and what the exact undo needs.
@@ -13,57 +12,39 @@ use crate::ops::Refusal;
 /// use zipmesh::{ops::tri, Dart, Map, Vert};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
 /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
-/// assert_eq!(map.valence(rec.vertex), 4);
-/// assert_eq!((map.origin(rec.dart), map.dest(rec.dart)), (rec.vertex, Vert::new(1)));
+/// assert_eq!(map.valence(rec.created()), 4);
+/// assert_eq!((map.origin(rec.dart()), map.dest(rec.dart())), (rec.created(), Vert::new(1)));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct EdgeSplitRecord {
-    /// The new vertex `m`.
-    pub vertex: Vert,
-    /// The new dart from `m` to `b` (the argument `h` now runs from `a` to `m`).
-    pub dart: Dart,
+pub struct EdgeSplit {
     /// `h`; `h1, h2, t1, t2` of the old triangles (`NONE` for an absent side).
-    h: u32,
-    darts: [u32; 4],
-    /// New spokes `m->c`, `m->d` (`NONE` if absent) and new faces.
-    spokes: [u32; 2],
-    new_faces: [u32; 2],
+    h: Dart,
+    darts: [Dart; 4],
+    /// The new vertex `m`, the new edges (`m->b`, then `m->c` and `m->d` where present) and
+    /// the new faces (beside `m->c`, then beside `m->d`).
+    slots: Slots,
     /// `prev(twin h)` when `twin(h)` is a boundary dart.
-    pt: u32,
+    pt: Dart,
     /// Old record of b and of the two faces.
-    old_vb: u32,
-    old_fdart: [u32; 2],
-    lens: Lens,
+    old_vb: Dart,
+    old_fdart: [Dart; 2],
 }
 
-/// `h` and the darts of the triangles of `h` and of `twin(h)` (absent on a boundary side).
-type Sides = (u32, Option<[u32; 3]>, Option<[u32; 3]>);
+/// The darts of the triangles of `h` and of `twin(h)` (absent on a boundary side).
+type Sides = [Option<[Dart; 3]>; 2];
 
 /// The triangles at the edge, or why the split does not apply.
 fn plan(map: &Map, h: Dart) -> Result<Sides, Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
-    let h = h.0;
-    let side = |x: u32| {
-        if fc(map, x) == NONE {
-            Ok(None)
-        } else {
-            triangle(map, x).map(Some)
-        }
-    };
-    let l = side(h)?;
-    let r = side(h ^ 1)?;
-    if l.is_some_and(|x| !distinct_corners(map, x)) || r.is_some_and(|x| !distinct_corners(map, x))
-    {
-        return Err(Refusal::DegenerateTriangle);
-    }
+    let [l, r] = sides(map, h)?;
     if let (Some(l), Some(r)) = (l, r) {
-        if org(map, l[2]) == org(map, r[2]) {
+        if map.origin(l[2]) == map.origin(r[2]) {
             return Err(Refusal::MultiEdge);
         }
     }
-    Ok((h, l, r))
+    Ok([l, r])
 }
 
 /// Checks whether [`split_edge`] applies to the edge of `h`, without changing anything.
@@ -90,7 +71,7 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 ///         c                 c
 ///        / \               /|\
 ///       /   \             / | \
-///      a-h->-b    ==>    a-h-m->-b     record.dart runs from m to b
+///      a-h->-b    ==>    a-h-m->-b     record.dart() runs from m to b
 ///       \   /             \ | /
 ///        \ /               \|/
 ///         d                 d
@@ -99,7 +80,7 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// has valence 3. The apexes gain one; `a`, `b` and every other vertex keep their valence.
 /// `h` now runs from `a` to `m` and keeps its faces; the face of `twin(h)` (now `m -> a`)
 /// keeps its slot too. Every existing handle stays valid. Refusals: see [`can_split_edge`].
-/// The inverse is the collapse of `twin(h)` (`m` into `a`), exactly [`EdgeSplitRecord::undo`].
+/// The inverse is the collapse of `twin(h)` (`m` into `a`), exactly [`EdgeSplit::undo`].
 /// O(1), plus O(d(b)) when the face is on the side of `h` only (finding `prev(twin h)`).
 ///
 /// ```
@@ -112,110 +93,93 @@ pub fn can_split_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplitRecord, Refusal> {
-    let (h, l, r) = plan(map, h)?;
-    let t = h ^ 1;
-    let lens = Lens::of(map);
-    let b = org(map, t);
-    let (fl, fr) = (fc(map, h), fc(map, t));
-    let pt = if r.is_none() { prev_of(map, t) } else { NONE };
-    let old_next_h = nx(map, h);
-    let old_vb = map.vdart[b as usize];
-    let fd = |map: &Map, f: u32| {
-        if f == NONE {
-            NONE
+pub fn split_edge(map: &mut Map, h: Dart) -> Result<EdgeSplit, Refusal> {
+    let [l, r] = plan(map, h)?;
+    let t = h.twin();
+    let (fl, fr) = (map.face(h), map.face(t));
+    let sides = usize::from(l.is_some()) + usize::from(r.is_some());
+    let pick = |x: Option<[Dart; 3]>, i: usize| x.map_or(Dart(NONE), |x| x[i]);
+    let old_fdart = [fl, fr].map(|f| f.map_or(Dart(NONE), |f| map.face_dart(f)));
+    let old_next_h = map.next(h);
+    let rec = EdgeSplit {
+        h,
+        darts: [pick(l, 1), pick(l, 2), pick(r, 1), pick(r, 2)],
+        pt: if r.is_none() {
+            prev_of(map, t)
         } else {
-            map.fdart[f as usize]
-        }
+            Dart(NONE)
+        },
+        old_vb: map.vertex_dart(map.origin(t)),
+        old_fdart,
+        slots: Slots::alloc(map, 1 + sides, sides),
     };
-    let old_fdart = [fd(map, fl), fd(map, fr)];
-
-    let m = map.alloc_vert().0;
-    let n = map.alloc_edge().0; // n: m -> b
-    let g = if l.is_some() {
-        map.alloc_edge().0
-    } else {
-        NONE
-    }; // g: m -> c
-    let k = if r.is_some() {
-        map.alloc_edge().0
-    } else {
-        NONE
-    }; // k: m -> d
-    let l2 = if l.is_some() {
-        map.alloc_face().0
-    } else {
-        NONE
-    };
-    let r1 = if r.is_some() {
-        map.alloc_face().0
-    } else {
-        NONE
-    };
-    let on = n ^ 1;
-    let set = |map: &mut Map, x: u32, next: u32, vert: u32, face: u32| {
-        map.next[x as usize] = next;
-        map.vert[x as usize] = vert;
-        map.face[x as usize] = face;
-    };
-    map.vert[t as usize] = m;
-    if let Some([_, h1, h2]) = l {
+    let (m, n, b) = (rec.created(), rec.dart(), map.origin(t));
+    map.set_origin(t, m);
+    if let (Some([_, h1, h2]), Some(g), Some(l2)) = (l, rec.spoke(0), rec.new_face(0)) {
         // (a, m, c) keeps the face of h; (m, b, c) is new.
-        let c = org(map, h2);
-        map.next[h as usize] = g;
-        set(map, g, h2, m, fl);
-        set(map, n, h1, m, l2);
-        set(map, h1, g ^ 1, b, l2);
-        set(map, g ^ 1, n, c, l2);
-        map.fdart[l2 as usize] = n;
+        let c = map.origin(h2);
+        map.set_next(h, g);
+        map.set_dart(g, h2, m, fl);
+        map.set_dart(n, h1, m, Some(l2));
+        map.set_dart(h1, g.twin(), b, Some(l2));
+        map.set_dart(g.twin(), n, c, Some(l2));
+        map.set_face_dart(Some(l2), n);
         if old_fdart[0] == h1 {
-            map.fdart[fl as usize] = h;
+            map.set_face_dart(fl, h);
         }
     } else {
-        set(map, n, old_next_h, m, NONE);
-        map.next[h as usize] = n;
+        map.set_dart(n, old_next_h, m, None);
+        map.set_next(h, n);
     }
-    if let Some([_, t1, t2]) = r {
+    if let (Some([_, t1, t2]), Some(k), Some(r1)) = (r, rec.spoke(1), rec.new_face(1)) {
         // (m, a, d) keeps the face of twin(h); (b, m, d) is new.
-        let d = org(map, t2);
-        set(map, on, k, b, r1);
-        set(map, k, t2, m, r1);
-        set(map, t2, on, d, r1);
-        map.next[t1 as usize] = k ^ 1;
-        set(map, k ^ 1, t, d, fr);
-        map.fdart[r1 as usize] = on;
+        let d = map.origin(t2);
+        map.set_dart(n.twin(), k, b, Some(r1));
+        map.set_dart(k, t2, m, Some(r1));
+        map.set_dart(t2, n.twin(), d, Some(r1));
+        map.set_next(t1, k.twin());
+        map.set_dart(k.twin(), t, d, fr);
+        map.set_face_dart(Some(r1), n.twin());
         if old_fdart[1] == t2 {
-            map.fdart[fr as usize] = t;
+            map.set_face_dart(fr, t);
         }
     } else {
-        set(map, on, t, b, NONE);
-        map.next[pt as usize] = on;
+        map.set_dart(n.twin(), t, b, None);
+        map.set_next(rec.pt, n.twin());
     }
     // m's boundary dart, if any: n when h is a boundary dart, twin(h) when that one is.
-    map.vdart[m as usize] = if r.is_none() { t } else { n };
-    if old_vb == t {
-        map.vdart[b as usize] = on;
+    map.set_vertex_dart(m, if r.is_none() { t } else { n });
+    if rec.old_vb == t {
+        map.set_vertex_dart(b, n.twin());
     }
-    Ok(EdgeSplitRecord {
-        vertex: Vert(m),
-        dart: Dart(n),
-        h,
-        darts: [
-            l.map_or(NONE, |x| x[1]),
-            l.map_or(NONE, |x| x[2]),
-            r.map_or(NONE, |x| x[1]),
-            r.map_or(NONE, |x| x[2]),
-        ],
-        spokes: [g, k],
-        new_faces: [l2, r1],
-        pt,
-        old_vb,
-        old_fdart,
-        lens,
-    })
+    Ok(rec)
 }
 
-impl EdgeSplitRecord {
+impl EdgeSplit {
+    /// The new vertex `m` on the edge.
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
+    /// assert_eq!(map.dest(Dart::new(0)), rec.created());
+    /// ```
+    pub fn created(&self) -> Vert {
+        self.slots.vert()
+    }
+
+    /// The new dart from `m` to `b` (the argument `h` now runs from `a` to `m`).
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map, Vert};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// let rec = tri::split_edge(&mut map, Dart::new(0)).unwrap();
+    /// assert_eq!(map.dest(rec.dart()), Vert::new(1));
+    /// ```
+    pub fn dart(&self) -> Dart {
+        self.slots.edge(0)
+    }
+
     /// Undoes the split: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -232,142 +196,147 @@ impl EdgeSplitRecord {
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        if !self.fits(map) {
-            return Err(Refusal::StaleRecord);
-        }
-        let (h, n) = (self.h, self.dart.0);
-        let t = h ^ 1;
-        let on = n ^ 1;
+        self.guard(map).result()?;
+        let (h, n) = (self.h, self.dart());
+        let t = h.twin();
         let [h1, h2, t1, t2] = self.darts;
-        let [g, k] = self.spokes;
-        let [l2, r1] = self.new_faces;
-        let b = org(map, on);
-        let (fl, fr) = (fc(map, h), fc(map, t));
-        if h1 != NONE {
-            map.next[h as usize] = h1;
-            map.next[h1 as usize] = h2;
-            map.face[h1 as usize] = fl;
-            map.fdart[fl as usize] = self.old_fdart[0];
+        let b = map.origin(n.twin());
+        let (fl, fr) = (map.face(h), map.face(t));
+        if self.has_l() {
+            map.set_next(h, h1);
+            map.set_next(h1, h2);
+            map.set_face(h1, fl);
+            map.set_face_dart(fl, self.old_fdart[0]);
         } else {
-            map.next[h as usize] = nx(map, n);
+            map.set_next(h, map.next(n));
         }
-        if t1 != NONE {
-            map.next[t1 as usize] = t2;
-            map.next[t2 as usize] = t;
-            map.face[t2 as usize] = fr;
-            map.fdart[fr as usize] = self.old_fdart[1];
+        if self.has_r() {
+            map.set_next(t1, t2);
+            map.set_next(t2, t);
+            map.set_face(t2, fr);
+            map.set_face_dart(fr, self.old_fdart[1]);
         } else {
-            map.next[self.pt as usize] = t;
+            map.set_next(self.pt, t);
         }
-        map.vert[t as usize] = b;
-        map.vdart[b as usize] = self.old_vb;
-        // Reverse of the allocation order: vertex, edges n, g, k, faces L2, R1.
-        let lens = self.lens;
-        for f in [r1, l2] {
-            if f != NONE {
-                release_face(map, f, lens);
-            }
-        }
-        for e in [k, g, n] {
-            if e != NONE {
-                release_edge(map, e, lens);
-            }
-        }
-        release_vert(map, self.vertex.0, lens);
+        map.set_origin(t, b);
+        map.set_vertex_dart(b, self.old_vb);
+        self.slots.release(map);
         Ok(())
     }
 
-    /// Whether the map is as the split left it, as far as the undo depends on it; also makes
-    /// every index the undo uses in range.
-    fn fits(&self, map: &Map) -> bool {
-        let nd = map.next.len();
-        let live = |x: u32| (x as usize) < nd && map.next[x as usize] != NONE;
-        let (h, n, m) = (self.h, self.dart.0, self.vertex.0);
-        let t = h ^ 1;
+    fn has_l(&self) -> bool {
+        self.darts[0].0 != NONE
+    }
+
+    fn has_r(&self) -> bool {
+        self.darts[2].0 != NONE
+    }
+
+    /// The new spoke `m->c` (`side` 0) or `m->d` (`side` 1), if that side has a triangle.
+    fn spoke(&self, side: usize) -> Option<Dart> {
+        match side {
+            0 => self.has_l().then(|| self.slots.edge(1)),
+            _ => self
+                .has_r()
+                .then(|| self.slots.edge(1 + usize::from(self.has_l()))),
+        }
+    }
+
+    /// The new face beside `m->c` (`side` 0) or `m->d` (`side` 1), if that side has one.
+    fn new_face(&self, side: usize) -> Option<Face> {
+        match side {
+            0 => self.has_l().then(|| self.slots.face(0)),
+            _ => self
+                .has_r()
+                .then(|| self.slots.face(usize::from(self.has_l()))),
+        }
+    }
+
+    /// The staleness checks of [`EdgeSplit::undo`], in order: the map is as the split left
+    /// it as far as the undo depends on it, which also makes every slot it writes live.
+    pub(super) fn guard(&self, map: &Map) -> Guard {
+        let (h, n, m) = (self.h, self.dart(), self.created());
+        let t = h.twin();
+        let live = |x: Dart| map.is_live_dart(x);
+        Guard::new()
+            // An edge without a triangle on either side splits, but is never undone (as
+            // before the records had accessors): kept so.
+            .check("a side has a triangle", || self.has_l() || self.has_r())
+            .check("darts live", || live(h) && live(n) && live(self.old_vb))
+            .check("m is the origin of n and twin(h)", || {
+                m.index() < map.vertex_slots() && map.origin(n) == m && map.origin(t) == m
+            })
+            .check("left triangles", || self.left_fits(map))
+            .check("right triangles", || self.right_fits(map))
+            .check("old records", || self.records_fit(map))
+            .check("spokes not recorded", || {
+                let free = |s: Option<Dart>| {
+                    s.is_none_or(|s| map.vertex_dart(map.origin(s.twin())) != s.twin())
+                };
+                free(self.spoke(0)) && free(self.spoke(1))
+            })
+            .check("slots releasable", || self.slots.releasable(map))
+    }
+
+    /// The side of `h`: the triangles `(a, m, c)` and `(m, b, c)` as the split made them, or
+    /// `h -> n` on the boundary loop.
+    fn left_fits(&self, map: &Map) -> bool {
+        let (h, n) = (self.h, self.dart());
+        let [h1, h2, ..] = self.darts;
+        match (self.spoke(0), self.new_face(0)) {
+            (Some(g), Some(l2)) => {
+                map.is_live_dart(h1)
+                    && map.is_live_dart(h2)
+                    && map.is_live_dart(g)
+                    && map.next(h) == g
+                    && map.next(g) == h2
+                    && map.next(n) == h1
+                    && map.next(h1) == g.twin()
+                    && map.face(h).is_some()
+                    && map.face(n) == Some(l2)
+            }
+            _ => map.face(h).is_none() && map.next(h) == n,
+        }
+    }
+
+    /// The side of `twin(h)`, as [`EdgeSplit::left_fits`].
+    fn right_fits(&self, map: &Map) -> bool {
+        let (t, on) = (self.h.twin(), self.dart().twin());
+        let [_, _, t1, t2] = self.darts;
+        match (self.spoke(1), self.new_face(1)) {
+            (Some(k), Some(r1)) => {
+                map.is_live_dart(t1)
+                    && map.is_live_dart(t2)
+                    && map.is_live_dart(k)
+                    && map.next(t) == t1
+                    && map.next(t1) == k.twin()
+                    && map.next(k) == t2
+                    && map.next(t2) == on
+                    && map.face(t).is_some()
+                    && map.face(k) == Some(r1)
+            }
+            _ => map.is_live_dart(self.pt) && map.face(t).is_none() && map.next(self.pt) == on,
+        }
+    }
+
+    /// The restored records name darts of their element: b's a dart leaving b (its boundary
+    /// one if any; the undo changes no boundary status), the faces' a dart of their triangle.
+    fn records_fit(&self, map: &Map) -> bool {
+        let (h, n) = (self.h, self.dart());
+        let t = h.twin();
         let [h1, h2, t1, t2] = self.darts;
-        let [g, k] = self.spokes;
-        let [l2, r1] = self.new_faces;
-        let has_l = h1 != NONE;
-        let has_r = t1 != NONE;
-        if !(has_l || has_r)
-            || !live(h)
-            || !live(n)
-            || (m as usize) >= map.vdart.len()
-            || org(map, n) != m
-            || org(map, t) != m
-            || (has_l != (g != NONE && l2 != NONE && live(h2) && live(g)))
-            || (has_r != (k != NONE && r1 != NONE && live(t2) && live(k)))
-            || (!has_r && !live(self.pt))
-            || !live(self.old_vb)
-        {
-            return false;
-        }
-        let (fl, fr) = (fc(map, h), fc(map, t));
-        let shape_l = if has_l {
-            live(h1)
-                && nx(map, h) == g
-                && nx(map, g) == h2
-                && nx(map, n) == h1
-                && nx(map, h1) == g ^ 1
-                && fl != NONE
-                && fc(map, n) == l2
-                && (self.old_fdart[0] as usize) < nd
-        } else {
-            fl == NONE && nx(map, h) == n
-        };
-        let shape_r = if has_r {
-            live(t1)
-                && nx(map, t) == t1
-                && nx(map, t1) == k ^ 1
-                && nx(map, k) == t2
-                && nx(map, t2) == n ^ 1
-                && fr != NONE
-                && fc(map, k) == r1
-                && (self.old_fdart[1] as usize) < nd
-        } else {
-            fr == NONE && nx(map, self.pt) == n ^ 1
-        };
-        let mut edges = [n >> 1, NONE, NONE];
-        let mut ne = 1;
-        for e in [g, k] {
-            if e != NONE {
-                edges[ne] = e >> 1;
-                ne += 1;
-            }
-        }
-        let mut faces = [NONE; 2];
-        let mut nf = 0;
-        for f in [l2, r1] {
-            if f != NONE {
-                faces[nf] = f;
-                nf += 1;
-            }
-        }
-        // The restored records name darts of their element (b's boundary one if any; the
-        // undo changes no boundary status).
-        let b = org(map, n ^ 1);
+        let b = map.origin(n.twin());
         let vb = self.old_vb;
-        let vb_ok = (vb == t || (org(map, vb) == b && vb != n ^ 1))
-            && (fc(map, vb) == NONE) == super::on_boundary(map, b);
-        let fl_ok = !has_l || [h, h1, h2].contains(&self.old_fdart[0]);
-        let fr_ok = !has_r || [t, t1, t2].contains(&self.old_fdart[1]);
-        // The apexes lose their spokes again: their records must not name them.
-        let spokes_free = (!has_l || map.vdart[org(map, g ^ 1) as usize] != g ^ 1)
-            && (!has_r || map.vdart[org(map, k ^ 1) as usize] != k ^ 1);
-        vb_ok
-            && spokes_free
-            && fl_ok
-            && fr_ok
-            && shape_l
-            && shape_r
-            && fresh_tail(&[m], self.lens.verts, map.vdart.len())
-            && fresh_tail(&edges[..ne], self.lens.darts / 2, nd / 2)
-            && fresh_tail(&faces[..nf], self.lens.faces, map.fdart.len())
+        let vb_ok = (vb == t || (map.origin(vb) == b && vb != n.twin()))
+            && map.face(vb).is_none() == map.is_boundary_vertex(b);
+        let fl_ok = !self.has_l() || [h, h1, h2].contains(&self.old_fdart[0]);
+        let fr_ok = !self.has_r() || [t, t1, t2].contains(&self.old_fdart[1]);
+        vb_ok && fl_ok && fr_ok
     }
 }
 
-impl Undo for EdgeSplitRecord {
+impl Undo for EdgeSplit {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        EdgeSplitRecord::undo(self, map)
+        EdgeSplit::undo(self, map)
     }
 }

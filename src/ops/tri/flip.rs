@@ -1,28 +1,29 @@
 //! Edge flip: the diagonal of the two triangles at an edge turns a quarter turn.
 
-use super::{distinct_corners, fc, joined, min_valence, nx, on_boundary, org, triangle, Undo};
-use crate::map::{Dart, Map, NONE};
+use super::{joined, min_valence, sides, valence_at_least, Undo};
+use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
-/// Record of an [`flip`]: the flipped dart and what its exact undo needs.
+/// Record of an [`flip_edge`]: the flipped dart and what its exact undo needs.
 ///
 /// ```
 /// use zipmesh::{ops::tri, Dart, Map};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
-/// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
-/// assert_eq!((map.origin(rec.dart).index(), map.dest(rec.dart).index()), (3, 2));
+/// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
+/// assert_eq!((map.origin(rec.dart()).index(), map.dest(rec.dart()).index()), (3, 2));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct FlipRecord {
-    /// The flipped dart: it ran from `a` to `b`, it now runs from `d` to `c`.
-    pub dart: Dart,
+pub struct EdgeFlip {
+    /// The flipped dart (see [`EdgeFlip::dart`]).
+    dart: Dart,
     /// Before the flip: `vdart[a]`, `vdart[b]`, `fdart[f0]`, `fdart[f1]`.
-    old: [u32; 4],
+    old: [Dart; 4],
     /// After the flip: the ends `d`, `c` of the dart (tells a flipped edge from a restored one).
-    ends: [u32; 2],
+    ends: [Vert; 2],
 }
 
-/// Checks whether [`flip`] applies to the edge of `h`, without changing anything.
+/// Checks whether [`flip_edge`] applies to the edge of `h`, without changing anything.
 ///
 /// With `h` running from `a` to `b`, `(a, b, c)` the triangle of `h` and `(b, a, d)` the
 /// triangle of `twin(h)`, the rules, in the order checked:
@@ -38,10 +39,10 @@ pub struct FlipRecord {
 /// ```
 /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
 /// let map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
-/// assert_eq!(tri::can_flip(&map, Dart::new(0)), Ok(()));
-/// assert_eq!(tri::can_flip(&map, Dart::new(2)), Err(Refusal::Boundary));
+/// assert_eq!(tri::can_flip_edge(&map, Dart::new(0)), Ok(()));
+/// assert_eq!(tri::can_flip_edge(&map, Dart::new(2)), Err(Refusal::Boundary));
 /// ```
-pub fn can_flip(map: &Map, h: Dart) -> Result<(), Refusal> {
+pub fn can_flip_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
     plan(map, h).map(|_| ())
 }
 
@@ -59,77 +60,81 @@ pub fn can_flip(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// ```
 /// V, E and F do not change; `a` and `b` lose one valence, `c` and `d` gain one; no other
 /// vertex changes. Face `face(h)` becomes `(d, c, a)` and `face(twin h)` becomes `(c, d, b)`;
-/// every handle stays valid. Refusals: see [`can_flip`]; on refusal the map is unchanged.
+/// every handle stays valid. Refusals: see [`can_flip_edge`]; on refusal the map is unchanged.
 /// Flipping the same dart twice gives back the map up to the names of `h` and `twin(h)`;
-/// [`FlipRecord::undo`] restores it exactly. O(valence of `c`).
+/// [`EdgeFlip::undo`] restores it exactly. O(valence of `c`).
 ///
 /// ```
 /// use zipmesh::{ops::tri, Dart, Map, Vert};
 /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
 /// let before = map.clone();
-/// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
+/// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
 /// assert_eq!(map.valence(Vert::new(0)), 2);
 /// assert_eq!(map.valence(Vert::new(2)), 3);
 /// rec.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn flip(map: &mut Map, h: Dart) -> Result<FlipRecord, Refusal> {
+pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
     let [h, h1, h2, t, t1, t2] = plan(map, h)?;
-    let (f0, f1) = (fc(map, h), fc(map, t));
-    let (a, b, c, d) = (org(map, h), org(map, t), org(map, h2), org(map, t2));
+    let (f0, f1) = (map.face(h), map.face(t));
+    let (a, b, c, d) = (map.origin(h), map.origin(t), map.origin(h2), map.origin(t2));
     let old = [
-        map.vdart[a as usize],
-        map.vdart[b as usize],
-        map.fdart[f0 as usize],
-        map.fdart[f1 as usize],
+        map.vertex_dart(a),
+        map.vertex_dart(b),
+        face_dart(map, f0),
+        face_dart(map, f1),
     ];
-    map.next[h as usize] = h2;
-    map.next[h2 as usize] = t1;
-    map.next[t1 as usize] = h;
-    map.next[t as usize] = t2;
-    map.next[t2 as usize] = h1;
-    map.next[h1 as usize] = t;
-    map.vert[h as usize] = d;
-    map.vert[t as usize] = c;
-    map.face[t1 as usize] = f0;
-    map.face[h1 as usize] = f1;
+    rewire(map, [h, h2, t1], d, f0, 2);
+    rewire(map, [t, t2, h1], c, f1, 2);
     // a and b lose h and t; their records must name a dart they keep. h and t are interior,
     // so a boundary record is never one of them.
     if old[0] == h {
-        map.vdart[a as usize] = t1;
+        map.set_vertex_dart(a, t1);
     }
     if old[1] == t {
-        map.vdart[b as usize] = h1;
+        map.set_vertex_dart(b, h1);
     }
     if old[2] == h1 {
-        map.fdart[f0 as usize] = h;
+        map.set_face_dart(f0, h);
     }
     if old[3] == t1 {
-        map.fdart[f1 as usize] = t;
+        map.set_face_dart(f1, t);
     }
-    Ok(FlipRecord {
-        dart: Dart(h),
+    Ok(EdgeFlip {
+        dart: h,
         old,
         ends: [d, c],
     })
 }
 
+/// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`;
+/// `x[joins]` is the one dart that comes from the other face (the others are in `f`).
+fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
+    map.set_next(x[0], x[1]);
+    map.set_next(x[1], x[2]);
+    map.set_next(x[2], x[0]);
+    map.set_origin(x[0], o);
+    map.set_face(x[joins], f);
+}
+
+/// The record of face `f` (`NONE` for none).
+fn face_dart(map: &Map, f: Option<Face>) -> Dart {
+    f.map_or(Dart(NONE), |f| map.face_dart(f))
+}
+
 /// The six darts `[h, h1, h2, t, t1, t2]` of the two triangles, if the flip applies.
-fn plan(map: &Map, h: Dart) -> Result<[u32; 6], Refusal> {
+fn plan(map: &Map, h: Dart) -> Result<[Dart; 6], Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
-    let h = h.0;
-    let t = h ^ 1;
-    if fc(map, h) == NONE || fc(map, t) == NONE {
+    let t = h.twin();
+    if map.face(h).is_none() || map.face(t).is_none() {
         return Err(Refusal::Boundary);
     }
-    let l = triangle(map, h)?;
-    let r = triangle(map, t)?;
-    if !distinct_corners(map, l) || !distinct_corners(map, r) {
-        return Err(Refusal::DegenerateTriangle);
-    }
-    let (c, d) = (org(map, l[2]), org(map, r[2]));
+    let [Some(l), Some(r)] = sides(map, h)? else {
+        return Err(Refusal::Boundary); // unreachable: both faces exist
+    };
+    let (c, d) = (map.origin(l[2]), map.origin(r[2]));
     if c == d {
         return Err(Refusal::Loop);
     }
@@ -137,15 +142,27 @@ fn plan(map: &Map, h: Dart) -> Result<[u32; 6], Refusal> {
         return Err(Refusal::MultiEdge);
     }
     for x in [h, t] {
-        let v = org(map, x);
-        if !super::valence_at_least(map, x, min_valence(on_boundary(map, v)) + 1) {
+        let boundary = map.is_boundary_vertex(map.origin(x));
+        if !valence_at_least(map, x, min_valence(boundary) + 1) {
             return Err(Refusal::ValenceTooLow);
         }
     }
     Ok([h, l[1], l[2], t, r[1], r[2]])
 }
 
-impl FlipRecord {
+impl EdgeFlip {
+    /// The flipped dart, the argument `h`: it ran from `a` to `b`, it now runs from `d` to
+    /// `c`.
+    ///
+    /// ```
+    /// use zipmesh::{ops::tri, Dart, Map};
+    /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
+    /// assert_eq!(tri::flip_edge(&mut map, Dart::new(0)).unwrap().dart(), Dart::new(0));
+    /// ```
+    pub fn dart(&self) -> Dart {
+        self.dart
+    }
+
     /// Undoes the flip: the map becomes equal (`==`) to the one before, provided it has not
     /// been changed since (other records undone in reverse order are fine).
     ///
@@ -156,69 +173,76 @@ impl FlipRecord {
     /// use zipmesh::{ops::{tri, Refusal}, Dart, Map};
     /// let mut map = Map::from_polygons(4, &[[0u32, 1, 2], [1, 0, 3]]).unwrap();
     /// let before = map.clone();
-    /// let rec = tri::flip(&mut map, Dart::new(0)).unwrap();
+    /// let rec = tri::flip_edge(&mut map, Dart::new(0)).unwrap();
     /// assert_eq!(rec.undo(&mut Map::new()), Err(Refusal::StaleRecord));
     /// rec.undo(&mut map).unwrap();
     /// assert_eq!(map, before);
     /// ```
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        let h = self.dart.0;
-        let t = h ^ 1;
-        if !map.is_live_dart(self.dart) {
-            return Err(Refusal::StaleRecord);
-        }
-        let (f0, f1) = (fc(map, h), fc(map, t));
-        if f0 == NONE || f1 == NONE {
-            return Err(Refusal::StaleRecord);
-        }
-        let (h2, t2) = (nx(map, h), nx(map, t));
-        let (t1, h1) = (nx(map, h2), nx(map, t2));
-        if nx(map, t1) != h
-            || nx(map, h1) != t
-            || [h2, t1, t2, h1].iter().any(|&x| x >> 1 == h >> 1)
-            || [org(map, h), org(map, t)] != self.ends
-            // d and c lose h and t again: their records must not name them.
-            || map.vdart[org(map, h) as usize] == h
-            || map.vdart[org(map, t) as usize] == t
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        let (a, b) = (org(map, t1), org(map, h1));
-        // A restored record names a dart of its vertex, the boundary one if there is one
-        // (the undo changes no vertex's boundary status).
-        let leaves = |x: u32, v: u32, own: u32| {
-            let of_v =
-                x == own || (map.is_live_dart(Dart(x)) && org(map, x) == v && x >> 1 != h >> 1);
-            of_v && (fc(map, x) == NONE) == on_boundary(map, v)
-        };
+        self.guard(map).result()?;
+        let [h, h1, h2, t, t1, t2] = self.darts(map);
+        let (f0, f1) = (map.face(h), map.face(t));
+        let (a, b) = (map.origin(t1), map.origin(h1));
+        rewire(map, [h, h1, h2], a, f0, 1);
+        rewire(map, [t, t1, t2], b, f1, 1);
         let [va, vb, fa, fb] = self.old;
-        if !leaves(va, a, h)
-            || !leaves(vb, b, t)
-            || ![h, h1, h2].contains(&fa)
-            || ![t, t1, t2].contains(&fb)
-        {
-            return Err(Refusal::StaleRecord);
-        }
-        map.next[h as usize] = h1;
-        map.next[h1 as usize] = h2;
-        map.next[h2 as usize] = h;
-        map.next[t as usize] = t1;
-        map.next[t1 as usize] = t2;
-        map.next[t2 as usize] = t;
-        map.vert[h as usize] = a;
-        map.vert[t as usize] = b;
-        map.face[h1 as usize] = f0;
-        map.face[t1 as usize] = f1;
-        map.vdart[a as usize] = va;
-        map.vdart[b as usize] = vb;
-        map.fdart[f0 as usize] = fa;
-        map.fdart[f1 as usize] = fb;
+        map.set_vertex_dart(a, va);
+        map.set_vertex_dart(b, vb);
+        map.set_face_dart(f0, fa);
+        map.set_face_dart(f1, fb);
         Ok(())
+    }
+
+    /// The darts `[h, h1, h2, t, t1, t2]` of the flipped pair, read as the flip left them
+    /// (the triangles `h -> h2 -> t1` and `t -> t2 -> h1`).
+    fn darts(&self, map: &Map) -> [Dart; 6] {
+        let h = self.dart;
+        let t = h.twin();
+        let (h2, t2) = (map.next(h), map.next(t));
+        let (t1, h1) = (map.next(h2), map.next(t2));
+        [h, h1, h2, t, t1, t2]
+    }
+
+    /// The staleness checks of [`EdgeFlip::undo`], in order: the two triangles are as the
+    /// flip left them, and the old records name darts of their elements after the undo (a
+    /// vertex record a dart of its vertex, the boundary one if there is one: the undo changes
+    /// no vertex's boundary status; a face record a dart of its triangle).
+    pub(super) fn guard(&self, map: &Map) -> Guard {
+        let [h, h1, h2, t, t1, t2] = self.darts(map);
+        let [va, vb, fa, fb] = self.old;
+        let (a, b) = (map.origin(t1), map.origin(h1));
+        let leaves = |x: Dart, v: Vert, own: Dart| {
+            x == own || (map.is_live_dart(x) && map.origin(x) == v && x.edge() != h.edge())
+        };
+        let boundary_ok = |x: Dart, v: Vert| map.face(x).is_none() == map.is_boundary_vertex(v);
+        Guard::new()
+            .check("dart live", || map.is_live_dart(h))
+            .check("face of h", || map.face(h).is_some())
+            .check("face of twin(h)", || map.face(t).is_some())
+            .check("triangle of h", || map.next(t1) == h)
+            .check("triangle of twin(h)", || map.next(h1) == t)
+            .check("edge once in its triangles", || {
+                [h2, t1, t2, h1].iter().all(|x| x.edge() != h.edge())
+            })
+            .check("ends", || [map.origin(h), map.origin(t)] == self.ends)
+            // d and c lose h and t again: their records must not name them.
+            .check("h not recorded", || map.vertex_dart(map.origin(h)) != h)
+            .check("twin(h) not recorded", || {
+                map.vertex_dart(map.origin(t)) != t
+            })
+            .check("old record of a leaves a", || leaves(va, a, h))
+            .check("old record of a on the boundary", || boundary_ok(va, a))
+            .check("old record of b leaves b", || leaves(vb, b, t))
+            .check("old record of b on the boundary", || boundary_ok(vb, b))
+            .check("old record of the face of h", || [h, h1, h2].contains(&fa))
+            .check("old record of the face of twin(h)", || {
+                [t, t1, t2].contains(&fb)
+            })
     }
 }
 
-impl Undo for FlipRecord {
+impl Undo for EdgeFlip {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        FlipRecord::undo(self, map)
+        EdgeFlip::undo(self, map)
     }
 }

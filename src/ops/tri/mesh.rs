@@ -1,28 +1,18 @@
-//! The triangle operators on a [`Mesh`]: the topology changes as in [`super`], and the
-//! positions follow by these rules:
-//!
-//! * [`flip`]: no position changes.
-//! * [`collapse`]: the kept vertex moves to the midpoint of the collapsed edge.
-//! * [`split_vertex`]: `w` stays; the new vertex goes halfway between `w` and the average of
-//!   its other neighbours (`a`, `b` and the ends of the moved darts), inside its own fan.
-//! * [`split_edge`]: the new vertex goes to the midpoint of the edge.
-//!
-//! A position slot that did not exist is created (positions follow vertex slots); the
-//! record's `undo` restores the topology and then the one position it overwrote, so the
-//! whole [`Mesh`] is equal (`==`) to the one before.
+//! The triangle operators on a [`Mesh`] (the `mesh_*` wrappers): the topology changes as in
+//! [`super`], and the positions follow (the rules are on [`Placed`]).
 //!
 //! ```
 //! use zipmesh::{gen, ops::tri};
 //! let mut mesh = gen::random_triangle(300, 0, 1, 2);
 //! let before = mesh.clone();
-//! let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
-//! let placed = tri::mesh::collapse(&mut mesh, h).unwrap();
+//! let h = mesh.map.darts().find(|&d| tri::can_collapse_edge(&mesh.map, d).is_ok()).unwrap();
+//! let placed = tri::mesh_collapse_edge(&mut mesh, h).unwrap();
 //! assert_eq!(mesh.map.num_vertices(), before.map.num_vertices() - 1);
 //! placed.undo(&mut mesh).unwrap();
 //! assert_eq!(mesh, before);
 //! ```
 
-use super::{CollapseRecord, EdgeSplitRecord, FlipRecord, Undo, VertexSplitRecord};
+use super::{EdgeCollapse, EdgeFlip, EdgeSplit, Undo, VertexSplit};
 use crate::map::{Dart, NONE};
 use crate::mesh::Mesh;
 use crate::ops::Refusal;
@@ -30,11 +20,23 @@ use glam::DVec3;
 
 /// A topological record plus the one position the wrapper wrote.
 ///
+/// The `mesh_*` wrappers place positions by these rules:
+/// * [`mesh_flip_edge`]: no position changes.
+/// * [`mesh_collapse_edge`]: the kept vertex moves to the midpoint of the collapsed edge.
+/// * [`mesh_split_vertex`]: `w` stays; the new vertex goes halfway between `w` and the
+///   average of its other neighbours (`a`, `b` and the ends of the moved darts), inside its
+///   own fan.
+/// * [`mesh_split_edge`]: the new vertex goes to the midpoint of the edge.
+///
+/// A position slot that did not exist is created (positions follow vertex slots); the
+/// record's `undo` restores the topology and then the one position it overwrote, so the
+/// whole [`Mesh`] is equal (`==`) to the one before.
+///
 /// ```
 /// use zipmesh::{gen, ops::tri};
 /// let mut mesh = gen::random_triangle(100, 0, 0, 3);
 /// let before = mesh.clone();
-/// let placed = tri::mesh::split_edge(&mut mesh, zipmesh::Dart::new(0)).unwrap();
+/// let placed = tri::mesh_split_edge(&mut mesh, zipmesh::Dart::new(0)).unwrap();
 /// placed.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
@@ -58,8 +60,8 @@ impl<R: Undo> Placed<R> {
     /// use zipmesh::{gen, ops::tri};
     /// let mut mesh = gen::random_triangle(100, 0, 1, 8);
     /// let before = mesh.clone();
-    /// let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
-    /// let placed = tri::mesh::collapse(&mut mesh, h).unwrap();
+    /// let h = mesh.map.darts().find(|&d| tri::can_collapse_edge(&mesh.map, d).is_ok()).unwrap();
+    /// let placed = tri::mesh_collapse_edge(&mut mesh, h).unwrap();
     /// placed.undo(&mut mesh).unwrap();
     /// assert_eq!(mesh, before);
     /// ```
@@ -96,18 +98,18 @@ fn place<R>(mesh: &mut Mesh, record: R, v: u32, p: DVec3) -> Placed<R> {
     }
 }
 
-/// [`super::flip`] on a mesh; no position changes.
+/// [`super::flip_edge`] on a mesh; no position changes.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri, Dart};
 /// let mut mesh = gen::random_triangle(100, 0, 0, 1);
 /// let before = mesh.positions.clone();
-/// let h = mesh.map.darts().find(|&d| tri::can_flip(&mesh.map, d).is_ok()).unwrap();
-/// tri::mesh::flip(&mut mesh, h).unwrap();
+/// let h = mesh.map.darts().find(|&d| tri::can_flip_edge(&mesh.map, d).is_ok()).unwrap();
+/// tri::mesh_flip_edge(&mut mesh, h).unwrap();
 /// assert_eq!(mesh.positions, before);
 /// ```
-pub fn flip(mesh: &mut Mesh, h: Dart) -> Result<Placed<FlipRecord>, Refusal> {
-    let record = super::flip(&mut mesh.map, h)?;
+pub fn mesh_flip_edge(mesh: &mut Mesh, h: Dart) -> Result<Placed<EdgeFlip>, Refusal> {
+    let record = super::flip_edge(&mut mesh.map, h)?;
     Ok(Placed {
         record,
         slot: NONE,
@@ -116,21 +118,21 @@ pub fn flip(mesh: &mut Mesh, h: Dart) -> Result<Placed<FlipRecord>, Refusal> {
     })
 }
 
-/// [`super::collapse`] on a mesh; the kept vertex moves to the edge's midpoint.
+/// [`super::collapse_edge`] on a mesh; the kept vertex moves to the edge's midpoint.
 ///
 /// ```
 /// use zipmesh::{gen, ops::tri};
 /// let mut mesh = gen::random_triangle(100, 0, 0, 1);
-/// let h = mesh.map.darts().find(|&d| tri::can_collapse(&mesh.map, d).is_ok()).unwrap();
+/// let h = mesh.map.darts().find(|&d| tri::can_collapse_edge(&mesh.map, d).is_ok()).unwrap();
 /// let (v, u) = (mesh.map.origin(h).index(), mesh.map.dest(h).index());
 /// let mid = (mesh.positions[u] + mesh.positions[v]) / 2.0;
-/// let placed = tri::mesh::collapse(&mut mesh, h).unwrap();
-/// assert_eq!(mesh.positions[placed.record.kept.index()], mid);
+/// let placed = tri::mesh_collapse_edge(&mut mesh, h).unwrap();
+/// assert_eq!(mesh.positions[placed.record.kept().index()], mid);
 /// ```
-pub fn collapse(mesh: &mut Mesh, h: Dart) -> Result<Placed<CollapseRecord>, Refusal> {
+pub fn mesh_collapse_edge(mesh: &mut Mesh, h: Dart) -> Result<Placed<EdgeCollapse>, Refusal> {
     let (v, u) = (mesh.map.origin(h).0, mesh.map.dest(h).0);
     let mid = (pos(mesh, u) + pos(mesh, v)) * 0.5;
-    let record = super::collapse(&mut mesh.map, h)?;
+    let record = super::collapse_edge(&mut mesh.map, h)?;
     Ok(place(mesh, record, u, mid))
 }
 
@@ -143,20 +145,20 @@ pub fn collapse(mesh: &mut Mesh, h: Dart) -> Result<Placed<CollapseRecord>, Refu
 /// let w = Vert::new(5);
 /// let d1 = mesh.map.vertex_dart(w);
 /// let d2 = mesh.map.rotate_cw(mesh.map.rotate_cw(d1));
-/// let placed = tri::mesh::split_vertex(&mut mesh, d1, d2).unwrap();
-/// let v = placed.record.vertex.index();
+/// let placed = tri::mesh_split_vertex(&mut mesh, d1, d2).unwrap();
+/// let v = placed.record.created().index();
 /// assert!(mesh.positions[v] != mesh.positions[w.index()]);
 /// ```
-pub fn split_vertex(
+pub fn mesh_split_vertex(
     mesh: &mut Mesh,
     d1: Dart,
     d2: Dart,
-) -> Result<Placed<VertexSplitRecord>, Refusal> {
+) -> Result<Placed<VertexSplit>, Refusal> {
     let record = super::split_vertex(&mut mesh.map, d1, d2)?;
-    let w = mesh.map.dest(record.edge).0;
+    let w = mesh.map.dest(record.edge()).0;
     let mut sum = DVec3::ZERO;
     let mut n = 0.0;
-    for d in mesh.map.vertex_darts(record.vertex) {
+    for d in mesh.map.vertex_darts(record.created()) {
         let x = mesh.map.dest(d).0;
         if x != w {
             sum += pos(mesh, x);
@@ -164,7 +166,7 @@ pub fn split_vertex(
         }
     }
     let p = (pos(mesh, w) + sum / n) * 0.5;
-    Ok(place(mesh, record, record.vertex.0, p))
+    Ok(place(mesh, record, record.created().0, p))
 }
 
 /// [`super::split_edge`] on a mesh; the new vertex goes to the edge's midpoint.
@@ -174,12 +176,12 @@ pub fn split_vertex(
 /// let mut mesh = gen::random_triangle(100, 0, 0, 1);
 /// let (a, b) = (mesh.map.origin(Dart::new(0)).index(), mesh.map.dest(Dart::new(0)).index());
 /// let mid = (mesh.positions[a] + mesh.positions[b]) / 2.0;
-/// let placed = tri::mesh::split_edge(&mut mesh, Dart::new(0)).unwrap();
-/// assert_eq!(mesh.positions[placed.record.vertex.index()], mid);
+/// let placed = tri::mesh_split_edge(&mut mesh, Dart::new(0)).unwrap();
+/// assert_eq!(mesh.positions[placed.record.created().index()], mid);
 /// ```
-pub fn split_edge(mesh: &mut Mesh, h: Dart) -> Result<Placed<EdgeSplitRecord>, Refusal> {
+pub fn mesh_split_edge(mesh: &mut Mesh, h: Dart) -> Result<Placed<EdgeSplit>, Refusal> {
     let (a, b) = (mesh.map.origin(h).0, mesh.map.dest(h).0);
     let mid = (pos(mesh, a) + pos(mesh, b)) * 0.5;
     let record = super::split_edge(&mut mesh.map, h)?;
-    Ok(place(mesh, record, record.vertex.0, mid))
+    Ok(place(mesh, record, record.created().0, mid))
 }

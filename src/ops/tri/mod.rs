@@ -3,15 +3,15 @@
 //!
 //! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
 //! the same [`Refusal`] and leaves the map untouched, or applies and returns a record whose
-//! `undo` restores the map exactly (`==`, free lists included). [`mesh`] wraps each operator
-//! for a [`crate::Mesh`] and places new vertices.
+//! `undo` restores the map exactly (`==`, free lists included). The `mesh_*` wrappers (see
+//! [`Placed`]) apply each operator to a [`crate::Mesh`] and place new vertices.
 //!
 //! ```
 //! use zipmesh::{gen, ops::tri};
 //! let mut map = gen::random_triangle(500, 1, 0, 7).map;
 //! let before = map.clone();
-//! let h = map.darts().find(|&d| tri::can_flip(&map, d).is_ok()).unwrap();
-//! let flip = tri::flip(&mut map, h).unwrap();
+//! let h = map.darts().find(|&d| tri::can_flip_edge(&map, d).is_ok()).unwrap();
+//! let flip = tri::flip_edge(&mut map, h).unwrap();
 //! let split = tri::split_edge(&mut map, h).unwrap();
 //! assert!(map.check().is_ok());
 //! split.undo(&mut map).unwrap(); // records are undone in reverse order
@@ -33,9 +33,9 @@
 //! # Changes in counts (V, E, F) and valences, as tested
 //! | operator | V | E | F | valences |
 //! |---|---|---|---|---|
-//! | [`flip`] of a-b (apexes c, d) | 0 | 0 | 0 | a, b: -1; c, d: +1 |
-//! | [`collapse`] of v→u, interior edge | -1 | -3 | -2 | u: d(u) + d(v) - 4; apexes -1 |
-//! | [`collapse`] of v→u, boundary edge | -1 | -2 | -1 | u: d(u) + d(v) - 3; apex -1 |
+//! | [`flip_edge`] of a-b (apexes c, d) | 0 | 0 | 0 | a, b: -1; c, d: +1 |
+//! | [`collapse_edge`] of v→u, interior edge | -1 | -3 | -2 | u: d(u) + d(v) - 4; apexes -1 |
+//! | [`collapse_edge`] of v→u, boundary edge | -1 | -2 | -1 | u: d(u) + d(v) - 3; apex -1 |
 //! | [`split_vertex`] of w at w→a, w→b | +1 | +3 | +2 | w: k_w + 3, new v: k_v + 3; a, b: +1 |
 //! | [`split_edge`] of a-b, interior edge | +1 | +3 | +2 | new m: 4; apexes +1 |
 //! | [`split_edge`] of a-b, boundary edge | +1 | +2 | +1 | new m: 3; apex +1 |
@@ -52,19 +52,20 @@
 //! unless a free list is empty (then the arrays grow) or a free list grows.
 
 use super::Refusal;
-use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::map::{Dart, Map, Vert, NONE};
 
 mod collapse;
 mod edge_split;
 mod flip;
-pub mod mesh;
+mod mesh;
 #[cfg(test)]
 mod tests;
 
-pub use collapse::{can_collapse, can_split_vertex, collapse, split_vertex};
-pub use collapse::{CollapseRecord, VertexSplitRecord};
-pub use edge_split::{can_split_edge, split_edge, EdgeSplitRecord};
-pub use flip::{can_flip, flip, FlipRecord};
+pub use collapse::{can_collapse_edge, can_split_vertex, collapse_edge, split_vertex};
+pub use collapse::{EdgeCollapse, VertexSplit};
+pub use edge_split::{can_split_edge, split_edge, EdgeSplit};
+pub use flip::{can_flip_edge, flip_edge, EdgeFlip};
+pub use mesh::{mesh_collapse_edge, mesh_flip_edge, mesh_split_edge, mesh_split_vertex, Placed};
 
 pub use super::Undo;
 
@@ -83,9 +84,9 @@ pub use super::Undo;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TriOp {
-    /// [`flip`] of the dart's edge.
+    /// [`flip_edge`] of the dart's edge.
     Flip(Dart),
-    /// [`collapse`] of the dart's origin into its destination.
+    /// [`collapse_edge`] of the dart's origin into its destination.
     Collapse(Dart),
     /// [`split_vertex`] along the two darts.
     SplitVertex(Dart, Dart),
@@ -111,8 +112,8 @@ impl TriOp {
     /// See [`TriOp`] for an example.
     pub fn can(self, m: &Map) -> Result<(), Refusal> {
         match self {
-            TriOp::Flip(d) => can_flip(m, d),
-            TriOp::Collapse(d) => can_collapse(m, d),
+            TriOp::Flip(d) => can_flip_edge(m, d),
+            TriOp::Collapse(d) => can_collapse_edge(m, d),
             TriOp::SplitVertex(a, b) => can_split_vertex(m, a, b),
             TriOp::SplitEdge(d) => can_split_edge(m, d),
         }
@@ -123,8 +124,8 @@ impl TriOp {
     /// See [`TriOp`] for an example.
     pub fn apply(self, m: &mut Map) -> Result<TriRecord, Refusal> {
         Ok(match self {
-            TriOp::Flip(d) => TriRecord::Flip(flip(m, d)?),
-            TriOp::Collapse(d) => TriRecord::Collapse(collapse(m, d)?),
+            TriOp::Flip(d) => TriRecord::Flip(flip_edge(m, d)?),
+            TriOp::Collapse(d) => TriRecord::Collapse(collapse_edge(m, d)?),
             TriOp::SplitVertex(a, b) => TriRecord::SplitVertex(split_vertex(m, a, b)?),
             TriOp::SplitEdge(d) => TriRecord::SplitEdge(split_edge(m, d)?),
         })
@@ -136,14 +137,14 @@ impl TriOp {
 /// See [`TriOp`] for an example.
 #[derive(Clone, Copy, Debug)]
 pub enum TriRecord {
-    /// A [`flip`].
-    Flip(FlipRecord),
-    /// A [`collapse`].
-    Collapse(CollapseRecord),
+    /// A [`flip_edge`].
+    Flip(EdgeFlip),
+    /// A [`collapse_edge`].
+    Collapse(EdgeCollapse),
     /// A [`split_vertex`].
-    SplitVertex(VertexSplitRecord),
+    SplitVertex(VertexSplit),
     /// A [`split_edge`].
-    SplitEdge(EdgeSplitRecord),
+    SplitEdge(EdgeSplit),
 }
 
 impl TriRecord {
@@ -176,58 +177,54 @@ pub(crate) fn min_valence(boundary: bool) -> usize {
     }
 }
 
-#[inline]
-pub(crate) fn nx(m: &Map, d: u32) -> u32 {
-    m.next[d as usize]
-}
-
-#[inline]
-pub(crate) fn org(m: &Map, d: u32) -> u32 {
-    m.vert[d as usize]
-}
-
-#[inline]
-pub(crate) fn fc(m: &Map, d: u32) -> u32 {
-    m.face[d as usize]
-}
-
-/// `rotate_cw` on raw darts.
-#[inline]
-pub(crate) fn rot(m: &Map, d: u32) -> u32 {
-    m.next[(d ^ 1) as usize]
-}
-
-/// Whether the live vertex `v` is on the boundary (its record names its boundary dart).
-#[inline]
-pub(crate) fn on_boundary(m: &Map, v: u32) -> bool {
-    m.face[m.vdart[v as usize] as usize] == NONE
-}
-
 /// The darts `[d, next d, next next d]` of the face of the live face dart `d`, if that face
 /// is a triangle ([`Refusal::WrongDegree`] otherwise).
 #[inline]
-pub(crate) fn triangle(map: &Map, d: u32) -> Result<[u32; 3], Refusal> {
-    let n1 = nx(map, d);
-    let n2 = nx(map, n1);
-    if n1 == d || n2 == d || nx(map, n2) != d {
+pub(crate) fn triangle(map: &Map, d: Dart) -> Result<[Dart; 3], Refusal> {
+    let n1 = map.next(d);
+    let n2 = map.next(n1);
+    if n1 == d || n2 == d || map.next(n2) != d {
         return Err(Refusal::WrongDegree);
     }
     Ok([d, n1, n2])
 }
 
+/// The triangle of `d`, `None` when `d` is a boundary dart, or why the face is not a
+/// proper triangle ([`Refusal::WrongDegree`], [`Refusal::DegenerateTriangle`]).
+#[inline]
+pub(crate) fn side(map: &Map, d: Dart) -> Result<Option<[Dart; 3]>, Refusal> {
+    if map.face(d).is_none() {
+        return Ok(None);
+    }
+    triangle(map, d).map(Some)
+}
+
+/// The two sides of the live dart `h` (see [`side`]), both checked for their degree first
+/// and then for distinct corners.
+#[inline]
+pub(crate) fn sides(map: &Map, h: Dart) -> Result<[Option<[Dart; 3]>; 2], Refusal> {
+    let l = side(map, h)?;
+    let r = side(map, h.twin())?;
+    if l.is_some_and(|x| !distinct_corners(map, x)) || r.is_some_and(|x| !distinct_corners(map, x))
+    {
+        return Err(Refusal::DegenerateTriangle);
+    }
+    Ok([l, r])
+}
+
 /// Whether the triangle's three corners are distinct.
 #[inline]
-pub(crate) fn distinct_corners(map: &Map, t: [u32; 3]) -> bool {
-    let (a, b, c) = (org(map, t[0]), org(map, t[1]), org(map, t[2]));
+pub(crate) fn distinct_corners(map: &Map, t: [Dart; 3]) -> bool {
+    let [a, b, c] = t.map(|d| map.origin(d));
     a != b && b != c && a != c
 }
 
 /// Whether the vertex with outgoing dart `d` has at least `k` darts (walks at most `k`).
 #[inline]
-pub(crate) fn valence_at_least(map: &Map, d: u32, k: usize) -> bool {
+pub(crate) fn valence_at_least(map: &Map, d: Dart, k: usize) -> bool {
     let mut x = d;
     for i in 1..k {
-        x = rot(map, x);
+        x = map.rotate_cw(x);
         if x == d {
             return i >= k;
         }
@@ -237,13 +234,13 @@ pub(crate) fn valence_at_least(map: &Map, d: u32, k: usize) -> bool {
 
 /// Whether some dart leaving the vertex of `d` ends at `target` (walks that rotation).
 #[inline]
-pub(crate) fn joined(map: &Map, d: u32, target: u32) -> bool {
+pub(crate) fn joined(map: &Map, d: Dart, target: Vert) -> bool {
     let mut x = d;
-    for _ in 0..map.next.len() {
-        if org(map, x ^ 1) == target {
+    for _ in 0..map.dart_slots() {
+        if map.dest(x) == target {
             return true;
         }
-        x = rot(map, x);
+        x = map.rotate_cw(x);
         if x == d {
             break;
         }
@@ -257,13 +254,13 @@ pub(crate) const SMALL: usize = 16;
 
 /// The ends of a run of darts around one vertex, kept on the stack for membership tests.
 pub(crate) struct Ends {
-    ids: [u32; SMALL],
+    ids: [Vert; SMALL],
     len: usize,
 }
 
 impl Ends {
     #[inline]
-    pub(crate) fn contains(&self, v: u32) -> bool {
+    pub(crate) fn contains(&self, v: Vert) -> bool {
         self.ids[..self.len].contains(&v)
     }
 
@@ -277,9 +274,9 @@ impl Ends {
 /// `end` is not met), or `None` if there are more than `limit` (at most [`SMALL`]). One walk
 /// of the rotation and no other memory: cheaper than walking each candidate's rotation.
 #[inline]
-pub(crate) fn gather(map: &Map, start: u32, end: u32, limit: usize) -> Option<Ends> {
+pub(crate) fn gather(map: &Map, start: Dart, end: Option<Dart>, limit: usize) -> Option<Ends> {
     let mut e = Ends {
-        ids: [NONE; SMALL],
+        ids: [Vert(NONE); SMALL],
         len: 0,
     };
     let mut x = start;
@@ -287,12 +284,12 @@ pub(crate) fn gather(map: &Map, start: u32, end: u32, limit: usize) -> Option<En
         if e.len >= limit.min(SMALL) {
             return None;
         }
-        e.ids[e.len] = org(map, x ^ 1);
+        e.ids[e.len] = map.dest(x);
         e.len += 1;
-        if x == end {
+        if Some(x) == end {
             return Some(e);
         }
-        x = rot(map, x);
+        x = map.rotate_cw(x);
         if x == start {
             return Some(e);
         }
@@ -301,87 +298,17 @@ pub(crate) fn gather(map: &Map, start: u32, end: u32, limit: usize) -> Option<En
 
 /// The dart before `d` around its face or boundary loop (see [`Map::prev`]).
 #[inline]
-pub(crate) fn prev_of(map: &Map, d: u32) -> u32 {
-    if fc(map, d) != NONE {
+pub(crate) fn prev_of(map: &Map, d: Dart) -> Dart {
+    if map.face(d).is_some() {
         // Faces here are mostly triangles: walk the face, cheaper than the rotation.
         let mut x = d;
-        loop {
-            let y = nx(map, x);
+        for _ in 0..map.dart_slots() {
+            let y = map.next(x);
             if y == d {
                 return x;
             }
             x = y;
         }
     }
-    map.prev(Dart(d)).0
-}
-
-/// Slot counts before an operation allocated: a slot at or past them was appended, so the
-/// undo truncates the arrays instead of pushing the slot on a free list.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub(crate) struct Lens {
-    darts: u32,
-    verts: u32,
-    faces: u32,
-}
-
-impl Lens {
-    pub(crate) fn of(map: &Map) -> Lens {
-        Lens {
-            darts: map.next.len() as u32,
-            verts: map.vdart.len() as u32,
-            faces: map.fdart.len() as u32,
-        }
-    }
-}
-
-/// Undoes the allocation of the edge of `d`: truncates if it was appended, else frees it.
-/// Allocations are undone in reverse order, so an appended slot is then the last one.
-pub(crate) fn release_edge(m: &mut Map, d: u32, lens: Lens) {
-    let e = d & !1;
-    if e >= lens.darts {
-        m.next.truncate(e as usize);
-        m.vert.truncate(e as usize);
-        m.face.truncate(e as usize);
-    } else {
-        m.free_edge(Dart(e));
-    }
-}
-
-/// Undoes the allocation of vertex `v` (see [`release_edge`]).
-pub(crate) fn release_vert(m: &mut Map, v: u32, lens: Lens) {
-    if v >= lens.verts {
-        m.vdart.truncate(v as usize);
-    } else {
-        m.free_vert(Vert(v));
-    }
-}
-
-/// Undoes the allocation of face `f` (see [`release_edge`]).
-pub(crate) fn release_face(m: &mut Map, f: u32, lens: Lens) {
-    if f >= lens.faces {
-        m.fdart.truncate(f as usize);
-    } else {
-        m.free_face(Face(f));
-    }
-}
-
-/// Whether slots allocated in the order given can be un-allocated in reverse: the appended
-/// ones (at or past `before`, the count before the allocation) are exactly the last slots,
-/// consecutive from `before`, and come after every reused one.
-pub(crate) fn fresh_tail(slots: &[u32], before: u32, len: usize) -> bool {
-    let mut expect = before;
-    let mut fresh = false;
-    for &s in slots {
-        if s >= before {
-            if s != expect {
-                return false;
-            }
-            expect += 1;
-            fresh = true;
-        } else if fresh {
-            return false;
-        }
-    }
-    !fresh || expect as usize == len
+    map.prev(d)
 }

@@ -92,16 +92,16 @@ fn code(m: &Map) -> CanonicalCode {
 }
 
 fn refused_flip(m: &Map, h: Dart, want: Refusal) {
-    assert_eq!(can_flip(m, h), Err(want));
+    assert_eq!(can_flip_edge(m, h), Err(want));
     let mut x = m.clone();
-    assert_eq!(flip(&mut x, h).err(), Some(want));
+    assert_eq!(flip_edge(&mut x, h).err(), Some(want));
     assert_eq!(x, *m);
 }
 
 fn refused_collapse(m: &Map, h: Dart, want: Refusal) {
-    assert_eq!(can_collapse(m, h), Err(want));
+    assert_eq!(can_collapse_edge(m, h), Err(want));
     let mut x = m.clone();
-    assert_eq!(collapse(&mut x, h).err(), Some(want));
+    assert_eq!(collapse_edge(&mut x, h).err(), Some(want));
     assert_eq!(x, *m);
 }
 
@@ -131,12 +131,15 @@ fn no_interior_valence_below_3(m: &Map) -> bool {
 fn flip_interior_spoke_of_a_hexagon() {
     let m = hexagon();
     let h = dart(&m, 0, 1); // triangles (0, 1, 2) and (1, 0, 6)
-    assert_eq!(can_flip(&m, h), Ok(()));
+    assert_eq!(can_flip_edge(&m, h), Ok(()));
     let mut x = m.clone();
-    let rec = flip(&mut x, h).unwrap();
+    let rec = flip_edge(&mut x, h).unwrap();
     assert_eq!(x.check(), Ok(()));
     assert_eq!(counts(&x), counts(&m));
-    assert_eq!((x.origin(rec.dart), x.dest(rec.dart)), (Vert(6), Vert(2)));
+    assert_eq!(
+        (x.origin(rec.dart()), x.dest(rec.dart())),
+        (Vert(6), Vert(2))
+    );
     assert_eq!(
         [0, 1, 2, 6].map(|v| val(&x, v)),
         [6 - 1, 3 - 1, 3 + 1, 3 + 1]
@@ -146,7 +149,7 @@ fn flip_interior_spoke_of_a_hexagon() {
     }
     // Flipping again gives back the map up to the names of h and twin(h); undo, exactly.
     let mut y = x.clone();
-    flip(&mut y, h).unwrap();
+    flip_edge(&mut y, h).unwrap();
     assert_eq!(code(&y), code(&m));
     rec.undo(&mut x).unwrap();
     assert_eq!(x, m);
@@ -157,7 +160,7 @@ fn flip_may_leave_a_boundary_vertex_with_valence_2() {
     // Two triangles: 0 and 1 are boundary vertices of valence 3, which may drop to 2.
     let m = polys(4, &[[0u32, 1, 2], [1, 0, 3]]);
     let mut x = m.clone();
-    let rec = flip(&mut x, dart(&m, 0, 1)).unwrap();
+    let rec = flip_edge(&mut x, dart(&m, 0, 1)).unwrap();
     assert_eq!([0, 1, 2, 3].map(|v| val(&x, v)), [2, 2, 3, 3]);
     rec.undo(&mut x).unwrap();
     assert_eq!(x, m);
@@ -203,9 +206,9 @@ fn collapse_interior_edge_of_a_grid() {
     let h = dart(&m, v, u);
     let (c, d) = (m.dest(m.next(h)).0, m.dest(m.next(h.twin())).0);
     let mut x = m.clone();
-    let rec = collapse(&mut x, h).unwrap();
+    let rec = collapse_edge(&mut x, h).unwrap();
     assert_eq!(x.check(), Ok(()));
-    assert_eq!((rec.kept, rec.removed), (Vert(u), Vert(v)));
+    assert_eq!((rec.kept(), rec.removed()), (Vert(u), Vert(v)));
     let [nv, ne, nf] = counts(&m);
     assert_eq!(counts(&x), [nv - 1, ne - 3, nf - 2]);
     assert_eq!(val(&x, u), val(&m, u) + val(&m, v) - 4);
@@ -227,7 +230,7 @@ fn collapse_boundary_edge_either_way_round() {
         let face_side = if m.face(h).is_some() { h } else { h.twin() };
         let c = m.dest(m.next(face_side)).0;
         let mut x = m.clone();
-        let rec = collapse(&mut x, h).unwrap();
+        let rec = collapse_edge(&mut x, h).unwrap();
         assert_eq!(x.check(), Ok(()));
         let [nv, ne, nf] = counts(&m);
         assert_eq!(counts(&x), [nv - 1, ne - 2, nf - 1]);
@@ -271,7 +274,7 @@ fn collapse_link_condition_vertex_part() {
     refused_collapse(&m, dart(&m, 2, 1), Refusal::LinkCondition);
     // Collapsing a spoke is fine: it leaves one triangle.
     let mut x = m.clone();
-    collapse(&mut x, dart(&m, 1, 0)).unwrap();
+    collapse_edge(&mut x, dart(&m, 1, 0)).unwrap();
     assert_eq!(counts(&x), [3, 3, 1]);
 }
 
@@ -288,7 +291,7 @@ fn octahedron_collapses_to_a_tetrahedron_and_stops() {
     let o = octahedron();
     let mut x = o.clone();
     // Pole 0 into equator vertex 1: the apexes 2 and 4 are the only common neighbours.
-    let r1 = collapse(&mut x, dart(&o, 0, 1)).unwrap();
+    let r1 = collapse_edge(&mut x, dart(&o, 0, 1)).unwrap();
     assert_eq!(counts(&x), [5, 9, 6]); // a triangular bipyramid
     assert_eq!([1, 2, 3, 4, 5].map(|v| val(&x, v)), [4, 3, 4, 3, 4]);
     // Equator of the bipyramid: 1, 3, 5 are pairwise joined; 1-3 has apexes 2 and 4 but
@@ -296,7 +299,7 @@ fn octahedron_collapses_to_a_tetrahedron_and_stops() {
     refused_collapse(&x, dart(&x, 1, 3), Refusal::LinkCondition);
     // A pole into the equator gives the tetrahedron, which then refuses every collapse.
     let h2 = dart(&x, 2, 1);
-    let r2 = collapse(&mut x, h2).unwrap();
+    let r2 = collapse_edge(&mut x, h2).unwrap();
     assert_eq!(code(&x), code(&tetrahedron()));
     for d in x.darts() {
         refused_collapse(&x, d, Refusal::LinkCondition);
@@ -330,7 +333,7 @@ fn no_collapse_leaves_an_interior_vertex_of_valence_2() {
     let mut applied = 0;
     for d in m.darts() {
         let mut x = m.clone();
-        if collapse(&mut x, d).is_ok() {
+        if collapse_edge(&mut x, d).is_ok() {
             applied += 1;
             assert!(no_interior_valence_below_3(&x), "collapse of {d:?}");
         }
@@ -346,7 +349,7 @@ fn collapse_keeps_the_boundary_record_of_the_merged_vertex() {
     let h = dart(&m, 1, 5); // 1 on the boundary, 5 inside
     assert!(m.face(h).is_some() && m.face(h.twin()).is_some());
     let mut x = m.clone();
-    collapse(&mut x, h).unwrap();
+    collapse_edge(&mut x, h).unwrap();
     assert_eq!(x.check(), Ok(()));
     assert!(x.is_boundary_vertex(Vert(5)));
 }
@@ -373,11 +376,11 @@ fn split_the_hexagon_center_every_way() {
             let [nv, ne, nf] = counts(&m);
             assert_eq!(counts(&x), [nv + 1, ne + 3, nf + 2]);
             assert_eq!(x.valence(w), k_w + 3);
-            assert_eq!(x.valence(rec.vertex), k_v + 3);
+            assert_eq!(x.valence(rec.created()), k_v + 3);
             assert_eq!((val(&x, a), val(&x, b)), (val(&m, a) + 1, val(&m, b) + 1));
-            assert!(!x.is_boundary_vertex(w) && !x.is_boundary_vertex(rec.vertex));
+            assert!(!x.is_boundary_vertex(w) && !x.is_boundary_vertex(rec.created()));
             let mut y = x.clone();
-            collapse(&mut y, rec.edge).unwrap();
+            collapse_edge(&mut y, rec.edge()).unwrap();
             assert_eq!(code(&y), code(&m));
             rec.undo(&mut x).unwrap();
             assert_eq!(x, m);
@@ -400,7 +403,7 @@ fn split_a_boundary_vertex_keeps_one_copy_on_the_boundary() {
             applied += 1;
             assert_eq!(x.check(), Ok(()));
             let bw = x.is_boundary_vertex(w);
-            let bv = x.is_boundary_vertex(rec.vertex);
+            let bv = x.is_boundary_vertex(rec.created());
             assert!(bw != bv, "exactly one copy keeps the boundary corner");
             // v keeps it exactly when w's boundary dart moved or was d1.
             let boundary_dart = m.vertex_dart(w);
@@ -472,18 +475,18 @@ fn split_interior_and_boundary_edges() {
             [nv + 1, ne + 2, nf + 1]
         };
         assert_eq!(counts(&x), want);
-        assert_eq!(x.valence(rec.vertex), if interior { 4 } else { 3 });
+        assert_eq!(x.valence(rec.created()), if interior { 4 } else { 3 });
         for &c in &apexes {
             assert_eq!(val(&x, c), val(&m, c) + 1);
         }
         assert_eq!((val(&x, a), val(&x, b)), (val(&m, a), val(&m, b)));
-        assert_eq!((x.origin(h), x.dest(h)), (Vert(a), rec.vertex));
+        assert_eq!((x.origin(h), x.dest(h)), (Vert(a), rec.created()));
         assert_eq!(
-            (x.origin(rec.dart), x.dest(rec.dart)),
-            (rec.vertex, Vert(b))
+            (x.origin(rec.dart()), x.dest(rec.dart())),
+            (rec.created(), Vert(b))
         );
         let mut y = x.clone();
-        collapse(&mut y, h.twin()).unwrap();
+        collapse_edge(&mut y, h.twin()).unwrap();
         assert_eq!(code(&y), code(&m));
         rec.undo(&mut x).unwrap();
         assert_eq!(x, m);
@@ -510,14 +513,14 @@ fn stale_and_foreign_records_are_refused_without_change() {
     let m = tri_grid(4);
     let h = dart(&m, 5, 6);
     let mut x = m.clone();
-    let f = flip(&mut x, h).unwrap();
+    let f = flip_edge(&mut x, h).unwrap();
     f.undo(&mut x).unwrap();
     let before = x.clone();
     // The flip's triangles are back as they were: a second undo does not fit.
     assert_eq!(f.undo(&mut x), Err(Refusal::StaleRecord));
     assert_eq!(x, before);
 
-    let c = collapse(&mut x, h).unwrap();
+    let c = collapse_edge(&mut x, h).unwrap();
     c.undo(&mut x).unwrap();
     assert_eq!(c.undo(&mut x), Err(Refusal::StaleRecord));
     assert_eq!(x, m);
@@ -559,7 +562,7 @@ fn a_long_chain_of_collapses_and_its_undo() {
     for i in 2..10u32 {
         let row = 5 * 12;
         let h = dart(&x, row + i, row + 1);
-        recs.push(collapse(&mut x, h).unwrap());
+        recs.push(collapse_edge(&mut x, h).unwrap());
         assert_eq!(x.check(), Ok(()));
     }
     assert_eq!(Counts::of(&x).vertices, 144 - 8);
@@ -586,10 +589,10 @@ fn a_long_chain_of_collapses_and_its_undo() {
 #[test]
 fn records_are_small_and_copy() {
     // Records are returned by value and kept by callers: no heap, a fixed small size.
-    assert_eq!(core::mem::size_of::<CollapseRecord>(), 180);
-    assert!(core::mem::size_of::<VertexSplitRecord>() <= 48);
-    assert!(core::mem::size_of::<EdgeSplitRecord>() <= 80);
-    assert!(core::mem::size_of::<FlipRecord>() <= 32);
+    assert_eq!(core::mem::size_of::<EdgeCollapse>(), 180);
+    assert!(core::mem::size_of::<VertexSplit>() <= 48);
+    assert!(core::mem::size_of::<EdgeSplit>() <= 80);
+    assert!(core::mem::size_of::<EdgeFlip>() <= 32);
 }
 
 #[test]
@@ -612,7 +615,7 @@ fn stack_and_fallback_link_tests_agree() {
     let mut chain = tri_grid(12);
     for i in 2..10u32 {
         let h = dart(&chain, 60 + i, 61);
-        collapse(&mut chain, h).unwrap();
+        collapse_edge(&mut chain, h).unwrap();
     }
     assert!(chain.valence(Vert(61)) > 16);
     maps.push(chain);
@@ -625,7 +628,7 @@ fn stack_and_fallback_link_tests_agree() {
                 super::collapse::can_with(m, h, None, 0),
                 "collapse {h:?}"
             );
-            assert_eq!(fast, can_collapse(m, h));
+            assert_eq!(fast, can_collapse_edge(m, h));
             for d2 in m.vertex_darts(m.origin(h)) {
                 let fast = super::collapse::can_with(m, h, Some(d2), 16);
                 let slow = super::collapse::can_with(m, h, Some(d2), 0);
@@ -643,4 +646,271 @@ fn refusal_text() {
         alloc::format!("{}", Refusal::DegenerateTriangle),
         "a triangle with a repeated corner is involved"
     );
+}
+
+// ---------------------------------------------------------------- undo guards, pinned
+//
+// As in the quad tests: each check of each undo guard has an edit of the map after the
+// operation that it is the first to catch: one more operator anywhere, or a raw change of
+// one array entry for the checks no operator reaches. Dropping or negating any check changes
+// the set of names found.
+
+use crate::map::NONE;
+use crate::ops::guard::pin;
+use alloc::boxed::Box;
+use alloc::collections::BTreeSet;
+
+use pin::Edit;
+
+/// Every triangle operator at every dart of `m` (vertex splits at each dart and the next
+/// one or two clockwise).
+fn tri_ops(m: &Map) -> Vec<TriOp> {
+    let mut ops = Vec::new();
+    for d in m.darts() {
+        let e = m.rotate_cw(d);
+        ops.extend([
+            TriOp::Flip(d),
+            TriOp::Collapse(d),
+            TriOp::SplitEdge(d),
+            TriOp::SplitVertex(d, e),
+            TriOp::SplitVertex(d, m.rotate_cw(e)),
+        ]);
+    }
+    ops
+}
+
+fn caught_t(
+    after: &Map,
+    raw: Vec<Edit>,
+    reason: &dyn Fn(&Map) -> Option<&'static str>,
+    undo: &dyn Fn(&mut Map) -> Result<(), Refusal>,
+) -> BTreeSet<&'static str> {
+    let legit = pin::edits(tri_ops(after), TriOp::apply);
+    pin::caught(after, &legit, &raw, reason, undo)
+}
+
+fn set(n: &[&'static str]) -> BTreeSet<&'static str> {
+    n.iter().copied().collect()
+}
+
+#[test]
+fn edge_flip_undo_guard_pinned() {
+    let base = tri_grid(5);
+    let mut got = BTreeSet::new();
+    for h in base.darts().filter(|&h| can_flip_edge(&base, h).is_ok()) {
+        let (l2, r2) = (base.next(base.next(h)), base.next(base.next(h.twin())));
+        let (fa, fb) = (
+            base.face_dart(base.face(h).unwrap()),
+            base.face_dart(base.face(h.twin()).unwrap()),
+        );
+        let mut m = base.clone();
+        let r = flip_edge(&mut m, h).unwrap();
+        let t = h.twin();
+        let (h1, t1) = (m.next(m.next(t)), m.next(m.next(h)));
+        let (va, vb) = (
+            base.vertex_dart(m.origin(t1)),
+            base.vertex_dart(m.origin(h1)),
+        );
+        // A dart far from the flip, spliced into a triangle in place of its second dart.
+        let far = m
+            .darts()
+            .find(|&x| {
+                base.face(x) != base.face(h) && base.face(x) != base.face(t) && x.edge() != h.edge()
+            })
+            .unwrap();
+        let mut raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[h.index()] = NONE),
+            Box::new(move |m| m.face[h.index()] = NONE),
+            Box::new(move |m| m.face[t.index()] = NONE),
+            Box::new(move |m| m.next[h.index()] = h.0),
+            Box::new(move |m| m.next[t1.index()] = t1.0),
+            Box::new(move |m| m.next[h1.index()] = h1.0),
+            Box::new(move |m| {
+                let i = m.origin(h).index();
+                m.vdart[i] = h.0;
+            }),
+            Box::new(move |m| {
+                let i = m.origin(t).index();
+                m.vdart[i] = t.0;
+            }),
+        ];
+        if va != h && va != t1 {
+            raw.push(Box::new(move |m| {
+                let o = m.origin(h).0;
+                m.vert[va.index()] = o;
+            }));
+            raw.push(Box::new(move |m| m.face[va.index()] = NONE));
+        }
+        if vb != t && vb != h1 {
+            raw.push(Box::new(move |m| {
+                let o = m.origin(h).0;
+                m.vert[vb.index()] = o;
+            }));
+            raw.push(Box::new(move |m| m.face[vb.index()] = NONE));
+        }
+        if fa == l2 {
+            raw.push(Box::new(move |m| {
+                let t1 = m.next(m.next(h));
+                m.next[h.index()] = far.0;
+                m.next[far.index()] = t1.0;
+            }));
+        }
+        if fb == r2 {
+            raw.push(Box::new(move |m| {
+                let h1 = m.next(m.next(t));
+                m.next[t.index()] = far.0;
+                m.next[far.index()] = h1.0;
+            }));
+        }
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "dart live",
+        "face of h",
+        "face of twin(h)",
+        "triangle of h",
+        "triangle of twin(h)",
+        "edge once in its triangles",
+        "ends",
+        "h not recorded",
+        "twin(h) not recorded",
+        "old record of a leaves a",
+        "old record of a on the boundary",
+        "old record of b leaves b",
+        "old record of b on the boundary",
+        "old record of the face of h",
+        "old record of the face of twin(h)",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn edge_split_undo_guard_pinned() {
+    let base = tri_grid(4);
+    let mut got = BTreeSet::new();
+    for h in base.darts() {
+        let mut m = base.clone();
+        let r = split_edge(&mut m, h).unwrap();
+        let (n, mv) = (r.dart(), r.created());
+        let raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[n.index()] = NONE),
+            Box::new(move |m| m.vert[n.index()] = 0),
+            Box::new(move |m| m.vdart.truncate(mv.index())),
+            // The apex c's record names the new spoke c -> m.
+            Box::new(move |m| {
+                if m.face(h).is_some() {
+                    let g = m.next(h).twin();
+                    let c = m.origin(g).index();
+                    m.vdart[c] = g.0;
+                }
+            }),
+        ];
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "darts live",
+        "m is the origin of n and twin(h)",
+        "left triangles",
+        "right triangles",
+        "old records",
+        "spokes not recorded",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn vertex_split_undo_guard_pinned() {
+    let base = tri_grid(4);
+    let mut got = BTreeSet::new();
+    for d1 in base.darts() {
+        let d2 = base.rotate_cw(base.rotate_cw(d1));
+        let mut m = base.clone();
+        let Ok(r) = split_vertex(&mut m, d1, d2) else {
+            continue;
+        };
+        let e = r.edge();
+        let raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[e.index()] = NONE),
+            Box::new(move |m| m.face[e.index()] = 999),
+        ];
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).0.failed(), &|m| {
+            r.undo(m)
+        }));
+    }
+    let want = set(&[
+        "collapse of the edge applies",
+        "new vertex",
+        "both triangles",
+        "new edges",
+        "new faces",
+        "old record of w",
+        "slots releasable",
+    ]);
+    assert_eq!(got, want);
+}
+
+#[test]
+fn edge_collapse_undo_guard_pinned() {
+    let base = tri_grid(5);
+    let mut got = BTreeSet::new();
+    for h in base
+        .darts()
+        .filter(|&h| can_collapse_edge(&base, h).is_ok())
+    {
+        let mut m = base.clone();
+        let r = collapse_edge(&mut m, h).unwrap();
+        let (u, v) = (r.kept(), r.removed());
+        let (first, held) = r.held();
+        let five = held[..5].iter().map(|d| d.index() | 1).max().unwrap();
+        let most = held.iter().map(|d| d.index() | 1).max().unwrap();
+        let h1 = base.next(h);
+        let interior = base.face(h).is_some() && base.face(h.twin()).is_some();
+        let mut raw: Vec<Edit> = vec![
+            Box::new(move |m| m.next[h.index()] = 0),
+            Box::new(move |m| m.vdart[u.index()] = NONE),
+            Box::new(move |m| m.vdart[v.index()] = 0),
+            Box::new(move |m| m.vdart.truncate(v.index())),
+            Box::new(move |m| {
+                let f = *m.free_faces.last().unwrap();
+                m.fdart.truncate(f as usize);
+            }),
+        ];
+        let cut = |m: &mut Map, at: usize| {
+            m.next.truncate(at);
+            m.vert.truncate(at);
+            m.face.truncate(at);
+        };
+        if first != Dart(NONE) && first.index() > five {
+            raw.push(Box::new(move |m| cut(m, first.index() & !1)));
+        }
+        if most > five.max(first.index() | 1) {
+            raw.push(Box::new(move |m| cut(m, most & !1)));
+        }
+        if interior {
+            // h1 keeps its place but leaves another vertex, or lies in another face.
+            let c = base.dest(h1);
+            raw.push(Box::new(move |m| m.vert[h1.index()] = c.0));
+            raw.push(Box::new(move |m| m.face[h1.index()] = 999));
+        }
+        got.extend(caught_t(&m, raw, &|m| r.guard(m).failed(), &|m| r.undo(m)));
+    }
+    let want = set(&[
+        "collapsed edge dead",
+        "left side",
+        "right side",
+        "kept vertex live",
+        "removed vertex dead",
+        "apexes live",
+        "faces in range",
+        "moved arc in range",
+        "old values in range",
+        "rewritten successors",
+        "freed slots on the free lists",
+        "moved arc",
+        "restored successors",
+        "restored vertex records",
+        "restored face records",
+    ]);
+    assert_eq!(got, want);
 }
