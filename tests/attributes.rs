@@ -7,33 +7,76 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
-use zipmesh::mesh::{Blend, Journal, Rule, VertexAttributes};
+use zipmesh::mesh::{Blend, Edited, Journal, Rule, VertexAttributes};
 use zipmesh::ops::quad::{QuadOp, QuadRecord, Rotation};
+use zipmesh::ops::tri::{TriOp, TriRecord};
+use zipmesh::ops::{Refusal, Undo};
 use zipmesh::rng::Rng;
 use zipmesh::{gen, Dart, Map, Mesh, Vert};
 
 type Layers = (Vec<DVec3>, Vec<bool>);
 
-fn random_op(m: &Map, rng: &mut Rng) -> QuadOp {
-    let d = Dart::new(rng.below(m.dart_slots().max(1)) as u32);
-    let around = |k: usize| (0..k).fold(d, |x, _| m.rotate_cw(x));
-    match rng.below(7) {
-        0 | 1 => QuadOp::Collapse(d),
-        2 => QuadOp::Split(d, around(1 + rng.below(4))),
-        3 => QuadOp::HighValence(d),
-        4 => QuadOp::RemoveValence2(d),
-        5 => QuadOp::InsertDoublet(d),
-        _ => QuadOp::Rotate(d, Rotation::Clockwise),
+/// An operator family as the harness drives it.
+trait Op: Copy + std::fmt::Debug {
+    type Record: Undo + std::fmt::Debug;
+    fn random(m: &Map, rng: &mut Rng) -> Self;
+    fn apply(self, m: &mut Map, l: &mut Layers) -> Result<Edited<Self::Record, Layers>, Refusal>;
+    /// The vertex the applied operator places, if any.
+    fn placed(r: &Self::Record) -> Option<Vert>;
+}
+
+fn random_dart(m: &Map, rng: &mut Rng) -> Dart {
+    Dart::new(rng.below(m.dart_slots().max(1)) as u32)
+}
+
+impl Op for QuadOp {
+    type Record = QuadRecord;
+    fn random(m: &Map, rng: &mut Rng) -> Self {
+        let d = random_dart(m, rng);
+        let around = |k: usize| (0..k).fold(d, |x, _| m.rotate_cw(x));
+        match rng.below(7) {
+            0 | 1 => QuadOp::Collapse(d),
+            2 => QuadOp::Split(d, around(1 + rng.below(4))),
+            3 => QuadOp::HighValence(d),
+            4 => QuadOp::RemoveValence2(d),
+            5 => QuadOp::InsertDoublet(d),
+            _ => QuadOp::Rotate(d, Rotation::Clockwise),
+        }
+    }
+    fn apply(self, m: &mut Map, l: &mut Layers) -> Result<Edited<QuadRecord, Layers>, Refusal> {
+        self.apply_with(m, l)
+    }
+    fn placed(r: &QuadRecord) -> Option<Vert> {
+        match r {
+            QuadRecord::Collapse(c) => Some(c.kept()),
+            QuadRecord::Split(s) => Some(s.created()),
+            QuadRecord::InsertDoublet(i) => Some(i.vertex()),
+            QuadRecord::RemoveValence2(_) | QuadRecord::Rotate(_) => None,
+        }
     }
 }
 
-/// The vertex an applied quad operator places, if any.
-fn placed(r: &QuadRecord) -> Option<Vert> {
-    match r {
-        QuadRecord::Collapse(c) => Some(c.kept()),
-        QuadRecord::Split(s) => Some(s.created()),
-        QuadRecord::InsertDoublet(i) => Some(i.vertex()),
-        QuadRecord::RemoveValence2(_) | QuadRecord::Rotate(_) => None,
+impl Op for TriOp {
+    type Record = TriRecord;
+    fn random(m: &Map, rng: &mut Rng) -> Self {
+        let d = random_dart(m, rng);
+        match rng.below(4) {
+            0 => TriOp::Flip(d),
+            1 => TriOp::Collapse(d),
+            2 => TriOp::SplitVertex(d, (0..2 + rng.below(3)).fold(d, |x, _| m.rotate_cw(x))),
+            _ => TriOp::SplitEdge(d),
+        }
+    }
+    fn apply(self, m: &mut Map, l: &mut Layers) -> Result<Edited<TriRecord, Layers>, Refusal> {
+        self.apply_with(m, l)
+    }
+    fn placed(r: &TriRecord) -> Option<Vert> {
+        match r {
+            TriRecord::Flip(_) => None,
+            TriRecord::Collapse(c) => Some(c.kept()),
+            TriRecord::SplitVertex(s) => Some(s.created()),
+            TriRecord::SplitEdge(s) => Some(s.created()),
+        }
     }
 }
 
@@ -45,22 +88,22 @@ fn changed(before: &Layers, after: &Layers) -> Vec<Vert> {
         .collect()
 }
 
-/// Runs `steps` random operators with both layers; returns how many applied.
-fn run(mesh: &Mesh, seed: u64, steps: usize) -> usize {
+/// Runs `steps` random operators of family `O` with both layers; returns how many applied.
+fn run<O: Op>(mesh: &Mesh, seed: u64, steps: usize) -> usize {
     let mut rng = Rng::new(seed);
     let mut map = mesh.map.clone();
     let marks = (0..map.vertex_slots()).map(|_| rng.chance(1, 3)).collect();
     let mut layers: Layers = (mesh.positions.clone(), marks);
     let mut applied = 0;
     for _ in 0..steps {
-        let op = random_op(&map, &mut rng);
+        let op = O::random(&map, &mut rng);
         let before = (map.clone(), layers.clone());
-        match op.apply_with(&mut map, &mut layers) {
+        match op.apply(&mut map, &mut layers) {
             Err(r) => assert_eq!((&map, &layers), (&before.0, &before.1), "{op:?}: {r}"),
             Ok(edit) => {
                 applied += 1;
                 let diff = changed(&before.1, &layers);
-                let target = placed(edit.record());
+                let target = O::placed(edit.record());
                 assert!(
                     diff.iter().all(|&v| Some(v) == target),
                     "{op:?} changed {diff:?}, placed {target:?}"
@@ -74,7 +117,7 @@ fn run(mesh: &Mesh, seed: u64, steps: usize) -> usize {
                 // Every edit undoes exactly on its own; redo it to go on.
                 edit.undo_with(&mut map, &mut layers).unwrap();
                 assert_eq!((&map, &layers), (&before.0, &before.1), "{op:?} undo");
-                op.apply_with(&mut map, &mut layers).unwrap();
+                op.apply(&mut map, &mut layers).unwrap();
             }
         }
     }
@@ -90,27 +133,40 @@ fn generated(kind: usize, a: usize, seed: u64) -> Mesh {
     }
 }
 
+fn generated_tri(a: usize, seed: u64) -> Mesh {
+    gen::random_triangle(60 + 25 * a, a % 3, a % 2, seed)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
     #[test]
     fn quad_edits_keep_both_layers_in_step(kind in 0usize..4, a in 0usize..40, seed in any::<u64>()) {
         let mesh = generated(kind, a, seed);
-        run(&mesh, seed, 60);
+        run::<QuadOp>(&mesh, seed, 60);
+    }
+
+    #[test]
+    fn tri_edits_keep_both_layers_in_step(a in 0usize..40, seed in any::<u64>()) {
+        run::<TriOp>(&generated_tri(a, seed), seed, 60);
     }
 }
 
 #[test]
 fn sequences_apply_often_enough_to_mean_something() {
-    let applied: usize = (0..8)
-        .map(|s| run(&gen::random_quad(300, 1, 1, s), s, 80))
+    let quad: usize = (0..8)
+        .map(|s| run::<QuadOp>(&gen::random_quad(300, 1, 1, s), s, 80))
+        .sum();
+    let tri: usize = (0..8)
+        .map(|s| run::<TriOp>(&generated_tri(8, s), s, 80))
         .sum();
     // Random darts refuse often (wrong valence, boundary); a quarter applying is plenty.
-    assert!(
-        applied > 8 * 80 / 4,
-        "only {applied} of {} edits applied",
-        8 * 80
-    );
+    for (family, applied) in [("quad", quad), ("tri", tri)] {
+        assert!(
+            applied > 8 * 80 / 4,
+            "{family}: {applied} of 640 edits applied"
+        );
+    }
 }
 
 #[test]

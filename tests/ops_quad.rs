@@ -13,7 +13,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::quad::{self, MeshEdit, Rotation};
+use zipmesh::mesh::Edited;
+use zipmesh::ops::quad::{self, QuadRecord, Rotation};
 use zipmesh::rng::Rng;
 use zipmesh::{gen, Dart, Map, Mesh, Vert};
 
@@ -201,7 +202,7 @@ struct Stats {
 fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
     let mut rng = Rng::new(seed);
     let mut mesh = original.clone();
-    let mut edits: Vec<MeshEdit> = Vec::new();
+    let mut edits: Vec<Edited<QuadRecord>> = Vec::new();
     let mut hot: Vec<Dart> = Vec::new();
     let mut stats = Stats::default();
     for _ in 0..steps {

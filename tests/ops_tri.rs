@@ -266,7 +266,7 @@ proptest! {
                 Op::SplitVertex(d1, d2) => {
                     if let Ok(p) = tri::mesh_split_vertex(&mut mesh, d1, d2) {
                         let w = before.map.origin(d1);
-                        let v = p.record.created();
+                        let v = p.record().created();
                         prop_assert_eq!(pos(&mesh, w), pos(&before, w));
                         let ns: Vec<_> = mesh.map.vertex_darts(v).map(|d| mesh.map.dest(d)).filter(|&x| x != w).collect();
                         let avg = ns.iter().map(|&x| pos(&mesh, x)).sum::<glam::DVec3>() / ns.len() as f64;
@@ -278,7 +278,7 @@ proptest! {
                 Op::SplitEdge(h) => {
                     if let Ok(p) = tri::mesh_split_edge(&mut mesh, h) {
                         let (a, b) = (before.map.origin(h), before.map.dest(h));
-                        prop_assert_eq!(pos(&mesh, p.record.created()), (pos(&before, a) + pos(&before, b)) * 0.5);
+                        prop_assert_eq!(pos(&mesh, p.record().created()), (pos(&before, a) + pos(&before, b)) * 0.5);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }

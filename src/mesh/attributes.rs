@@ -31,16 +31,16 @@ pub trait Blend: Clone + core::fmt::Debug + PartialEq {
 impl Blend for DVec3 {
     /// The centroid, summed in the order given.
     fn mean(values: &[Self]) -> Option<Self> {
-        let sum = values.iter().fold(DVec3::ZERO, |s, &p| s + p);
-        (!values.is_empty()).then(|| sum / values.len() as f64)
+        let (first, rest) = values.split_first()?;
+        Some(rest.iter().fold(*first, |s, &p| s + p) / values.len() as f64)
     }
 }
 
 impl Blend for f64 {
     /// The arithmetic mean, summed in the order given.
     fn mean(values: &[Self]) -> Option<Self> {
-        let sum = values.iter().fold(0.0, |s, &x| s + x);
-        (!values.is_empty()).then(|| sum / values.len() as f64)
+        let (first, rest) = values.split_first()?;
+        Some(rest.iter().fold(*first, |s, &x| s + x) / values.len() as f64)
     }
 }
 

@@ -179,6 +179,50 @@ pub struct Edited<R, A: VertexAttributes = Positions> {
 }
 
 impl<R, A: VertexAttributes> Edited<R, A> {
+    /// Runs an edit on `map` and places the one vertex `place` names for its record (read
+    /// on the map after the edit), if any: the path every operator wrapper takes. On a
+    /// refusal nothing changes.
+    ///
+    /// ```
+    /// use zipmesh::{gen, mesh::{Edited, Rule}, ops::quad, Dart};
+    /// let mut mesh = gen::torus_grid(4, 4);
+    /// let before = mesh.clone();
+    /// let edit = Edited::run(&mut mesh.map, &mut mesh.positions,
+    ///     |m| quad::collapse_quad(m, Dart::new(0)),
+    ///     |_, r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed())))).unwrap();
+    /// edit.undo(&mut mesh).unwrap();
+    /// assert_eq!(mesh, before);
+    /// ```
+    pub fn run<E>(
+        map: &mut Map,
+        attrs: &mut A,
+        edit: impl FnOnce(&mut Map) -> Result<R, E>,
+        place: impl FnOnce(&Map, &R) -> Option<(Vert, Rule)>,
+    ) -> Result<Self, E> {
+        let mut journal = Journal::start(attrs);
+        let record = edit(map)?;
+        if let Some((v, rule)) = place(map, &record) {
+            journal.place(map, attrs, v, rule);
+        }
+        Ok(Edited::new(record, journal))
+    }
+
+    /// The same edit with its record converted (an operator's record into its family's).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
+    /// let mut mesh = gen::torus_grid(4, 4);
+    /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
+    /// let e = e.map_record(QuadRecord::from);
+    /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
+    /// ```
+    pub fn map_record<S>(self, f: impl FnOnce(R) -> S) -> Edited<S, A> {
+        Edited {
+            record: f(self.record),
+            journal: self.journal,
+        }
+    }
+
     /// Pairs a record with the journal of the placements made after it.
     ///
     /// See [`Edited`] for an example.
@@ -189,10 +233,10 @@ impl<R, A: VertexAttributes> Edited<R, A> {
     /// The edit's own record (for a Q-zip, its report).
     ///
     /// ```
-    /// use zipmesh::{gen, ops::quad::{self, QuadRecord}, Dart};
+    /// use zipmesh::{gen, ops::quad, Dart};
     /// let mut mesh = gen::torus_grid(4, 4);
     /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
-    /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
+    /// assert!(!mesh.map.is_live_vertex(e.record().removed()));
     /// ```
     pub fn record(&self) -> &R {
         &self.record

@@ -1,21 +1,46 @@
-//! The quad operators on a [`Mesh`]: the same topology, with positions for new or merged
-//! vertices placed by a stated rule, and undo restoring the old positions exactly.
+//! The quad operators on per-vertex data: the same topology, with the vertex an operator
+//! creates or merges placed by the operator's rule, stated once each in
+//! [`QuadOp::apply_with`], and undo restoring the old values exactly (see
+//! [`crate::mesh::Edited`]).
 
 use super::{
     collapse_quad, insert_doublet, remove_valence2, rotate_edge, split_high_valence, split_vertex,
-    QuadOp, QuadRecord, Rotation, VertexSplit,
+    DoubletInsertion, EdgeRotation, QuadCollapse, QuadOp, QuadRecord, Rotation, Valence2Removal,
+    VertexSplit,
 };
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, Journal, Mesh, Rule, VertexAttributes};
+use crate::mesh::{Edited, Mesh, Rule, VertexAttributes};
 use crate::ops::Refusal;
 
-/// A quad operator applied to a [`Mesh`]: the record and the positions it overwrote; its
-/// `undo` restores the mesh `==` (see [`Edited`]).
-pub type MeshEdit = Edited<QuadRecord>;
+/// The merged vertex goes to the midpoint of the two merged corners.
+fn collapse_rule(_: &Map, r: &QuadCollapse) -> Option<(Vert, Rule)> {
+    Some((r.kept(), Rule::Midpoint(r.kept(), r.removed())))
+}
+
+/// The kept vertex stays; the new one goes halfway between it and the centroid of the new
+/// vertex's neighbours.
+fn split_rule(_: &Map, r: &VertexSplit) -> Option<(Vert, Rule)> {
+    let rule = Rule::TowardNeighbours {
+        from: r.kept(),
+        of: r.created(),
+        skip_from: false,
+    };
+    Some((r.created(), rule))
+}
+
+/// The new vertex goes to the midpoint of the diagonal it joins (its two neighbours).
+fn doublet_rule(_: &Map, r: &DoubletInsertion) -> Option<(Vert, Rule)> {
+    Some((r.vertex(), Rule::NeighbourMean(r.vertex())))
+}
+
+/// No vertex moves (a removed vertex's slot keeps its value, as dead slots do).
+fn no_rule<R>(_: &Map, _: &R) -> Option<(Vert, Rule)> {
+    None
+}
 
 impl QuadOp {
-    /// Applies the operator to a map and its per-vertex data: each operator's placement
-    /// rule is stated here once (the `mesh_*` wrappers below apply it to positions).
+    /// Applies the operator to a map and its per-vertex data (positions, marks, or a pair
+    /// of layers), placing the vertex it creates or merges by its rule.
     ///
     /// ```
     /// use zipmesh::{gen, ops::quad::QuadOp, Dart};
@@ -32,54 +57,39 @@ impl QuadOp {
         map: &mut Map,
         attrs: &mut A,
     ) -> Result<Edited<QuadRecord, A>, Refusal> {
-        match self {
-            QuadOp::Collapse(d) => edit(
-                map,
-                attrs,
-                |m| collapse_quad(m, d),
-                |r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed()))),
-            ),
-            QuadOp::Split(s1, s2) => edit(map, attrs, |m| split_vertex(m, s1, s2), split_rule),
+        let (m, a) = (map, attrs);
+        Ok(match self {
+            QuadOp::Collapse(d) => {
+                Edited::run(m, a, |m| collapse_quad(m, d), collapse_rule)?.map_record(Into::into)
+            }
+            QuadOp::Split(s1, s2) => {
+                Edited::run(m, a, |m| split_vertex(m, s1, s2), split_rule)?.map_record(Into::into)
+            }
             QuadOp::HighValence(d) => {
-                let v = map.origin(d);
-                edit(map, attrs, |m| split_high_valence(m, v, d), split_rule)
+                let v = m.origin(d);
+                let op = |m: &mut Map| split_high_valence(m, v, d);
+                Edited::run(m, a, op, split_rule)?.map_record(Into::into)
             }
-            QuadOp::RemoveValence2(x) => edit(map, attrs, |m| remove_valence2(m, x), |_| None),
+            QuadOp::RemoveValence2(x) => {
+                let op = |m: &mut Map| remove_valence2(m, x);
+                Edited::run(m, a, op, no_rule)?.map_record(Into::into)
+            }
             QuadOp::InsertDoublet(d) => {
-                // The diagonal the new vertex sits on, read before the edit.
-                let (p, q) = (map.origin(d), map.origin(map.next(map.next(d))));
-                edit(
-                    map,
-                    attrs,
-                    |m| insert_doublet(m, d),
-                    |r| Some((r.vertex(), Rule::Midpoint(p, q))),
-                )
+                let op = |m: &mut Map| insert_doublet(m, d);
+                Edited::run(m, a, op, doublet_rule)?.map_record(Into::into)
             }
-            QuadOp::Rotate(h, dir) => edit(map, attrs, |m| rotate_edge(m, h, dir), |_| None),
-        }
+            QuadOp::Rotate(h, dir) => {
+                let op = |m: &mut Map| rotate_edge(m, h, dir);
+                Edited::run(m, a, op, no_rule)?.map_record(Into::into)
+            }
+        })
     }
-}
-
-/// Applies `op` to the map, then places the vertex `place` names for the record (if any).
-fn edit<R: Into<QuadRecord>, A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    op: impl FnOnce(&mut Map) -> Result<R, Refusal>,
-    place: impl FnOnce(&R) -> Option<(Vert, Rule)>,
-) -> Result<Edited<QuadRecord, A>, Refusal> {
-    let mut journal = Journal::start(attrs);
-    let record = op(map)?;
-    if let Some((v, rule)) = place(&record) {
-        journal.place(map, attrs, v, rule);
-    }
-    Ok(Edited::new(record.into(), journal))
 }
 
 /// [`collapse_quad`] on a mesh; the merged vertex is placed at the midpoint of the two merged
 /// corners.
 ///
 /// ```
-/// use glam::DVec3;
 /// use zipmesh::{gen, ops::quad, Dart};
 /// let mut mesh = gen::grid(3, 3);
 /// let before = mesh.clone();
@@ -91,19 +101,9 @@ fn edit<R: Into<QuadRecord>, A: VertexAttributes>(
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_collapse_quad(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    QuadOp::Collapse(d).apply_mesh(mesh)
-}
-
-/// A split's new vertex goes halfway between the kept vertex and the centroid of the new
-/// vertex's neighbours; the kept vertex does not move.
-fn split_rule(r: &VertexSplit) -> Option<(Vert, Rule)> {
-    let rule = Rule::TowardNeighbours {
-        from: r.kept(),
-        of: r.created(),
-        skip_from: false,
-    };
-    Some((r.created(), rule))
+pub fn mesh_collapse_quad(mesh: &mut Mesh, d: Dart) -> Result<Edited<QuadCollapse>, Refusal> {
+    let op = |m: &mut Map| collapse_quad(m, d);
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, collapse_rule)
 }
 
 /// [`split_vertex`] on a mesh; the kept vertex stays where it was and the new vertex is placed
@@ -120,8 +120,13 @@ fn split_rule(r: &VertexSplit) -> Option<(Vert, Rule)> {
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit, Refusal> {
-    QuadOp::Split(s1, s2).apply_mesh(mesh)
+pub fn mesh_split_vertex(
+    mesh: &mut Mesh,
+    s1: Dart,
+    s2: Dart,
+) -> Result<Edited<VertexSplit>, Refusal> {
+    let op = |m: &mut Map| split_vertex(m, s1, s2);
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, split_rule)
 }
 
 /// [`split_high_valence`] on a mesh, placing the new vertex as [`mesh_split_vertex`] does.
@@ -137,9 +142,13 @@ pub fn mesh_split_vertex(mesh: &mut Mesh, s1: Dart, s2: Dart) -> Result<MeshEdit
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<MeshEdit, Refusal> {
+pub fn mesh_split_high_valence(
+    mesh: &mut Mesh,
+    v: Vert,
+    first: Dart,
+) -> Result<Edited<VertexSplit>, Refusal> {
     let op = |m: &mut Map| split_high_valence(m, v, first);
-    edit(&mut mesh.map, &mut mesh.positions, op, split_rule)
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, split_rule)
 }
 
 /// [`remove_valence2`] on a mesh; no position changes (the deleted vertex's slot keeps its
@@ -150,14 +159,14 @@ pub fn mesh_split_high_valence(mesh: &mut Mesh, v: Vert, first: Dart) -> Result<
 /// let mut mesh = gen::torus_grid(4, 4);
 /// let ins = quad::mesh_insert_doublet(&mut mesh, Dart::new(0)).unwrap();
 /// let before = mesh.clone();
-/// let v = mesh.map.origin(mesh.map.next(mesh.map.next(mesh.map.next(Dart::new(0)))));
-/// let x = mesh.map.vertex_dart(v);
+/// let x = mesh.map.vertex_dart(ins.record().vertex());
 /// let e = quad::mesh_remove_valence2(&mut mesh, x).unwrap();
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusal> {
-    QuadOp::RemoveValence2(x).apply_mesh(mesh)
+pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<Edited<Valence2Removal>, Refusal> {
+    let op = |m: &mut Map| remove_valence2(m, x);
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, no_rule)
 }
 
 /// [`insert_doublet`] on a mesh; the new vertex is placed at the midpoint of the diagonal it
@@ -168,11 +177,12 @@ pub fn mesh_remove_valence2(mesh: &mut Mesh, x: Dart) -> Result<MeshEdit, Refusa
 /// let mut mesh = gen::grid(1, 1);
 /// let d = mesh.map.face_dart(zipmesh::Face::new(0));
 /// let e = quad::mesh_insert_doublet(&mut mesh, d).unwrap();
-/// let v = mesh.map.vertex_slots() - 1;
+/// let v = e.record().vertex().index();
 /// assert_eq!(mesh.positions[v], glam::DVec3::new(0.5, 0.5, 0.0));
 /// ```
-pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal> {
-    QuadOp::InsertDoublet(d).apply_mesh(mesh)
+pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<Edited<DoubletInsertion>, Refusal> {
+    let op = |m: &mut Map| insert_doublet(m, d);
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, doublet_rule)
 }
 
 /// [`rotate_edge`] on a mesh; no position changes.
@@ -186,6 +196,11 @@ pub fn mesh_insert_doublet(mesh: &mut Mesh, d: Dart) -> Result<MeshEdit, Refusal
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn mesh_rotate_edge(mesh: &mut Mesh, h: Dart, dir: Rotation) -> Result<MeshEdit, Refusal> {
-    QuadOp::Rotate(h, dir).apply_mesh(mesh)
+pub fn mesh_rotate_edge(
+    mesh: &mut Mesh,
+    h: Dart,
+    dir: Rotation,
+) -> Result<Edited<EdgeRotation>, Refusal> {
+    let op = |m: &mut Map| rotate_edge(m, h, dir);
+    Edited::run(&mut mesh.map, &mut mesh.positions, op, no_rule)
 }

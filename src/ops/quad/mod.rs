@@ -60,7 +60,7 @@ pub use doublet::{
 };
 pub use mesh::{
     mesh_collapse_quad, mesh_insert_doublet, mesh_remove_valence2, mesh_rotate_edge,
-    mesh_split_high_valence, mesh_split_vertex, MeshEdit,
+    mesh_split_high_valence, mesh_split_vertex,
 };
 pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
 
@@ -149,7 +149,10 @@ impl QuadOp {
     /// e.undo(&mut mesh).unwrap();
     /// assert_eq!(mesh.map, before.map);
     /// ```
-    pub fn apply_mesh(self, mesh: &mut crate::Mesh) -> Result<MeshEdit, Refusal> {
+    pub fn apply_mesh(
+        self,
+        mesh: &mut crate::Mesh,
+    ) -> Result<crate::mesh::Edited<QuadRecord>, Refusal> {
         self.apply_with(&mut mesh.map, &mut mesh.positions)
     }
 }

@@ -636,10 +636,7 @@ fn mesh_wrappers_place_and_restore() {
     let d = m.map.face_dart(crate::map::Face(0));
     let (p, q) = (m.map.origin(d), m.map.origin(m.map.next(m.map.next(d))));
     let e = mesh_insert_doublet(&mut m, d).unwrap();
-    let v = match e.record() {
-        QuadRecord::InsertDoublet(r) => r.vertex(),
-        _ => unreachable!(),
-    };
+    let v = e.record().vertex();
     assert_eq!(
         m.positions[v.index()],
         (mesh.positions[p.index()] + mesh.positions[q.index()]) / 2.0

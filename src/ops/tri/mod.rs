@@ -4,7 +4,7 @@
 //! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
 //! the same [`Refusal`] and leaves the map untouched, or applies and returns a record whose
 //! `undo` restores the map exactly (`==`, free lists included). The `mesh_*` wrappers (see
-//! [`Placed`]) apply each operator to a [`crate::Mesh`] and place new vertices.
+//! [`crate::mesh::Edited`]) apply each operator to a [`crate::Mesh`] and place new vertices.
 //!
 //! ```
 //! use zipmesh::{gen, ops::tri};
@@ -65,7 +65,7 @@ pub use collapse::{can_collapse_edge, can_split_vertex, collapse_edge, split_ver
 pub use collapse::{EdgeCollapse, VertexSplit};
 pub use edge_split::{can_split_edge, split_edge, EdgeSplit};
 pub use flip::{can_flip_edge, flip_edge, EdgeFlip};
-pub use mesh::{mesh_collapse_edge, mesh_flip_edge, mesh_split_edge, mesh_split_vertex, Placed};
+pub use mesh::{mesh_collapse_edge, mesh_flip_edge, mesh_split_edge, mesh_split_vertex};
 
 pub use super::Undo;
 
@@ -160,6 +160,20 @@ impl TriRecord {
         }
     }
 }
+
+macro_rules! into_record {
+    ($t:ty, $v:ident) => {
+        impl From<$t> for TriRecord {
+            fn from(r: $t) -> TriRecord {
+                TriRecord::$v(r)
+            }
+        }
+    };
+}
+into_record!(EdgeFlip, Flip);
+into_record!(EdgeCollapse, Collapse);
+into_record!(VertexSplit, SplitVertex);
+into_record!(EdgeSplit, SplitEdge);
 
 impl Undo for TriRecord {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
