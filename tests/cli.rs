@@ -464,3 +464,220 @@ fn check_usage_and_input_errors_exit_2() {
         "{err}"
     );
 }
+
+// ---------------------------------------------------------------------------------------
+// Output that cannot be written, and signals during a write
+
+fn spot_quads() -> std::path::PathBuf {
+    shared("quad/spot_quadrangulated.obj")
+}
+
+/// One invocation of every subcommand that prints to standard output.
+fn every_printing_command(dir: &Path) -> Vec<Vec<String>> {
+    let spot = spot_quads().to_str().unwrap().to_string();
+    let out = dir.join("zipped.obj").to_str().unwrap().to_string();
+    let pair = ["--from", "15", "--to", "2"].map(String::from);
+    let mut zip: Vec<String> = ["zip", &spot, "--move", "LS", "-o", &out]
+        .map(String::from)
+        .to_vec();
+    zip.extend(pair.clone());
+    let mut moves = vec!["moves".to_string(), spot.clone()];
+    moves.extend(pair);
+    let v = |a: &[&str]| a.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    vec![
+        v(&["stats"]),
+        v(&["stats", "--json"]),
+        v(&["hash", &spot]),
+        v(&["iso", &spot, &spot]),
+        v(&["check", "--cases", "2", "--property", "validity"]),
+        v(&["check", "--list"]),
+        v(&["--help"]),
+        moves,
+        zip,
+    ]
+}
+
+/// Runs the binary with standard output on a pipe whose reader is already closed, so the
+/// first write fails with `EPIPE` whatever the timing.
+#[allow(clippy::incompatible_msrv)] // std::io::pipe (1.87): the tests run on a newer toolchain
+fn run_into_closed_pipe(args: &[String]) -> std::process::Output {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(args)
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_closed_pipe_ends_every_command_quietly_with_141_and_zip_writes_nothing() {
+    let dir = temp_dir("closed-pipe");
+    for args in every_printing_command(&dir) {
+        let out = run_into_closed_pipe(&args);
+        assert_eq!(out.status.code(), Some(141), "{args:?}: {}", stderr(&out));
+        assert!(
+            stderr(&out).is_empty(),
+            "{args:?}: quietly: {}",
+            stderr(&out)
+        );
+        assert!(
+            fs::read_dir(&dir).unwrap().next().is_none(),
+            "{args:?}: no OUT"
+        );
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_is_an_error_exit_2_and_zip_writes_nothing() {
+    let dir = temp_dir("full-disk");
+    for args in every_printing_command(&dir) {
+        let full = fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+            .args(&args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(
+            err.contains("cannot write to standard output"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            fs::read_dir(&dir).unwrap().next().is_none(),
+            "{args:?}: no OUT"
+        );
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_standard_error_keeps_the_exit_status() {
+    let dir = temp_dir("full-stderr");
+    let missing = dir.join("absent.obj");
+    for (args, code) in [
+        (vec!["stats", s(&missing)], 2),
+        (vec!["check", "--property", "nope"], 2),
+        (vec!["frobnicate"], 2),
+        (vec!["hash", s(&spot_quads())], 0),
+    ] {
+        let full = fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+            .args(&args)
+            .stderr(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(code), "{args:?}");
+    }
+}
+
+#[test]
+fn file_names_with_control_characters_are_escaped_in_messages() {
+    let dir = temp_dir("control-name");
+    let name = dir.join("evil\u{1b}[2J\rname.obj");
+    let out = zipmesh(&["hash", s(&name)]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(!err.contains('\u{1b}') && !err.contains('\r'), "{err:?}");
+    assert!(err.contains(r"evil\u{1b}[2J\rname.obj"), "{err}");
+}
+
+/// A quad mesh large enough that writing it takes a while: Spot subdivided three times.
+#[cfg(target_os = "linux")]
+fn large_quad_mesh(dir: &Path) -> std::path::PathBuf {
+    let (mut mesh, _) = io::read_mesh(spot_quads()).unwrap();
+    for _ in 0..3 {
+        mesh = gen::catmull_clark(&mesh);
+    }
+    let path = dir.join("large.obj");
+    io::write_mesh(&path, &mesh).unwrap();
+    path
+}
+
+/// Starts `zip` on `input` writing into `out_dir`, and waits until it has a file open there
+/// (the temporary of the write, named or not). Returns the child, still running or not.
+#[cfg(target_os = "linux")]
+fn zip_caught_writing(input: &Path, out_dir: &Path) -> std::process::Child {
+    let out = out_dir.join("out.obj");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(["zip", s(input), "--from", "15", "--to", "2", "--move", "LS"])
+        .args(["-o", s(&out)])
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let fds = format!("/proc/{}/fd", child.id());
+    // Generous: the outcome is asserted, not the time.
+    for _ in 0..600_000 {
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        let writing = fs::read_dir(&fds)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .any(|e| fs::read_link(e.path()).is_ok_and(|t| t.starts_with(out_dir)));
+        if writing {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_micros(200));
+    }
+    child
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn sigint_or_sigterm_during_a_large_write_leaves_nothing() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = temp_dir("signals");
+    let input = large_quad_mesh(&dir);
+    for (signal, number) in [("-INT", 2), ("-TERM", 15)] {
+        let out_dir = dir.join(&signal[1..]);
+        fs::create_dir_all(&out_dir).unwrap();
+        let mut child = zip_caught_writing(&input, &out_dir);
+        let pid = child.id().to_string();
+        let _ = Command::new("kill").args([signal, &pid]).status();
+        let status = child.wait().unwrap();
+        let left: Vec<_> = fs::read_dir(&out_dir).unwrap().flatten().collect();
+        if status.success() {
+            // The signal came after the commit: only the complete OUT.
+            assert_eq!(left.len(), 1, "{signal}");
+            assert!(io::read_mesh(out_dir.join("out.obj")).is_ok());
+        } else {
+            assert_eq!(status.signal(), Some(number), "{signal}: {status:?}");
+            assert!(left.is_empty(), "{signal}: left {left:?}");
+        }
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn after_sigkill_the_target_is_never_partial_and_the_next_write_cleans_up() {
+    let dir = temp_dir("sigkill");
+    let input = large_quad_mesh(&dir);
+    let out_dir = dir.join("out");
+    fs::create_dir_all(&out_dir).unwrap();
+    let target = out_dir.join("out.obj");
+    let mut child = zip_caught_writing(&input, &out_dir);
+    let _ = child.kill();
+    let _ = child.wait();
+    if target.exists() {
+        assert!(io::read_mesh(&target).is_ok(), "complete if present");
+    }
+    // A write killed where temporaries have names leaves this one; the next removes it.
+    fs::write(io::temporary_path(&target), "v 0 0 0\n").unwrap();
+    let status = zip_caught_writing(&input, &out_dir).wait().unwrap();
+    assert!(status.success());
+    let left: Vec<_> = fs::read_dir(&out_dir).unwrap().flatten().collect();
+    assert_eq!(left.len(), 1, "{left:?}");
+    assert!(io::read_mesh(&target).is_ok());
+}

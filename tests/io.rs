@@ -506,6 +506,58 @@ fn a_failed_write_keeps_the_old_file_and_removes_the_temporary() {
     assert_eq!(dir_entries(&dir), ["mesh.obj", "sub.off"]);
 }
 
+#[test]
+fn a_long_target_name_fits_and_a_pending_write_is_invisible_until_committed() {
+    let dir = temp_dir("long-name");
+    // 250 bytes: valid, but too long for a temporary named after it.
+    let name = format!("{}.obj", "m".repeat(246));
+    let target = dir.join(&name);
+    io::write_mesh(&target, &gen::grid(2, 2)).unwrap();
+    assert_eq!(dir_entries(&dir), std::slice::from_ref(&name));
+    let before = fs::read(&target).unwrap();
+
+    let pending = io::prepare_mesh(&target, &gen::cube(1)).unwrap();
+    assert_eq!(
+        fs::read(&target).unwrap(),
+        before,
+        "not in place before commit"
+    );
+    assert_eq!(
+        dir_entries(&dir),
+        std::slice::from_ref(&name),
+        "no named temporary while pending"
+    );
+    drop(pending);
+    assert_eq!(
+        fs::read(&target).unwrap(),
+        before,
+        "dropping keeps the old file"
+    );
+    io::prepare_mesh(&target, &gen::cube(1))
+        .unwrap()
+        .commit()
+        .unwrap();
+    assert_eq!(io::read_mesh(&target).unwrap().0.map.num_faces(), 6);
+    assert_eq!(dir_entries(&dir), [name]);
+}
+
+#[test]
+fn the_next_write_removes_the_temporary_a_killed_write_left() {
+    let dir = temp_dir("stale-temp");
+    let target = dir.join("mesh.off");
+    let stale = io::temporary_path(&target);
+    assert_eq!(stale.parent(), Some(dir.as_path()));
+    fs::write(&stale, b"OFF\n8 6 0\n0 0 0\n").unwrap(); // a partial file, as after SIGKILL
+    io::write_mesh(&target, &gen::cube(1)).unwrap();
+    assert_eq!(dir_entries(&dir), ["mesh.off"]);
+    // Also when the write fails.
+    fs::write(&stale, b"partial").unwrap();
+    let e = io::write_atomic(&target, |_| Err(std::io::Error::other("stop")));
+    assert!(e.is_err());
+    assert_eq!(dir_entries(&dir), ["mesh.off"]);
+    assert_eq!(io::read_mesh(&target).unwrap().0.map.num_faces(), 6);
+}
+
 // ---- Properties. ----
 
 /// A mesh with the same connectivity under a random numbering: vertices permuted, faces

@@ -11,6 +11,8 @@ use std::time::Duration;
 use zipmesh::campaign::{self, Case, Config, Property, Report, Shard};
 use zipmesh::{io, Vert};
 
+use crate::out::{self, outln};
+
 /// Arguments of `zipmesh check`.
 #[derive(Args)]
 pub struct CheckArgs {
@@ -63,7 +65,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
     match run_inner(args) {
         Ok(code) => code,
         Err(message) => {
-            eprintln!("zipmesh check: {message}");
+            out::error_line(format_args!("zipmesh check: {message}"));
             ExitCode::from(2)
         }
     }
@@ -73,7 +75,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
     let all = properties(&args);
     if args.list {
         for p in &all {
-            println!("{:<24} {}", p.name(), p.about());
+            outln!("{:<24} {}", p.name(), p.about());
         }
         return Ok(ExitCode::SUCCESS);
     }
@@ -155,7 +157,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         b.finish_and_clear();
     }
     if args.json {
-        println!("{}", report.to_json(true));
+        outln!("{}", report.to_json(true));
     } else {
         print_text(&report);
     }
@@ -180,13 +182,13 @@ fn properties(args: &CheckArgs) -> Vec<Property> {
 }
 
 fn print_text(report: &Report) {
-    print!("{}", report.table(true));
+    out::push(format_args!("{}", report.table(true)));
     let scope = if report.shard == Shard::ALL {
         String::new()
     } else {
         format!(" (shard {})", report.shard)
     };
-    println!(
+    outln!(
         "{} of {} cases run{scope}, seed {}, {:.2} s",
         report.run,
         report.planned,
@@ -194,32 +196,34 @@ fn print_text(report: &Report) {
         report.elapsed.as_secs_f64()
     );
     if report.timed_out {
-        println!(
+        outln!(
             "time limit reached: {} cases not run",
             report.planned - report.run
         );
     }
     for f in &report.failures {
-        println!();
-        println!(
+        outln!();
+        outln!(
             "FAILED {} on case {}: {}",
-            f.property, f.case, f.description
+            f.property,
+            f.case,
+            f.description
         );
-        println!("  {}", f.message);
+        outln!("  {}", f.message);
         match (&f.shrunk, &f.path) {
-            (Some(s), Some(path)) => println!(
+            (Some(s), Some(path)) => outln!(
                 "  counterexample: {} ({} faces, shrunk from {}): {}",
                 path.display(),
                 s.mesh.map.num_faces(),
                 f.original_faces,
                 s.message
             ),
-            (Some(_), None) => println!("  (the shrunk counterexample could not be written)"),
-            _ => println!("  (no smaller failing mesh found)"),
+            (Some(_), None) => outln!("  (the shrunk counterexample could not be written)"),
+            _ => outln!("  (no smaller failing mesh found)"),
         }
-        println!("  replay: {}", f.replay);
+        outln!("  replay: {}", f.replay);
     }
     if report.passed() && !report.timed_out {
-        println!("all properties hold");
+        outln!("all properties hold");
     }
 }
