@@ -393,11 +393,17 @@ fn check_selects_properties_and_replays_one_case() {
         (v["planned"].as_u64(), v["run"].as_u64()),
         (Some(1), Some(1))
     );
-    // A zero time limit runs nothing, says so, and is not a failure.
-    let v = check_json(&["--cases", "5", "--time-limit", "0"]);
+    // A zero time limit runs nothing, says so, and is not a failure: exit 3, not 0.
+    let out = zipmesh(&["check", "--json", "--cases", "5", "--time-limit", "0"]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
     assert_eq!(
-        (v["run"].as_u64(), v["timed_out"].as_bool()),
-        (Some(0), Some(true))
+        (
+            v["run"].as_u64(),
+            v["timed_out"].as_bool(),
+            v["passed"].as_bool()
+        ),
+        (Some(0), Some(true), Some(true))
     );
     // Not a terminal: no progress bar, nothing on stderr.
     let out = zipmesh(&["check", "--cases", "3", "--max-faces", "100"]);
@@ -680,4 +686,69 @@ fn after_sigkill_the_target_is_never_partial_and_the_next_write_cleans_up() {
     let left: Vec<_> = fs::read_dir(&out_dir).unwrap().flatten().collect();
     assert_eq!(left.len(), 1, "{left:?}");
     assert!(io::read_mesh(&target).is_ok());
+}
+
+// ---------------------------------------------------------------------------------------
+// `check` limits: memory and time do not follow `--cases`, the time limit cuts inside a case
+
+#[test]
+fn check_with_a_billion_cases_and_a_time_limit_ends_cut_with_exit_3() {
+    // Before: 8 GiB allocated up front, an abort. Now: what ran, then exit 3.
+    let out = zipmesh(&[
+        "check",
+        "--cases",
+        "1000000000",
+        "--time-limit",
+        "1",
+        "--property",
+        "validity",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["planned"].as_u64(), Some(1_000_000_000));
+    assert_eq!(v["timed_out"].as_bool(), Some(true));
+    assert!(v["run"].as_u64().unwrap() < 1_000_000_000);
+    // Sharded: planned is computed, not counted (counting 2^64 would take centuries).
+    let out = zipmesh(&[
+        "check",
+        "--cases",
+        "18446744073709551615",
+        "--shard",
+        "1/3",
+        "--time-limit",
+        "0",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["planned"].as_u64(), Some((u64::MAX - 2) / 3 + 1));
+}
+
+#[test]
+fn the_time_limit_cuts_a_long_case_and_the_report_says_which_property() {
+    // Every pair of Spot's singularities at any distance: minutes without the limit.
+    let spot = spot_quads();
+    let out = zipmesh(&[
+        "check",
+        s(&spot),
+        "--property",
+        "qzip-grid",
+        "--property",
+        "validity",
+        "--max-distance",
+        "1000000",
+        "--time-limit",
+        "0.5",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("qzip-grid cut short on 1 cases"), "{text}");
+    assert!(!text.contains("validity cut short"), "{text}");
+    assert!(text.contains("cut by the time limit"), "{text}");
+    assert!(!text.contains("all properties hold\n"), "{text}");
+    // Without a limit, a small campaign holds on everything: exit 0.
+    let out = zipmesh(&["check", "--cases", "2", "--property", "validity"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(stdout(&out).contains("all properties hold\n"));
 }

@@ -1,6 +1,8 @@
 //! `zipmesh check`: property campaigns on generated cases or on given mesh files.
 //!
-//! Exit codes: 0 every property held, 1 a property failed, 2 a usage or input error.
+//! Exit codes: 0 every property held on every planned case, 1 a property failed, 2 a usage
+//! or input error, 3 every property held on what ran but the time limit cut the campaign
+//! (cases not run, or properties cut short inside a case).
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -39,7 +41,8 @@ pub struct CheckArgs {
     /// Run only the cases whose position p has p % n == i.
     #[arg(long, value_name = "i/n")]
     shard: Option<Shard>,
-    /// Stop starting new cases after this many seconds.
+    /// Stop after this many seconds: no new case starts and properties stop between their
+    /// checks; exit 3 if everything that ran held.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
     /// Q-zip pairs: the largest distance (in edges) between two irregular vertices to pair;
@@ -105,6 +108,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         shard: args.shard.unwrap_or(Shard::ALL),
         jobs: args.jobs.map(|j| j as usize),
         time_limit,
+        checks: campaign::CheckCounter::default(),
         shrink: true,
         out_dir: Some(args.out.clone()),
     };
@@ -125,34 +129,28 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
             vec![case]
         })
     };
-    let planned = match &given {
-        Some(cases) => (0..cases.len() as u64)
-            .filter(|&p| config.shard.contains(p))
-            .count(),
-        None => (0..config.cases)
-            .filter(|&p| config.shard.contains(p))
-            .count(),
-    };
-    let bar = if !args.json && std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(planned as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} cases, {elapsed} (eta {eta})")
-        {
-            bar.set_style(style);
-        }
-        Some(bar)
-    } else {
-        None
-    };
+    let planned = config.shard.size_of(match &given {
+        Some(cases) => cases.len() as u64,
+        None => config.cases,
+    });
+    let bar = (!args.json && std::io::stderr().is_terminal()).then(|| progress_bar(planned));
     let tick = || {
         if let Some(b) = &bar {
             b.inc(1);
         }
     };
-    let report = match &given {
-        Some(cases) => campaign::run_cases(&config, cases, &properties, &tick),
-        None => campaign::run_with_progress(&config, &properties, &tick),
-    };
+    let done = std::sync::atomic::AtomicBool::new(false);
+    let report = std::thread::scope(|s| {
+        if let Some(b) = &bar {
+            s.spawn(|| show_checks(b, &config.checks, &done));
+        }
+        let report = match &given {
+            Some(cases) => campaign::run_cases(&config, cases, &properties, &tick),
+            None => campaign::run_with_progress(&config, &properties, &tick),
+        };
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        report
+    });
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
@@ -161,11 +159,35 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
     } else {
         print_text(&report);
     }
-    Ok(if report.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(ExitCode::from(match (report.passed(), report.timed_out) {
+        (false, _) => 1,
+        (true, true) => CUT_BY_TIME_LIMIT,
+        (true, false) => 0,
+    }))
+}
+
+/// The exit status when every property held on what ran but the time limit cut the run.
+pub const CUT_BY_TIME_LIMIT: u8 = 3;
+
+fn progress_bar(planned: u64) -> ProgressBar {
+    let bar = ProgressBar::new(planned);
+    let template = "{bar:40} {pos}/{len} cases, {msg} checks, {elapsed} (eta {eta})";
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Moves the bar during a long case: the checks polled so far, five times a second.
+fn show_checks(
+    bar: &ProgressBar,
+    checks: &campaign::CheckCounter,
+    done: &std::sync::atomic::AtomicBool,
+) {
+    while !done.load(std::sync::atomic::Ordering::Relaxed) {
+        bar.set_message(checks.get().to_string());
+        std::thread::sleep(Duration::from_millis(200));
+    }
 }
 
 /// Every property `check` knows. On given meshes the Q-zip properties try every ordered
@@ -200,6 +222,14 @@ fn print_text(report: &Report) {
             "time limit reached: {} cases not run",
             report.planned - report.run
         );
+        for r in report.rows.iter().filter(|r| r.cut > 0) {
+            outln!(
+                "  {} cut short on {} cases ({} checks ran in all)",
+                r.property,
+                r.cut,
+                r.checks
+            );
+        }
     }
     for f in &report.failures {
         outln!();
@@ -223,7 +253,9 @@ fn print_text(report: &Report) {
         }
         outln!("  replay: {}", f.replay);
     }
-    if report.passed() && !report.timed_out {
-        outln!("all properties hold");
+    match (report.passed(), report.timed_out) {
+        (true, false) => outln!("all properties hold"),
+        (true, true) => outln!("all properties hold on what ran (cut by the time limit)"),
+        (false, _) => {}
     }
 }
