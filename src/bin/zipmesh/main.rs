@@ -31,7 +31,12 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
 #[command(
     name = "zipmesh",
     version,
-    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)"
+    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)",
+    after_help = "Exit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
+2 an error (bad file, bad usage, output that cannot be written); 3 `check`: every property held \
+on what ran but --time-limit cut the run; 141 standard output closed by its reader (quietly); \
+130/143 ended by SIGINT/SIGTERM (temporary files removed). A command that writes a file leaves \
+it in place only with status 0."
 )]
 struct Cli {
     #[command(subcommand)]
