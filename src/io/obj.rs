@@ -48,8 +48,8 @@ pub fn parse(src: &str) -> Result<(Mesh, BuildReport), MeshFileError> {
 ///
 /// A UTF-8 byte-order mark is skipped; lines may end in `\n`, `\r\n` or a bare `\r`.
 /// Bytes that are not text (a UTF-16 byte-order mark, NUL or other control bytes) are
-/// [`ErrorKind::NotText`](super::ErrorKind::NotText); content without one `v` or `f`
-/// statement is [`ErrorKind::NoMeshData`](super::ErrorKind::NoMeshData); an empty or
+/// [`ErrorKind::NotText`]; content without one `v` or `f`
+/// statement is [`ErrorKind::NoMeshData`]; an empty or
 /// comment-only file is an empty mesh.
 ///
 /// ```
