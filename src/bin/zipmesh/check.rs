@@ -133,27 +133,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         Some(cases) => cases.len() as u64,
         None => config.cases,
     });
-    let bar = (!args.json && std::io::stderr().is_terminal()).then(|| progress_bar(planned));
-    let tick = || {
-        if let Some(b) = &bar {
-            b.inc(1);
-        }
-    };
-    let done = std::sync::atomic::AtomicBool::new(false);
-    let report = std::thread::scope(|s| {
-        if let Some(b) = &bar {
-            s.spawn(|| show_checks(b, &config.checks, &done));
-        }
-        let report = match &given {
-            Some(cases) => campaign::run_cases(&config, cases, &properties, &tick),
-            None => campaign::run_with_progress(&config, &properties, &tick),
-        };
-        done.store(true, std::sync::atomic::Ordering::Relaxed);
-        report
-    });
-    if let Some(b) = &bar {
-        b.finish_and_clear();
-    }
+    let report = run_campaign(&config, given.as_deref(), &properties, planned, !args.json);
     if args.json {
         outln!("{}", report.to_json(true));
     } else {
@@ -164,6 +144,39 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         (true, true) => CUT_BY_TIME_LIMIT,
         (true, false) => 0,
     }))
+}
+
+/// Runs the campaign, with a progress bar on a terminal (when `bar` is wanted) that moves
+/// with the cases and, during a long case, with the checks.
+fn run_campaign(
+    config: &Config,
+    given: Option<&[Case]>,
+    properties: &[Property],
+    planned: u64,
+    bar: bool,
+) -> Report {
+    let bar = (bar && std::io::stderr().is_terminal()).then(|| progress_bar(planned));
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let done = std::sync::atomic::AtomicBool::new(false);
+    let report = std::thread::scope(|s| {
+        if let Some(b) = &bar {
+            s.spawn(|| show_checks(b, &config.checks, &done));
+        }
+        let report = match given {
+            Some(cases) => campaign::run_cases(config, cases, properties, &tick),
+            None => campaign::run_with_progress(config, properties, &tick),
+        };
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        report
+    });
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    report
 }
 
 /// The exit status when every property held on what ran but the time limit cut the run.
