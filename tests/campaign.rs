@@ -246,6 +246,61 @@ fn a_zero_time_limit_runs_nothing_and_says_so() {
 }
 
 #[test]
+fn a_huge_campaign_is_not_sized_by_its_case_count() {
+    // 10^15 cases: sizing anything by the count would abort; the limit ends it.
+    let config = Config {
+        cases: 1_000_000_000_000_000,
+        max_faces: 60,
+        jobs: Some(2),
+        time_limit: Some(Duration::from_millis(300)),
+        ..Config::default()
+    };
+    let r = campaign::run(&config, &campaign::kernel());
+    assert!(r.timed_out && r.passed());
+    assert_eq!(r.planned, 1_000_000_000_000_000);
+    assert!(r.run > 0 && r.run < r.planned);
+}
+
+#[test]
+fn a_property_polling_the_deadline_is_cut_short_and_counted() {
+    // Polls forever: only the deadline ends it.
+    let endless = Property::new("endless", "", |case: &Case| {
+        let mut checks = 0;
+        while !case.out_of_time() {
+            checks += 1;
+        }
+        Outcome::Pass { checks }
+    });
+    let counter = campaign::CheckCounter::default();
+    let config = Config {
+        cases: 3,
+        max_faces: 60,
+        jobs: Some(1),
+        time_limit: Some(Duration::from_millis(200)),
+        checks: counter.clone(),
+        ..Config::default()
+    };
+    let all = [campaign::kernel()[0].clone(), endless];
+    let r = campaign::run(&config, &all);
+    assert!(r.timed_out && r.passed());
+    assert_eq!(r.run, 1, "the first case takes the whole budget");
+    assert_eq!((r.rows[0].cut, r.rows[1].cut), (0, 1));
+    assert!(r.rows[1].checks > 0 && counter.get() >= r.rows[1].checks);
+    assert!(r.to_json(false).contains("\"cut\":1"));
+    // Without a time limit nothing is cut, and polling outside a campaign is false.
+    let r = campaign::run(
+        &Config {
+            cases: 3,
+            max_faces: 60,
+            ..Config::default()
+        },
+        &campaign::kernel(),
+    );
+    assert!(!r.timed_out && r.rows.iter().all(|row| row.cut == 0));
+    assert!(!Case::generate(0, 0, 60).out_of_time());
+}
+
+#[test]
 fn generated_cases_depend_only_on_seed_and_index() {
     for i in [0u64, 1, 17, 1000] {
         let a = Case::generate(8, i, 700);

@@ -393,11 +393,17 @@ fn check_selects_properties_and_replays_one_case() {
         (v["planned"].as_u64(), v["run"].as_u64()),
         (Some(1), Some(1))
     );
-    // A zero time limit runs nothing, says so, and is not a failure.
-    let v = check_json(&["--cases", "5", "--time-limit", "0"]);
+    // A zero time limit runs nothing, says so, and is not a failure: exit 3, not 0.
+    let out = zipmesh(&["check", "--json", "--cases", "5", "--time-limit", "0"]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
     assert_eq!(
-        (v["run"].as_u64(), v["timed_out"].as_bool()),
-        (Some(0), Some(true))
+        (
+            v["run"].as_u64(),
+            v["timed_out"].as_bool(),
+            v["passed"].as_bool()
+        ),
+        (Some(0), Some(true), Some(true))
     );
     // Not a terminal: no progress bar, nothing on stderr.
     let out = zipmesh(&["check", "--cases", "3", "--max-faces", "100"]);
@@ -463,4 +469,286 @@ fn check_usage_and_input_errors_exit_2() {
         err.contains("nope") && err.contains("validity") && err.contains("tri-edge-split"),
         "{err}"
     );
+}
+
+// ---------------------------------------------------------------------------------------
+// Output that cannot be written, and signals during a write
+
+fn spot_quads() -> std::path::PathBuf {
+    shared("quad/spot_quadrangulated.obj")
+}
+
+/// One invocation of every subcommand that prints to standard output.
+fn every_printing_command(dir: &Path) -> Vec<Vec<String>> {
+    let spot = spot_quads().to_str().unwrap().to_string();
+    let out = dir.join("zipped.obj").to_str().unwrap().to_string();
+    let pair = ["--from", "15", "--to", "2"].map(String::from);
+    let mut zip: Vec<String> = ["zip", &spot, "--move", "LS", "-o", &out]
+        .map(String::from)
+        .to_vec();
+    zip.extend(pair.clone());
+    let mut moves = vec!["moves".to_string(), spot.clone()];
+    moves.extend(pair);
+    let v = |a: &[&str]| a.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    vec![
+        v(&["stats"]),
+        v(&["stats", "--json"]),
+        v(&["hash", &spot]),
+        v(&["iso", &spot, &spot]),
+        v(&["check", "--cases", "2", "--property", "validity"]),
+        v(&["check", "--list"]),
+        v(&["--help"]),
+        moves,
+        zip,
+    ]
+}
+
+/// Runs the binary with standard output on a pipe whose reader is already closed, so the
+/// first write fails with `EPIPE` whatever the timing.
+#[allow(clippy::incompatible_msrv)] // std::io::pipe (1.87): the tests run on a newer toolchain
+fn run_into_closed_pipe(args: &[String]) -> std::process::Output {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(args)
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_closed_pipe_ends_every_command_quietly_with_141_and_zip_writes_nothing() {
+    let dir = temp_dir("closed-pipe");
+    for args in every_printing_command(&dir) {
+        let out = run_into_closed_pipe(&args);
+        assert_eq!(out.status.code(), Some(141), "{args:?}: {}", stderr(&out));
+        assert!(
+            stderr(&out).is_empty(),
+            "{args:?}: quietly: {}",
+            stderr(&out)
+        );
+        assert!(
+            fs::read_dir(&dir).unwrap().next().is_none(),
+            "{args:?}: no OUT"
+        );
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_is_an_error_exit_2_and_zip_writes_nothing() {
+    let dir = temp_dir("full-disk");
+    for args in every_printing_command(&dir) {
+        let full = fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+            .args(&args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(
+            err.contains("cannot write to standard output"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            fs::read_dir(&dir).unwrap().next().is_none(),
+            "{args:?}: no OUT"
+        );
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_standard_error_keeps_the_exit_status() {
+    let dir = temp_dir("full-stderr");
+    let missing = dir.join("absent.obj");
+    for (args, code) in [
+        (vec!["stats", s(&missing)], 2),
+        (vec!["check", "--property", "nope"], 2),
+        (vec!["frobnicate"], 2),
+        (vec!["hash", s(&spot_quads())], 0),
+    ] {
+        let full = fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+            .args(&args)
+            .stderr(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(code), "{args:?}");
+    }
+}
+
+#[test]
+fn file_names_with_control_characters_are_escaped_in_messages() {
+    let dir = temp_dir("control-name");
+    let name = dir.join("evil\u{1b}[2J\rname.obj");
+    let out = zipmesh(&["hash", s(&name)]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(!err.contains('\u{1b}') && !err.contains('\r'), "{err:?}");
+    assert!(err.contains(r"evil\u{1b}[2J\rname.obj"), "{err}");
+}
+
+/// A quad mesh large enough that writing it takes a while: Spot subdivided three times.
+#[cfg(target_os = "linux")]
+fn large_quad_mesh(dir: &Path) -> std::path::PathBuf {
+    let (mut mesh, _) = io::read_mesh(spot_quads()).unwrap();
+    for _ in 0..3 {
+        mesh = gen::catmull_clark(&mesh);
+    }
+    let path = dir.join("large.obj");
+    io::write_mesh(&path, &mesh).unwrap();
+    path
+}
+
+/// Starts `zip` on `input` writing into `out_dir`, and waits until it has a file open there
+/// (the temporary of the write, named or not). Returns the child, still running or not.
+#[cfg(target_os = "linux")]
+fn zip_caught_writing(input: &Path, out_dir: &Path) -> std::process::Child {
+    let out = out_dir.join("out.obj");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
+        .args(["zip", s(input), "--from", "15", "--to", "2", "--move", "LS"])
+        .args(["-o", s(&out)])
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let fds = format!("/proc/{}/fd", child.id());
+    // Generous: the outcome is asserted, not the time.
+    for _ in 0..600_000 {
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        let writing = fs::read_dir(&fds)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .any(|e| fs::read_link(e.path()).is_ok_and(|t| t.starts_with(out_dir)));
+        if writing {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_micros(200));
+    }
+    child
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn sigint_or_sigterm_during_a_large_write_leaves_nothing() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = temp_dir("signals");
+    let input = large_quad_mesh(&dir);
+    for (signal, number) in [("-INT", 2), ("-TERM", 15)] {
+        let out_dir = dir.join(&signal[1..]);
+        fs::create_dir_all(&out_dir).unwrap();
+        let mut child = zip_caught_writing(&input, &out_dir);
+        let pid = child.id().to_string();
+        let _ = Command::new("kill").args([signal, &pid]).status();
+        let status = child.wait().unwrap();
+        let left: Vec<_> = fs::read_dir(&out_dir).unwrap().flatten().collect();
+        if status.success() {
+            // The signal came after the commit: only the complete OUT.
+            assert_eq!(left.len(), 1, "{signal}");
+            assert!(io::read_mesh(out_dir.join("out.obj")).is_ok());
+        } else {
+            assert_eq!(status.signal(), Some(number), "{signal}: {status:?}");
+            assert!(left.is_empty(), "{signal}: left {left:?}");
+        }
+    }
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn after_sigkill_the_target_is_never_partial_and_the_next_write_cleans_up() {
+    let dir = temp_dir("sigkill");
+    let input = large_quad_mesh(&dir);
+    let out_dir = dir.join("out");
+    fs::create_dir_all(&out_dir).unwrap();
+    let target = out_dir.join("out.obj");
+    let mut child = zip_caught_writing(&input, &out_dir);
+    let _ = child.kill();
+    let _ = child.wait();
+    if target.exists() {
+        assert!(io::read_mesh(&target).is_ok(), "complete if present");
+    }
+    // A write killed where temporaries have names leaves this one; the next removes it.
+    fs::write(io::temporary_path(&target), "v 0 0 0\n").unwrap();
+    let status = zip_caught_writing(&input, &out_dir).wait().unwrap();
+    assert!(status.success());
+    let left: Vec<_> = fs::read_dir(&out_dir).unwrap().flatten().collect();
+    assert_eq!(left.len(), 1, "{left:?}");
+    assert!(io::read_mesh(&target).is_ok());
+}
+
+// ---------------------------------------------------------------------------------------
+// `check` limits: memory and time do not follow `--cases`, the time limit cuts inside a case
+
+#[test]
+fn check_with_a_billion_cases_and_a_time_limit_ends_cut_with_exit_3() {
+    // Before: 8 GiB allocated up front, an abort. Now: what ran, then exit 3.
+    let out = zipmesh(&[
+        "check",
+        "--cases",
+        "1000000000",
+        "--time-limit",
+        "1",
+        "--property",
+        "validity",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["planned"].as_u64(), Some(1_000_000_000));
+    assert_eq!(v["timed_out"].as_bool(), Some(true));
+    assert!(v["run"].as_u64().unwrap() < 1_000_000_000);
+    // Sharded: planned is computed, not counted (counting 2^64 would take centuries).
+    let out = zipmesh(&[
+        "check",
+        "--cases",
+        "18446744073709551615",
+        "--shard",
+        "1/3",
+        "--time-limit",
+        "0",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["planned"].as_u64(), Some((u64::MAX - 2) / 3 + 1));
+}
+
+#[test]
+fn the_time_limit_cuts_a_long_case_and_the_report_says_which_property() {
+    // Every pair of Spot's singularities at any distance: minutes without the limit.
+    let spot = spot_quads();
+    let out = zipmesh(&[
+        "check",
+        s(&spot),
+        "--property",
+        "qzip-grid",
+        "--property",
+        "validity",
+        "--max-distance",
+        "1000000",
+        "--time-limit",
+        "0.5",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("qzip-grid cut short on 1 cases"), "{text}");
+    assert!(!text.contains("validity cut short"), "{text}");
+    assert!(text.contains("cut by the time limit"), "{text}");
+    assert!(!text.contains("all properties hold\n"), "{text}");
+    // Without a limit, a small campaign holds on everything: exit 0.
+    let out = zipmesh(&["check", "--cases", "2", "--property", "validity"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(stdout(&out).contains("all properties hold\n"));
 }

@@ -250,7 +250,8 @@ fn index_out_of_range() {
         e.kind(),
         ErrorKind::IndexOutOfRange {
             index: 6,
-            vertices: 5
+            vertices: 5,
+            ..
         }
     ));
     // Negative before the first vertex, and zero.
@@ -260,7 +261,8 @@ fn index_out_of_range() {
         e.kind(),
         ErrorKind::IndexOutOfRange {
             index: -3,
-            vertices: 2
+            vertices: 2,
+            ..
         }
     ));
     let e = obj_err(&format!("{TRI}f 0 1 2\n"));
@@ -272,13 +274,32 @@ fn index_out_of_range() {
     let e = obj_err(&format!("{TRI}f 1 2 99999999999999999999999\n"));
     assert_eq!(e.line(), Some(6));
     assert!(matches!(e.kind(), ErrorKind::IndexOutOfRange { .. }));
+    // Shown as written, not clamped to 10^18; a token of any length is cut for the message.
+    assert!(
+        e.to_string()
+            .contains("vertex index 99999999999999999999999 "),
+        "{e}"
+    );
+    let e = off_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -99999999999999999999\n");
+    assert!(
+        e.to_string().contains("index -99999999999999999999 "),
+        "{e}"
+    );
+    let long = "9".repeat(100_000);
+    let e = obj_err(&format!("{TRI}f 1 2 {long}\n"));
+    assert!(
+        e.to_string()
+            .contains(&format!("index {}... ", &long[..40])),
+        "{e}"
+    );
     let e = off_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
     assert_eq!(e.line(), Some(6));
     assert!(matches!(
         e.kind(),
         ErrorKind::IndexOutOfRange {
             index: 3,
-            vertices: 3
+            vertices: 3,
+            ..
         }
     ));
     assert!(e.to_string().contains("index out of range"), "{e}");
@@ -463,6 +484,165 @@ fn file_errors_name_path_and_line() {
     assert_eq!(dir_entries(&dir), ["bad.off"], "nothing written for .ply");
 }
 
+// ---- Text that is not what the reader assumes. ----
+
+const QUAD_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+const QUAD_OFF: &str = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+
+fn parse(format: Format, bytes: &[u8]) -> Result<Mesh, MeshFileError> {
+    format.parse_bytes(bytes).map(|(m, _)| m)
+}
+
+#[test]
+fn a_utf8_byte_order_mark_is_skipped() {
+    for (format, text) in [(Format::Obj, QUAD_OBJ), (Format::Off, QUAD_OFF)] {
+        let plain = parse(format, text.as_bytes()).unwrap();
+        let with_bom = parse(format, &[b"\xEF\xBB\xBF", text.as_bytes()].concat()).unwrap();
+        assert_eq!(with_bom.positions, plain.positions, "{format:?}");
+        assert_eq!(with_bom.polygons(), plain.polygons(), "{format:?}");
+    }
+}
+
+#[test]
+fn bare_carriage_returns_end_lines_and_line_numbers_stay_right() {
+    for (format, text) in [(Format::Obj, QUAD_OBJ), (Format::Off, QUAD_OFF)] {
+        let plain = parse(format, text.as_bytes()).unwrap();
+        for end in ["\r", "\r\n"] {
+            let other = parse(format, text.replace('\n', end).as_bytes()).unwrap();
+            assert_eq!(other.polygons(), plain.polygons(), "{format:?} {end:?}");
+        }
+    }
+    // Line 3 of a bare-CR file, line 4 of a mixed one.
+    let e = obj::parse("v 0 0 0\rv 1 0 0\rv 0 x 0\r").unwrap_err();
+    assert_eq!(e.line(), Some(3), "{e}");
+    let e = obj::parse("v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2\r").unwrap_err();
+    assert_eq!(e.line(), Some(4), "{e}");
+    let e = off::parse("OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 7\r").unwrap_err();
+    assert_eq!(e.line(), Some(6), "{e}");
+}
+
+#[test]
+fn utf16_and_binary_bytes_are_refused_as_not_text() {
+    let utf16 = |text: &str, bom: &[u8], le: bool| -> Vec<u8> {
+        let mut out = bom.to_vec();
+        for u in text.encode_utf16() {
+            out.extend(if le { u.to_le_bytes() } else { u.to_be_bytes() });
+        }
+        out
+    };
+    for (format, text) in [(Format::Obj, QUAD_OBJ), (Format::Off, QUAD_OFF)] {
+        for (bytes, line) in [
+            (utf16(text, b"\xFF\xFE", true), 1),
+            (utf16(text, b"\xFE\xFF", false), 1),
+            (utf16(text, b"", true), 1),
+            (
+                [text.as_bytes(), b"\x00\x01\x02garbage"].concat(),
+                6 + (format == Format::Off) as usize * 2,
+            ),
+        ] {
+            let e = parse(format, &bytes).unwrap_err();
+            assert!(
+                matches!(e.kind(), ErrorKind::NotText { .. }),
+                "{format:?}: {e}"
+            );
+            assert!(e.to_string().contains("not text"), "{e}");
+            assert_eq!(e.line(), Some(line), "{format:?}: {e}");
+        }
+    }
+    let e = obj::parse_bytes(b"v 0 0 0\nv 1 0 0\n\x7F\x05ELF").unwrap_err();
+    assert!(
+        matches!(e.kind(), ErrorKind::NotText { byte: Some(0x7F) }),
+        "{e}"
+    );
+    // Latin-1 in a comment is still text.
+    assert!(obj::parse_bytes(b"# caf\xE9\nv 0 0 0\n").is_ok());
+}
+
+#[test]
+fn content_without_a_vertex_or_face_is_refused_but_an_empty_file_is_an_empty_mesh() {
+    for text in [
+        "hello world\n",
+        "vt 0 0\nvn 0 0 1\ng group\n",
+        "\n\n   usemtl x\n",
+    ] {
+        let e = obj::parse(text).unwrap_err();
+        assert!(
+            matches!(
+                e.kind(),
+                ErrorKind::NoMeshData {
+                    format: Format::Obj
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("no OBJ vertex or face found"), "{e}");
+    }
+    assert_eq!(obj::parse("hello\n").unwrap_err().line(), Some(1));
+    assert_eq!(obj::parse("\n\n  x\n").unwrap_err().line(), Some(3));
+    for text in [
+        "",
+        "\n\n",
+        "# a comment\n  # another\n",
+        "\u{FEFF}# with a mark\r\n",
+    ] {
+        let (mesh, _) = obj::parse(text).unwrap();
+        assert_eq!(
+            (mesh.map.num_faces(), mesh.positions.len()),
+            (0, 0),
+            "{text:?}"
+        );
+    }
+    // OFF says what it holds in its header: without one, random text is refused.
+    let e = off::parse("hello world\n").unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::MissingHeader), "{e}");
+}
+
+#[test]
+fn an_off_header_promising_more_vertices_reports_the_vertices() {
+    // Declares 6 vertices; the body has 4 vertices and 2 faces.
+    let e = off_err("OFF\n6 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+    assert!(
+        matches!(
+            e.kind(),
+            ErrorKind::CountsMismatch {
+                what: "vertices",
+                declared: 6,
+                found: 4
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(e.line(), Some(2));
+    // Quads, and vertices with colours (more tokens than a face line).
+    let e = off_err(
+        "COFF\n5 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n1 1 0 1 1 1 1\n0 1 0 1 1 1 1\n4 0 1 2 3\n",
+    );
+    assert!(
+        matches!(
+            e.kind(),
+            ErrorKind::CountsMismatch {
+                what: "vertices",
+                found: 4,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // Integer vertices (no decimal point) are still vertices: faces really missing.
+    let e = off_err("OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n");
+    assert!(
+        matches!(
+            e.kind(),
+            ErrorKind::CountsMismatch {
+                what: "faces",
+                declared: 2,
+                found: 1
+            }
+        ),
+        "{e}"
+    );
+}
+
 // ---- The atomic writer. ----
 
 #[test]
@@ -504,6 +684,58 @@ fn a_failed_write_keeps_the_old_file_and_removes_the_temporary() {
     assert!(io::write_mesh(&target, &bad).is_err());
     assert_eq!(fs::read(&target).unwrap(), before);
     assert_eq!(dir_entries(&dir), ["mesh.obj", "sub.off"]);
+}
+
+#[test]
+fn a_long_target_name_fits_and_a_pending_write_is_invisible_until_committed() {
+    let dir = temp_dir("long-name");
+    // 250 bytes: valid, but too long for a temporary named after it.
+    let name = format!("{}.obj", "m".repeat(246));
+    let target = dir.join(&name);
+    io::write_mesh(&target, &gen::grid(2, 2)).unwrap();
+    assert_eq!(dir_entries(&dir), std::slice::from_ref(&name));
+    let before = fs::read(&target).unwrap();
+
+    let pending = io::prepare_mesh(&target, &gen::cube(1)).unwrap();
+    assert_eq!(
+        fs::read(&target).unwrap(),
+        before,
+        "not in place before commit"
+    );
+    assert_eq!(
+        dir_entries(&dir),
+        std::slice::from_ref(&name),
+        "no named temporary while pending"
+    );
+    drop(pending);
+    assert_eq!(
+        fs::read(&target).unwrap(),
+        before,
+        "dropping keeps the old file"
+    );
+    io::prepare_mesh(&target, &gen::cube(1))
+        .unwrap()
+        .commit()
+        .unwrap();
+    assert_eq!(io::read_mesh(&target).unwrap().0.map.num_faces(), 6);
+    assert_eq!(dir_entries(&dir), [name]);
+}
+
+#[test]
+fn the_next_write_removes_the_temporary_a_killed_write_left() {
+    let dir = temp_dir("stale-temp");
+    let target = dir.join("mesh.off");
+    let stale = io::temporary_path(&target);
+    assert_eq!(stale.parent(), Some(dir.as_path()));
+    fs::write(&stale, b"OFF\n8 6 0\n0 0 0\n").unwrap(); // a partial file, as after SIGKILL
+    io::write_mesh(&target, &gen::cube(1)).unwrap();
+    assert_eq!(dir_entries(&dir), ["mesh.off"]);
+    // Also when the write fails.
+    fs::write(&stale, b"partial").unwrap();
+    let e = io::write_atomic(&target, |_| Err(std::io::Error::other("stop")));
+    assert!(e.is_err());
+    assert_eq!(dir_entries(&dir), ["mesh.off"]);
+    assert_eq!(io::read_mesh(&target).unwrap().0.map.num_faces(), 6);
 }
 
 // ---- Properties. ----
@@ -585,9 +817,11 @@ proptest! {
             match format.parse_bytes(text.as_bytes()) {
                 Ok((mesh, _)) => prop_assert!(mesh.map.check().is_ok()),
                 Err(e) => {
-                    // Every error about the file's content names an existing line.
+                    // Every error about the file's content names an existing line (a bare
+                    // `\r` ends a line too).
+                    let lines = text.replace("\r\n", "\n").replace('\r', "\n").split('\n').count();
                     if let Some(line) = e.line() {
-                        prop_assert!(line >= 1 && line <= text.split('\n').count(), "{}", e);
+                        prop_assert!(line >= 1 && line <= lines, "{}", e);
                     }
                 }
             }

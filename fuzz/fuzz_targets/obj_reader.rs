@@ -16,6 +16,10 @@ fuzz_target!(|data: &[u8]| {
         ),
         Err(e) => assert!(!e.to_string().is_empty()),
     }
+    // Raw bytes (UTF-16, binary): an error, or a valid mesh.
+    if let Ok((mesh, _)) = obj::parse_bytes(data) {
+        assert!(mesh.map.check().is_ok());
+    }
     // The byte reader agrees with the text reader on valid UTF-8.
     if let Ok(s) = std::str::from_utf8(data) {
         assert_eq!(

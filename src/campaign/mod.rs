@@ -43,21 +43,24 @@
 use core::fmt;
 use core::str::FromStr;
 use core::time::Duration;
-use rayon::prelude::*;
 use std::borrow::Cow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::string::{String, ToString};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
 use std::time::Instant;
 use std::vec::Vec;
 use std::{format, vec};
 
+mod budget;
 mod case;
 mod property;
 mod qzip;
 mod report;
 mod shrink;
 
+pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
 pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use qzip::{qzip_properties, PairChoice};
@@ -98,6 +101,22 @@ impl Shard {
     /// ```
     pub fn contains(&self, position: u64) -> bool {
         self.count > 0 && position % self.count == self.index
+    }
+
+    /// How many of the positions `0..n` are in this shard (computed, not counted, so a
+    /// campaign of 10^18 cases plans in no time).
+    ///
+    /// ```
+    /// let s = zipmesh::campaign::Shard { index: 1, count: 3 };
+    /// assert_eq!((s.size_of(0), s.size_of(1), s.size_of(2), s.size_of(7)), (0, 0, 1, 2));
+    /// assert_eq!(zipmesh::campaign::Shard::ALL.size_of(u64::MAX), u64::MAX);
+    /// ```
+    pub fn size_of(&self, n: u64) -> u64 {
+        if self.count == 0 || self.index >= n {
+            0
+        } else {
+            (n - 1 - self.index) / self.count + 1
+        }
     }
 }
 
@@ -157,9 +176,12 @@ pub struct Config {
     pub shard: Shard,
     /// Worker threads; `None` uses rayon's global pool (all cores).
     pub jobs: Option<usize>,
-    /// Stop starting new cases after this long (the report then says `timed_out`, and which
-    /// cases ran depends on timing).
+    /// Stop after this long: no new case starts, and properties stop between their checks
+    /// ([`Case::out_of_time`]). The report then says `timed_out`, counts the cases each
+    /// property was cut short on ([`Row::cut`]), and which cases ran depends on timing.
     pub time_limit: Option<Duration>,
+    /// Counts the checks polled while the campaign runs, for a progress display.
+    pub checks: CheckCounter,
     /// Shrink the first failure of each property.
     pub shrink: bool,
     /// Where to write shrunk counterexamples as OBJ files (`None`: not written).
@@ -175,6 +197,7 @@ impl Default for Config {
             shard: Shard::ALL,
             jobs: None,
             time_limit: None,
+            checks: CheckCounter::default(),
             shrink: true,
             out_dir: None,
         }
@@ -317,68 +340,44 @@ pub(crate) fn guarded(property: &Property, case: &Case) -> Outcome {
 type MakeCase<'a> = dyn Fn(u64) -> Option<Cow<'a, Case>> + Sync + 'a;
 type Replay<'r> = dyn Fn(&Case, &str) -> String + Sync + 'r;
 
-/// Per case: per property, the outcome and the time it took.
-type CaseResult = Vec<(Outcome, Duration)>;
+/// Per property: the outcome, the time it took and whether the time limit cut it short.
+type CaseResult = Vec<(Outcome, Duration, bool)>;
 
-fn execute<'a>(
-    config: &Config,
-    count: u64,
-    make: &MakeCase<'a>,
-    properties: &[Property],
-    progress: &(dyn Fn() + Sync),
-    replay: &Replay<'_>,
-) -> Report {
-    let started = Instant::now();
-    let positions: Vec<u64> = (0..count).filter(|&p| config.shard.contains(p)).collect();
-    let deadline = config.time_limit.map(|t| Instant::now() + t);
-    let one = |p: u64| -> Option<CaseResult> {
-        if deadline.is_some_and(|d| Instant::now() >= d) {
-            return None;
-        }
-        let case = make(p)?;
-        let results = properties
-            .iter()
-            .map(|prop| {
-                let start = Instant::now();
-                let outcome = guarded(prop, &case);
-                (outcome, start.elapsed())
-            })
-            .collect();
-        progress();
-        Some(results)
-    };
-    let run_all = || -> Vec<Option<CaseResult>> { positions.par_iter().map(|&p| one(p)).collect() };
-    let results = match config.jobs {
-        Some(j) => match rayon::ThreadPoolBuilder::new()
-            .num_threads(j.max(1))
-            .build()
-        {
-            Ok(pool) => pool.install(run_all),
-            Err(_) => positions.iter().map(|&p| one(p)).collect(),
-        },
-        None => run_all(),
-    };
+/// The rows and first failures, merged case by case as workers finish them, so memory
+/// does not grow with the number of cases.
+struct Tally {
+    rows: Vec<Row>,
+    first_failure: Vec<Option<(u64, Outcome)>>,
+    ran: u64,
+}
 
-    let mut rows: Vec<Row> = properties
-        .iter()
-        .map(|p| Row {
+impl Tally {
+    fn new(properties: &[Property]) -> Tally {
+        let row = |p: &Property| Row {
             property: p.name().to_string(),
             cases: 0,
             passed: 0,
             failed: 0,
             skipped: 0,
             checks: 0,
+            cut: 0,
             time: Duration::ZERO,
-        })
-        .collect();
-    let mut first_failure: Vec<Option<(u64, Outcome)>> = vec![None; properties.len()];
-    let mut ran = 0;
-    for (&p, result) in positions.iter().zip(&results) {
-        let Some(result) = result else { continue };
-        ran += 1;
-        for (k, (outcome, time)) in result.iter().enumerate() {
-            let row = &mut rows[k];
-            row.time += *time;
+        };
+        Tally {
+            rows: properties.iter().map(row).collect(),
+            first_failure: vec![None; properties.len()],
+            ran: 0,
+        }
+    }
+
+    /// Adds case `p`'s results; the first failure is the one of the smallest position,
+    /// whatever order the workers finish in.
+    fn add(&mut self, p: u64, result: CaseResult) {
+        self.ran += 1;
+        for (k, (outcome, time, cut)) in result.into_iter().enumerate() {
+            let row = &mut self.rows[k];
+            row.time += time;
+            row.cut += u64::from(cut);
             match outcome {
                 Outcome::Pass { checks } => {
                     row.cases += 1;
@@ -389,68 +388,154 @@ fn execute<'a>(
                 Outcome::Fail { .. } => {
                     row.cases += 1;
                     row.failed += 1;
-                    if first_failure[k].is_none() {
-                        first_failure[k] = Some((p, outcome.clone()));
+                    if self.first_failure[k].as_ref().is_none_or(|(q, _)| p < *q) {
+                        self.first_failure[k] = Some((p, outcome));
                     }
                 }
             }
         }
     }
+}
 
+/// Checks every property on one case, each under the deadline.
+fn check_case(
+    case: &Case,
+    properties: &[Property],
+    config: &Config,
+    deadline: Option<Instant>,
+) -> CaseResult {
+    properties
+        .iter()
+        .map(|prop| {
+            let start = Instant::now();
+            let (outcome, cut) = budget::within(deadline, &config.checks, || guarded(prop, case));
+            (outcome, start.elapsed(), cut)
+        })
+        .collect()
+}
+
+/// Runs the `planned` cases of the shard on `config.jobs` threads (default: rayon's
+/// number), each taking the next position when it is free: nothing is sized by the number
+/// of cases, and no case starts after the deadline.
+fn run_positions(
+    config: &Config,
+    planned: u64,
+    make: &MakeCase<'_>,
+    properties: &[Property],
+    progress: &(dyn Fn() + Sync),
+    deadline: Option<Instant>,
+) -> Tally {
+    let next = AtomicU64::new(0);
+    let tally = Mutex::new(Tally::new(properties));
+    let worker = || loop {
+        if deadline.is_some_and(|d| Instant::now() >= d) {
+            break;
+        }
+        let k = next.fetch_add(1, Ordering::Relaxed);
+        if k >= planned {
+            break;
+        }
+        let p = config.shard.index + k * config.shard.count;
+        let Some(case) = make(p) else { continue };
+        let result = check_case(&case, properties, config, deadline);
+        tally
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .add(p, result);
+        progress();
+    };
+    let jobs = config
+        .jobs
+        .unwrap_or_else(rayon::current_num_threads)
+        .clamp(1, 4096);
+    let jobs = jobs
+        .min(usize::try_from(planned).unwrap_or(usize::MAX))
+        .max(1);
+    std::thread::scope(|s| {
+        for _ in 1..jobs {
+            s.spawn(worker);
+        }
+        worker();
+    });
+    tally.into_inner().unwrap_or_else(|e| e.into_inner())
+}
+
+fn execute<'a>(
+    config: &Config,
+    count: u64,
+    make: &MakeCase<'a>,
+    properties: &[Property],
+    progress: &(dyn Fn() + Sync),
+    replay: &Replay<'_>,
+) -> Report {
+    let started = Instant::now();
+    let planned = config.shard.size_of(count);
+    let deadline = config.time_limit.map(|t| started + t);
+    let tally = run_positions(config, planned, make, properties, progress, deadline);
     let mut failures = Vec::new();
-    for (k, first) in first_failure.into_iter().enumerate() {
+    for (k, first) in tally.first_failure.into_iter().enumerate() {
         let Some((p, outcome)) = first else { continue };
         let Some(case) = make(p) else { continue };
-        let property = &properties[k];
-        let message = match &outcome {
-            Outcome::Fail { message, .. } => message.clone(),
-            _ => String::new(),
-        };
-        let shrunk = if config.shrink {
-            shrink(property, &case, outcome)
-        } else {
-            None
-        };
-        let path = match (&shrunk, &config.out_dir) {
-            (Some(s), Some(dir)) => write_counterexample(dir, property.name(), &case, s),
-            _ => None,
-        };
-        let replay = match (&shrunk, &path) {
-            (Some(s), Some(path)) => {
-                let focus = s
-                    .focus
-                    .map(|v| format!(" --focus {}", v.index()))
-                    .unwrap_or_default();
-                format!(
-                    "zipmesh check {} --seed {} --property {}{focus}",
-                    path.display(),
-                    case.seed,
-                    property.name()
-                )
-            }
-            _ => replay(&case, property.name()),
-        };
-        failures.push(Failure {
-            property: property.name().to_string(),
-            case: case.index,
-            description: case.describe(),
-            message,
-            original_faces: case.mesh.map.num_faces(),
-            shrunk,
-            path,
-            replay,
-        });
+        failures.push(failure(config, &properties[k], &case, outcome, replay));
     }
-
+    let cut = tally.rows.iter().any(|r| r.cut > 0);
     Report {
         seed: config.seed,
         shard: config.shard,
-        planned: positions.len() as u64,
-        run: ran,
-        timed_out: ran < positions.len() as u64,
+        planned,
+        run: tally.ran,
+        timed_out: tally.ran < planned || cut,
         elapsed: started.elapsed(),
-        rows,
+        rows: tally.rows,
         failures,
+    }
+}
+
+/// A property's first failure: shrunk, written and given its replay command.
+fn failure(
+    config: &Config,
+    property: &Property,
+    case: &Case,
+    outcome: Outcome,
+    replay: &Replay<'_>,
+) -> Failure {
+    let message = match &outcome {
+        Outcome::Fail { message, .. } => message.clone(),
+        _ => String::new(),
+    };
+    let shrunk = if config.shrink {
+        shrink(property, case, outcome)
+    } else {
+        None
+    };
+    let path = match (&shrunk, &config.out_dir) {
+        (Some(s), Some(dir)) => write_counterexample(dir, property.name(), case, s),
+        _ => None,
+    };
+    let replay = match (&shrunk, &path) {
+        (Some(s), Some(path)) => {
+            let focus = s
+                .focus
+                .map(|v| format!(" --focus {}", v.index()))
+                .unwrap_or_default();
+            format!(
+                "zipmesh check {} --seed {} --property {}{focus}",
+                path.display(),
+                case.seed,
+                property.name()
+            )
+        }
+        _ => replay(case, property.name()),
+    };
+    Failure {
+        property: property.name().to_string(),
+        case: case.index,
+        description: case.describe(),
+        message,
+        original_faces: case.mesh.map.num_faces(),
+        shrunk,
+        path,
+        replay,
     }
 }
 

@@ -492,7 +492,7 @@ fn at_darts(
     let mut work = before.clone();
     let mut rng = case.rng(salt ^ 0x6172_6773);
     let mut checks = 0;
-    for d in sites {
+    for d in sites.into_iter().take_while(|_| !case.out_of_time()) {
         match attempt(before, &mut work, d, &mut rng) {
             Ok(applied) => checks += u64::from(applied),
             Err(msg) => {
@@ -645,7 +645,7 @@ fn quad_high_valence_split(case: &Case) -> Outcome {
     let mut rng = case.rng(3);
     let mut sites = case.sites_salted(if case.focus.is_some() { SITES / 2 } else { 0 }, 3);
     sites.retain(|&d| map.origin(d) == case.focus.unwrap_or(Vert::new(u32::MAX)));
-    for _ in 0..SITES / 2 {
+    for _ in (0..SITES / 2).take_while(|_| !case.out_of_time()) {
         if high.is_empty() {
             break;
         }

@@ -65,7 +65,7 @@ fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
     let mut out = Vec::new();
     match choice.per_case {
         None => {
-            for &a in &sing {
+            for &a in sing.iter().take_while(|_| !case.out_of_time()) {
                 for &b in &sing {
                     if a != b {
                         out.extend(fits(a, b));
@@ -124,7 +124,7 @@ fn grid(case: &Case, choice: PairChoice) -> Outcome {
     };
     let map = &case.mesh.map;
     let mut checks = 0;
-    for path in &paths {
+    for path in paths.iter().take_while(|_| !case.out_of_time()) {
         for tag in Tag::CCW {
             match checked_zip(map, path, tag) {
                 Ok(_) => checks += 1,
@@ -142,7 +142,7 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
     let map = &case.mesh.map;
     let code = CanonicalCode::of(map);
     let mut checks = 0;
-    for path in &paths {
+    for path in paths.iter().take_while(|_| !case.out_of_time()) {
         for tag in Tag::CCW {
             let edited = match checked_zip(map, path, tag) {
                 Ok(Some(x)) => x,
@@ -204,7 +204,7 @@ fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
     };
     let map = &case.mesh.map;
     let mut checks = 0;
-    for p in &paths {
+    for p in paths.iter().take_while(|_| !case.out_of_time()) {
         let h0 = outcomes(map, p);
         for (_, q) in one_quad_sweeps(map, p).into_iter().take(4) {
             let Some(k) = start_turn(map, p, &q) else {
@@ -254,7 +254,10 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
     };
     let map = &case.mesh.map;
     let mut checks = 0;
-    for p in paths.iter().filter(|p| in_regular_region(map, p)) {
+    for p in paths
+        .iter()
+        .filter(|p| !case.out_of_time() && in_regular_region(map, p))
+    {
         let codes = outcomes(map, p);
         let done: Vec<&CanonicalCode> = codes.iter().flatten().collect();
         for i in 0..done.len() {

@@ -30,6 +30,10 @@ pub struct Row {
     pub skipped: u64,
     /// Assertions made (summed [`Outcome::Pass`](super::Outcome::Pass) `checks`).
     pub checks: u64,
+    /// Cases the time limit cut the property short on (it polled
+    /// [`Case::out_of_time`](super::Case::out_of_time) after the deadline): their outcome
+    /// covers only the checks that ran, which `checks` counts.
+    pub cut: u64,
     /// Time spent in the property, summed over the cases and workers (so it can exceed the
     /// wall time with several jobs). Not deterministic, unlike every other field.
     pub time: Duration,
@@ -90,7 +94,8 @@ pub struct Report {
     pub planned: u64,
     /// Cases run (fewer than `planned` only when the time limit was reached).
     pub run: u64,
-    /// Whether the time limit stopped the campaign early.
+    /// Whether the time limit stopped the campaign early: cases not run, or a property cut
+    /// short inside a case ([`Row::cut`]).
     pub timed_out: bool,
     /// Wall time of the whole campaign, shrinking included (not deterministic).
     pub elapsed: Duration,
@@ -112,7 +117,7 @@ impl Report {
         self.failures.is_empty() && self.rows.iter().all(|r| r.failed == 0)
     }
 
-    /// The table: property, cases, passed, failed, skipped, checks and, if `times`, the
+    /// The table: property, cases, passed, failed, skipped, checks, cut and, if `times`, the
     /// time in seconds. Without times the text is the same for the same campaign on any
     /// machine and with any number of jobs.
     ///
@@ -134,8 +139,8 @@ impl Report {
         let mut s = String::new();
         let _ = write!(
             s,
-            "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9}",
-            "property", "cases", "passed", "failed", "skipped", "checks"
+            "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5}",
+            "property", "cases", "passed", "failed", "skipped", "checks", "cut"
         );
         if times {
             let _ = write!(s, " {:>9}", "time (s)");
@@ -144,8 +149,8 @@ impl Report {
         for r in &self.rows {
             let _ = write!(
                 s,
-                "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9}",
-                r.property, r.cases, r.passed, r.failed, r.skipped, r.checks
+                "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5}",
+                r.property, r.cases, r.passed, r.failed, r.skipped, r.checks, r.cut
             );
             if times {
                 let _ = write!(s, " {:>9.3}", r.time.as_secs_f64());
@@ -157,7 +162,7 @@ impl Report {
 
     /// The report as one JSON object: `seed`, `shard` (`"i/n"`), `planned`, `run`,
     /// `timed_out`, `passed`, `properties` (a list of objects with `name`, `cases`, `passed`,
-    /// `failed`, `skipped`, `checks` and, if `times`, `seconds`), if `times` the campaign's
+    /// `failed`, `skipped`, `checks`, `cut` and, if `times`, `seconds`), if `times` the campaign's
     /// wall time `seconds`, and `failures` (a list of
     /// objects with `property`, `case`, `description`, `message`, `original_faces`,
     /// `shrunk_faces`, `counterexample` (a path or null) and `replay`).
@@ -186,13 +191,14 @@ impl Report {
             }
             let _ = write!(
                 s,
-                "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{}",
+                "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{}",
                 quote(&r.property),
                 r.cases,
                 r.passed,
                 r.failed,
                 r.skipped,
-                r.checks
+                r.checks,
+                r.cut
             );
             if times {
                 let _ = write!(s, ",\"seconds\":{}", r.time.as_secs_f64());

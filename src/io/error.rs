@@ -2,7 +2,7 @@
 
 use super::Format;
 use crate::map::BuildError;
-use alloc::string::String;
+use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 use core::fmt;
 use std::io;
@@ -42,6 +42,20 @@ pub enum ErrorKind {
     UnknownFormat,
     /// An OFF file does not start with an `OFF` header.
     MissingHeader,
+    /// The file is not text: it starts with a UTF-16 or UTF-32 byte-order mark (`byte` is
+    /// `None`), or holds the control byte `byte` (such as NUL), as binary files and UTF-16
+    /// without a mark do. A UTF-8 byte-order mark is skipped, not refused.
+    NotText {
+        /// The first control byte found, if that is what gave it away.
+        byte: Option<u8>,
+    },
+    /// An OBJ file has content but not one `v` or `f` statement (random text, say); an
+    /// empty or comment-only file is an empty mesh. (OFF's header says what a file holds:
+    /// an OFF file without one is [`ErrorKind::MissingHeader`].)
+    NoMeshData {
+        /// The format that was expected.
+        format: Format,
+    },
     /// A token is not the number that was expected there.
     BadNumber {
         /// What was expected, e.g. "a vertex coordinate".
@@ -76,8 +90,10 @@ pub enum ErrorKind {
     /// range is checked by the kernel once every vertex is read; the readers report that
     /// as this variant too, so one defect has one variant.
     IndexOutOfRange {
-        /// The index as written in the file.
+        /// The index's value (beyond ±10^18 it saturates; `written` has the digits).
         index: i64,
+        /// The index as the file writes it (cut to 40 bytes, then `...`), for messages.
+        written: String,
         /// The number of vertices it was checked against (for OBJ's negative indices, the
         /// vertices defined before the face).
         vertices: usize,
@@ -108,6 +124,21 @@ impl fmt::Display for ErrorKind {
                 f.write_str("unknown mesh format: the file name must end in .obj or .off")
             }
             ErrorKind::MissingHeader => f.write_str("missing `OFF` header"),
+            ErrorKind::NotText { byte: None } => f.write_str(
+                "the file is UTF-16 or UTF-32 (it starts with a byte-order mark); \
+                 save it as UTF-8 or ASCII: not text",
+            ),
+            ErrorKind::NotText { byte: Some(b) } => write!(
+                f,
+                "byte 0x{b:02X} is a control character (a binary or UTF-16 file?): not text"
+            ),
+            ErrorKind::NoMeshData { format } => {
+                let name = match format {
+                    Format::Obj => "OBJ",
+                    Format::Off => "OFF",
+                };
+                write!(f, "no {name} vertex or face found: not a mesh file")
+            }
             ErrorKind::BadNumber { expected, found } => {
                 write!(f, "expected {expected}, found `{found}`: bad number")
             }
@@ -122,9 +153,11 @@ impl fmt::Display for ErrorKind {
                 f,
                 "unexpected data after the {declared_faces} faces the header declares: counts mismatch"
             ),
-            ErrorKind::IndexOutOfRange { index, vertices } => write!(
+            ErrorKind::IndexOutOfRange {
+                written, vertices, ..
+            } => write!(
                 f,
-                "vertex index {index} is out of range for {vertices} vertices: index out of range"
+                "vertex index {written} is out of range for {vertices} vertices: index out of range"
             ),
             ErrorKind::Topology {
                 error,
@@ -161,6 +194,7 @@ fn fmt_topology(
         } => fmt::Display::fmt(
             &ErrorKind::IndexOutOfRange {
                 index: v(vertex) as i64,
+                written: v(vertex).to_string(),
                 vertices: n_vertices,
             },
             f,
@@ -226,12 +260,15 @@ impl MeshFileError {
         }
     }
 
-    /// The same error, naming `path` as the file.
+    /// The same error, naming `path` as the file (its control characters escaped in the
+    /// message).
     ///
     /// ```
     /// use zipmesh::io::{ErrorKind, MeshFileError};
     /// let e = MeshFileError::new(Some(4), ErrorKind::MissingHeader).with_path("a.off");
     /// assert_eq!(e.to_string(), "a.off:4: missing `OFF` header");
+    /// let e = MeshFileError::new(None, ErrorKind::MissingHeader).with_path("a\x1b[2J.off");
+    /// assert_eq!(e.to_string(), "a\\u{1b}[2J.off: missing `OFF` header");
     /// ```
     pub fn with_path(mut self, path: impl Into<PathBuf>) -> Self {
         self.path = Some(path.into());
@@ -277,11 +314,28 @@ impl MeshFileError {
 impl fmt::Display for MeshFileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (&self.path, self.line) {
-            (Some(p), Some(l)) => write!(f, "{}:{l}: {}", p.display(), self.kind),
-            (Some(p), None) => write!(f, "{}: {}", p.display(), self.kind),
+            (Some(p), Some(l)) => write!(f, "{}:{l}: {}", Escaped(p), self.kind),
+            (Some(p), None) => write!(f, "{}: {}", Escaped(p), self.kind),
             (None, Some(l)) => write!(f, "line {l}: {}", self.kind),
             (None, None) => write!(f, "{}", self.kind),
         }
+    }
+}
+
+/// A path with its control characters escaped (`\u{1b}`), so that a file's name cannot
+/// move the cursor or clear the terminal that shows the message.
+struct Escaped<'a>(&'a Path);
+
+impl fmt::Display for Escaped<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for c in self.0.display().to_string().chars() {
+            if c.is_control() {
+                write!(f, "{}", c.escape_default())?;
+            } else {
+                fmt::Write::write_char(f, c)?;
+            }
+        }
+        Ok(())
     }
 }
 

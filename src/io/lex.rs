@@ -5,7 +5,58 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use glam::DVec3;
 
-/// Calls `f(line_number, line)` for every line of `src`, without the line break, the
+/// The text of a file without its UTF-8 byte-order mark, or an error if the bytes are not
+/// text: a UTF-16 or UTF-32 byte-order mark, or a control byte other than tab, line feed,
+/// carriage return and form feed (NUL bytes are what UTF-16 without a mark and binary files
+/// show first). Bytes from 0x80 up pass, so Latin-1 comments still load.
+pub(super) fn text(src: &[u8]) -> Result<&[u8], MeshFileError> {
+    if let Some(rest) = src.strip_prefix(b"\xEF\xBB\xBF") {
+        return text(rest);
+    }
+    if src.starts_with(b"\xFF\xFE") || src.starts_with(b"\xFE\xFF") {
+        return Err(MeshFileError::new(
+            Some(1),
+            ErrorKind::NotText { byte: None },
+        ));
+    }
+    let bad = |&b: &u8| (b < 0x20 && !b"\t\n\r\x0C".contains(&b)) || b == 0x7F;
+    match src.iter().position(bad) {
+        None => Ok(src),
+        Some(at) => Err(MeshFileError::new(
+            Some(line_at(src, at)),
+            ErrorKind::NotText {
+                byte: Some(src[at]),
+            },
+        )),
+    }
+}
+
+/// The 1-based line of byte `at`, counting line ends as [`lines`] does.
+fn line_at(src: &[u8], at: usize) -> usize {
+    lines(&src[..at]).count()
+}
+
+/// The lines of `src` without their ends: `\n`, `\r\n` or a bare `\r` (old Mac files).
+/// As `split`, the text after the last line end is a line, even if empty.
+fn lines(src: &[u8]) -> impl Iterator<Item = &[u8]> {
+    let mut rest = Some(src);
+    core::iter::from_fn(move || {
+        let s = rest?;
+        match s.iter().position(|&b| b == b'\n' || b == b'\r') {
+            None => {
+                rest = None;
+                Some(s)
+            }
+            Some(i) => {
+                let end = if s[i..].starts_with(b"\r\n") { 2 } else { 1 };
+                rest = Some(&s[i + end..]);
+                Some(&s[..i])
+            }
+        }
+    })
+}
+
+/// Calls `f(line_number, line)` for every line of `src` (see [`lines`]), without the
 /// comment (from `#`) and with OBJ-style continuations (a trailing `\`) joined; the number
 /// is that of the first physical line. Allocates only for continued lines.
 pub(super) fn for_each_line<F>(
@@ -18,8 +69,7 @@ where
 {
     let mut joined: Vec<u8> = Vec::new();
     let mut joined_start = 0;
-    for (i, raw) in src.split(|&b| b == b'\n').enumerate() {
-        let mut line = raw.strip_suffix(b"\r").unwrap_or(raw);
+    for (i, mut line) in lines(src).enumerate() {
         if let Some(h) = line.iter().position(|&b| b == b'#') {
             line = &line[..h];
         }
@@ -77,12 +127,32 @@ impl<'a> Iterator for Tokens<'a> {
 }
 
 pub(super) fn bad_number(line: usize, expected: &'static str, tok: &[u8]) -> MeshFileError {
-    let cut = &tok[..tok.len().min(40)];
     MeshFileError::new(
         Some(line),
         ErrorKind::BadNumber {
             expected,
-            found: String::from_utf8_lossy(cut).into_owned(),
+            found: written(tok),
+        },
+    )
+}
+
+/// A token as the file writes it, for a message: at most 40 bytes, then `...`.
+pub(super) fn written(tok: &[u8]) -> String {
+    let mut s = String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
+    if tok.len() > 40 {
+        s.push_str("...");
+    }
+    s
+}
+
+/// A face's index `tok` (value `index`) that is not one of the file's `vertices`.
+pub(super) fn out_of_range(line: usize, index: i64, tok: &[u8], vertices: usize) -> MeshFileError {
+    MeshFileError::new(
+        Some(line),
+        ErrorKind::IndexOutOfRange {
+            index,
+            written: written(tok),
+            vertices,
         },
     )
 }

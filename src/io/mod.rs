@@ -39,7 +39,7 @@ pub mod off;
 mod soup;
 mod write;
 
-pub use atomic::write_atomic;
+pub use atomic::{prepare_atomic, remove_temporaries, temporary_path, write_atomic, PendingFile};
 pub use error::{ErrorKind, MeshFileError};
 
 use crate::map::BuildReport;
@@ -170,4 +170,23 @@ pub fn write_mesh(path: impl AsRef<Path>, mesh: &Mesh) -> Result<(), MeshFileErr
     let format = Format::from_path(path)
         .ok_or_else(|| MeshFileError::new(None, ErrorKind::UnknownFormat).with_path(path))?;
     write_atomic(path, |w| format.write(mesh, w))
+}
+
+/// Writes `mesh` for `path` as [`write_mesh`] does, but leaves it pending: nothing is in
+/// place until [`PendingFile::commit`], and dropping the result leaves `path` as it was.
+///
+/// ```
+/// use zipmesh::{gen, io};
+/// let path = std::env::temp_dir().join(format!("zipmesh-doc-prepare-{}.off", std::process::id()));
+/// let pending = io::prepare_mesh(&path, &gen::cube(1)).unwrap();
+/// assert!(!path.exists());
+/// pending.commit().unwrap();
+/// assert_eq!(io::read_mesh(&path).unwrap().0.map.num_faces(), 6);
+/// std::fs::remove_file(&path).unwrap();
+/// ```
+pub fn prepare_mesh(path: impl AsRef<Path>, mesh: &Mesh) -> Result<PendingFile, MeshFileError> {
+    let path = path.as_ref();
+    let format = Format::from_path(path)
+        .ok_or_else(|| MeshFileError::new(None, ErrorKind::UnknownFormat).with_path(path))?;
+    prepare_atomic(path, |w| format.write(mesh, w))
 }

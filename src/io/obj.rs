@@ -20,7 +20,9 @@
 //! assert_eq!(corners, vec![0, 1, 2, 3]);
 //! ```
 
-use super::lex::{bad_number, for_each_line, parse_int, parse_position, Tokens};
+use super::lex::{
+    bad_number, for_each_line, out_of_range, parse_int, parse_position, text, Tokens,
+};
 use super::soup::Soup;
 use super::write::{live_vertices, write_face, Coord};
 use super::{ErrorKind, Format, MeshFileError};
@@ -36,7 +38,7 @@ use std::io::{self, Write};
 /// assert_eq!(mesh.map.num_vertices(), 3);
 /// assert_eq!(report.unreferenced.len(), 1); // vertex 4, kept as a dead slot
 /// let err = obj::parse("v 0 0 0\nf 1 2 3\n").unwrap_err();
-/// assert!(matches!(err.kind(), ErrorKind::IndexOutOfRange { index: 2, vertices: 1 }));
+/// assert!(matches!(err.kind(), ErrorKind::IndexOutOfRange { index: 2, vertices: 1, .. }));
 /// ```
 pub fn parse(src: &str) -> Result<(Mesh, BuildReport), MeshFileError> {
     parse_bytes(src.as_bytes())
@@ -44,15 +46,33 @@ pub fn parse(src: &str) -> Result<(Mesh, BuildReport), MeshFileError> {
 
 /// Parses OBJ from bytes (comments need not be UTF-8). Never panics.
 ///
+/// A UTF-8 byte-order mark is skipped; lines may end in `\n`, `\r\n` or a bare `\r`.
+/// Bytes that are not text (a UTF-16 byte-order mark, NUL or other control bytes) are
+/// [`ErrorKind::NotText`]; content without one `v` or `f`
+/// statement is [`ErrorKind::NoMeshData`]; an empty or
+/// comment-only file is an empty mesh.
+///
 /// ```
-/// let (mesh, _) = zipmesh::io::obj::parse_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap();
+/// use zipmesh::io::{obj::parse_bytes, ErrorKind};
+/// let (mesh, _) = parse_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap();
 /// assert_eq!(mesh.map.num_faces(), 1);
+/// let (mesh, _) = parse_bytes(b"\xEF\xBB\xBFv 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r").unwrap();
+/// assert_eq!(mesh.polygons(), vec![vec![0, 1, 2]]);
+/// let e = parse_bytes(b"\xFF\xFEv\x00 \x000\x00").unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::NotText { byte: None }));
+/// let e = parse_bytes(b"hello world\n").unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::NoMeshData { .. }));
+/// assert_eq!(parse_bytes(b"# nothing yet\n").unwrap().0.map.num_faces(), 0);
 /// ```
 pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
+    let src = text(src)?;
     let mut soup = Soup::new();
+    let mut content = None;
     for_each_line(src, true, |no, line| {
         let mut toks = Tokens(line);
-        match toks.next() {
+        let first = toks.next();
+        content = content.or(first.map(|_| no));
+        match first {
             Some(b"v") => {
                 let p = parse_position(&mut toks, no)?;
                 soup.positions.push(p);
@@ -62,20 +82,11 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                 for tok in toks {
                     let idx = tok.split(|&b| b == b'/').next().unwrap_or(tok);
                     let i = parse_int(idx).ok_or_else(|| bad_number(no, "a vertex index", tok))?;
-                    let out_of_range = || {
-                        MeshFileError::new(
-                            Some(no),
-                            ErrorKind::IndexOutOfRange {
-                                index: i,
-                                vertices: defined,
-                            },
-                        )
-                    };
                     // Positive: 1-based (range checked once all vertices are known);
                     // negative: relative to the vertices defined so far.
                     let zero_based = if i > 0 { i - 1 } else { defined as i64 + i };
                     if i == 0 || zero_based < 0 || zero_based >= i64::from(u32::MAX) - 1 {
-                        return Err(out_of_range());
+                        return Err(out_of_range(no, i, idx, defined));
                     }
                     soup.corners.push(zero_based as u32);
                 }
@@ -85,6 +96,15 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
         }
         Ok(())
     })?;
+    if let (Some(line), true) = (
+        content,
+        soup.positions.is_empty() && soup.face_lines.is_empty(),
+    ) {
+        let kind = ErrorKind::NoMeshData {
+            format: Format::Obj,
+        };
+        return Err(MeshFileError::new(Some(line), kind));
+    }
     soup.finish(Format::Obj)
 }
 

@@ -18,7 +18,10 @@
 //! assert_eq!(mesh.polygons().len(), 1);
 //! ```
 
-use super::lex::{bad_number, for_each_line, missing_number, parse_int, parse_position, Tokens};
+use super::lex::{
+    bad_number, for_each_line, missing_number, out_of_range, parse_int, parse_position, text,
+    Tokens,
+};
 use super::soup::Soup;
 use super::write::{live_vertices, write_face, Coord};
 use super::{ErrorKind, Format, MeshFileError};
@@ -46,14 +49,24 @@ pub fn parse(src: &str) -> Result<(Mesh, BuildReport), MeshFileError> {
 
 /// Parses OFF from bytes (comments need not be UTF-8). Never panics.
 ///
+/// As for OBJ, a UTF-8 byte-order mark is skipped, lines may end in `\n`, `\r\n` or a
+/// bare `\r`, and bytes that are not text are [`ErrorKind::NotText`]. A header declaring
+/// more vertices than the body has (so that face lines would be read as vertices) is a
+/// vertex [`ErrorKind::CountsMismatch`].
+///
 /// ```
+/// use zipmesh::io::{off::parse_bytes, ErrorKind};
 /// let src = b"OFF 4 2 5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
-/// let (mesh, _) = zipmesh::io::off::parse_bytes(src).unwrap();
+/// let (mesh, _) = parse_bytes(src).unwrap();
 /// assert_eq!(mesh.map.num_edges(), 5);
+/// let e = parse_bytes(b"OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n").unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::CountsMismatch { what: "vertices", declared: 5, found: 4 }));
 /// ```
 pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
+    let src = text(src)?;
     let mut soup = Soup::new();
     let mut stage = Stage::Header;
+    let mut shape = VertexShape::default();
     let (mut nv, mut nf, mut counts_line) = (0usize, 0usize, 0usize);
     let mut faces_read = 0usize;
     for_each_line(src, false, |no, line| {
@@ -85,6 +98,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                 Ok(())
             }
             Stage::Body if soup.positions.len() < nv => {
+                shape.see(line, soup.positions.len());
                 let mut toks = Tokens(line);
                 soup.positions.push(parse_position(&mut toks, no)?);
                 Ok(())
@@ -121,12 +135,43 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
         Stage::Body if soup.positions.len() < nv => {
             Err(missing("vertices", nv, soup.positions.len()))
         }
-        Stage::Body if faces_read < nf => Err(missing("faces", nf, faces_read)),
+        // Faces read as vertices: the header promises more vertices than the body has.
+        Stage::Body if faces_read < nf => match shape.first_face {
+            Some(found) => Err(missing("vertices", nv, found)),
+            None => Err(missing("faces", nf, faces_read)),
+        },
         Stage::Body => soup.finish(Format::Off),
     }
 }
 
 /// `OFF` with optional prefixes for per-vertex extras (texture, colour, normal).
+/// Where the vertex lines stop looking like the first one and start looking like faces
+/// (`k i0 .. ik-1`, integers only, k >= 3), which is what a header declaring too many
+/// vertices makes the reader take as vertices.
+#[derive(Default)]
+struct VertexShape {
+    tokens: usize,
+    first_face: Option<usize>,
+}
+
+impl VertexShape {
+    fn see(&mut self, line: &[u8], index: usize) {
+        let count = Tokens(line).count();
+        if index == 0 {
+            self.tokens = count;
+        } else if count != self.tokens && self.first_face.is_none() && looks_like_face(line) {
+            self.first_face = Some(index);
+        }
+    }
+}
+
+fn looks_like_face(line: &[u8]) -> bool {
+    let mut toks = Tokens(line);
+    let k = toks.next().and_then(parse_int).unwrap_or(0);
+    let rest: Option<usize> = toks.map(|t| parse_int(t).map(|_| 1)).sum();
+    k >= 3 && rest.is_some_and(|n| n as i64 >= k)
+}
+
 fn is_header(tok: &[u8]) -> bool {
     tok.strip_suffix(b"OFF")
         .is_some_and(|p| p.iter().all(|b| b"STCN".contains(b)))
@@ -150,13 +195,7 @@ fn read_face(
         let tok = toks.next().ok_or_else(|| missing_number(no, I))?;
         let i = parse_int(tok).ok_or_else(|| bad_number(no, I, tok))?;
         if i < 0 || i as usize >= nv {
-            return Err(MeshFileError::new(
-                Some(no),
-                ErrorKind::IndexOutOfRange {
-                    index: i,
-                    vertices: nv,
-                },
-            ));
+            return Err(out_of_range(no, i, tok, nv));
         }
         soup.corners.push(i as u32);
     }

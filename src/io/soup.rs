@@ -4,6 +4,7 @@
 use super::{ErrorKind, Format, MeshFileError};
 use crate::map::{BuildError, BuildReport};
 use crate::mesh::Mesh;
+use alloc::string::ToString;
 use alloc::vec::Vec;
 use glam::DVec3;
 
@@ -68,6 +69,7 @@ impl Soup {
                 vertex, n_vertices, ..
             } => ErrorKind::IndexOutOfRange {
                 index: format.vertex_number(vertex) as i64,
+                written: format.vertex_number(vertex).to_string(),
                 vertices: n_vertices,
             },
             BuildError::TooLarge { .. } => ErrorKind::TooLarge,

@@ -1,6 +1,8 @@
 //! `zipmesh check`: property campaigns on generated cases or on given mesh files.
 //!
-//! Exit codes: 0 every property held, 1 a property failed, 2 a usage or input error.
+//! Exit codes: 0 every property held on every planned case, 1 a property failed, 2 a usage
+//! or input error, 3 every property held on what ran but the time limit cut the campaign
+//! (cases not run, or properties cut short inside a case).
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -10,6 +12,8 @@ use std::process::ExitCode;
 use std::time::Duration;
 use zipmesh::campaign::{self, Case, Config, Property, Report, Shard};
 use zipmesh::{io, Vert};
+
+use crate::out::{self, outln};
 
 /// Arguments of `zipmesh check`.
 #[derive(Args)]
@@ -37,7 +41,8 @@ pub struct CheckArgs {
     /// Run only the cases whose position p has p % n == i.
     #[arg(long, value_name = "i/n")]
     shard: Option<Shard>,
-    /// Stop starting new cases after this many seconds.
+    /// Stop after this many seconds: no new case starts and properties stop between their
+    /// checks; exit 3 if everything that ran held.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
     /// Q-zip pairs: the largest distance (in edges) between two irregular vertices to pair;
@@ -63,7 +68,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
     match run_inner(args) {
         Ok(code) => code,
         Err(message) => {
-            eprintln!("zipmesh check: {message}");
+            out::error_line(format_args!("zipmesh check: {message}"));
             ExitCode::from(2)
         }
     }
@@ -73,7 +78,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
     let all = properties(&args);
     if args.list {
         for p in &all {
-            println!("{:<24} {}", p.name(), p.about());
+            outln!("{:<24} {}", p.name(), p.about());
         }
         return Ok(ExitCode::SUCCESS);
     }
@@ -103,6 +108,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         shard: args.shard.unwrap_or(Shard::ALL),
         jobs: args.jobs.map(|j| j as usize),
         time_limit,
+        checks: campaign::CheckCounter::default(),
         shrink: true,
         out_dir: Some(args.out.clone()),
     };
@@ -123,47 +129,78 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
             vec![case]
         })
     };
-    let planned = match &given {
-        Some(cases) => (0..cases.len() as u64)
-            .filter(|&p| config.shard.contains(p))
-            .count(),
-        None => (0..config.cases)
-            .filter(|&p| config.shard.contains(p))
-            .count(),
-    };
-    let bar = if !args.json && std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(planned as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} cases, {elapsed} (eta {eta})")
-        {
-            bar.set_style(style);
-        }
-        Some(bar)
+    let planned = config.shard.size_of(match &given {
+        Some(cases) => cases.len() as u64,
+        None => config.cases,
+    });
+    let report = run_campaign(&config, given.as_deref(), &properties, planned, !args.json);
+    if args.json {
+        outln!("{}", report.to_json(true));
     } else {
-        None
-    };
+        print_text(&report);
+    }
+    Ok(ExitCode::from(match (report.passed(), report.timed_out) {
+        (false, _) => 1,
+        (true, true) => CUT_BY_TIME_LIMIT,
+        (true, false) => 0,
+    }))
+}
+
+/// Runs the campaign, with a progress bar on a terminal (when `bar` is wanted) that moves
+/// with the cases and, during a long case, with the checks.
+fn run_campaign(
+    config: &Config,
+    given: Option<&[Case]>,
+    properties: &[Property],
+    planned: u64,
+    bar: bool,
+) -> Report {
+    let bar = (bar && std::io::stderr().is_terminal()).then(|| progress_bar(planned));
     let tick = || {
         if let Some(b) = &bar {
             b.inc(1);
         }
     };
-    let report = match &given {
-        Some(cases) => campaign::run_cases(&config, cases, &properties, &tick),
-        None => campaign::run_with_progress(&config, &properties, &tick),
-    };
+    let done = std::sync::atomic::AtomicBool::new(false);
+    let report = std::thread::scope(|s| {
+        if let Some(b) = &bar {
+            s.spawn(|| show_checks(b, &config.checks, &done));
+        }
+        let report = match given {
+            Some(cases) => campaign::run_cases(config, cases, properties, &tick),
+            None => campaign::run_with_progress(config, properties, &tick),
+        };
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        report
+    });
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    if args.json {
-        println!("{}", report.to_json(true));
-    } else {
-        print_text(&report);
+    report
+}
+
+/// The exit status when every property held on what ran but the time limit cut the run.
+pub const CUT_BY_TIME_LIMIT: u8 = 3;
+
+fn progress_bar(planned: u64) -> ProgressBar {
+    let bar = ProgressBar::new(planned);
+    let template = "{bar:40} {pos}/{len} cases, {msg} checks, {elapsed} (eta {eta})";
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        bar.set_style(style);
     }
-    Ok(if report.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    bar
+}
+
+/// Moves the bar during a long case: the checks polled so far, five times a second.
+fn show_checks(
+    bar: &ProgressBar,
+    checks: &campaign::CheckCounter,
+    done: &std::sync::atomic::AtomicBool,
+) {
+    while !done.load(std::sync::atomic::Ordering::Relaxed) {
+        bar.set_message(checks.get().to_string());
+        std::thread::sleep(Duration::from_millis(200));
+    }
 }
 
 /// Every property `check` knows. On given meshes the Q-zip properties try every ordered
@@ -180,13 +217,13 @@ fn properties(args: &CheckArgs) -> Vec<Property> {
 }
 
 fn print_text(report: &Report) {
-    print!("{}", report.table(true));
+    out::push(format_args!("{}", report.table(true)));
     let scope = if report.shard == Shard::ALL {
         String::new()
     } else {
         format!(" (shard {})", report.shard)
     };
-    println!(
+    outln!(
         "{} of {} cases run{scope}, seed {}, {:.2} s",
         report.run,
         report.planned,
@@ -194,32 +231,44 @@ fn print_text(report: &Report) {
         report.elapsed.as_secs_f64()
     );
     if report.timed_out {
-        println!(
+        outln!(
             "time limit reached: {} cases not run",
             report.planned - report.run
         );
+        for r in report.rows.iter().filter(|r| r.cut > 0) {
+            outln!(
+                "  {} cut short on {} cases ({} checks ran in all)",
+                r.property,
+                r.cut,
+                r.checks
+            );
+        }
     }
     for f in &report.failures {
-        println!();
-        println!(
+        outln!();
+        outln!(
             "FAILED {} on case {}: {}",
-            f.property, f.case, f.description
+            f.property,
+            f.case,
+            f.description
         );
-        println!("  {}", f.message);
+        outln!("  {}", f.message);
         match (&f.shrunk, &f.path) {
-            (Some(s), Some(path)) => println!(
+            (Some(s), Some(path)) => outln!(
                 "  counterexample: {} ({} faces, shrunk from {}): {}",
                 path.display(),
                 s.mesh.map.num_faces(),
                 f.original_faces,
                 s.message
             ),
-            (Some(_), None) => println!("  (the shrunk counterexample could not be written)"),
-            _ => println!("  (no smaller failing mesh found)"),
+            (Some(_), None) => outln!("  (the shrunk counterexample could not be written)"),
+            _ => outln!("  (no smaller failing mesh found)"),
         }
-        println!("  replay: {}", f.replay);
+        outln!("  replay: {}", f.replay);
     }
-    if report.passed() && !report.timed_out {
-        println!("all properties hold");
+    match (report.passed(), report.timed_out) {
+        (true, false) => outln!("all properties hold"),
+        (true, true) => outln!("all properties hold on what ran (cut by the time limit)"),
+        (false, _) => {}
     }
 }

@@ -2,10 +2,16 @@
 //! from the library.
 //!
 //! Exit codes: 0 success (for `iso`: isomorphic), 1 not isomorphic (for `check`: a property
-//! failed), 2 any error (bad file, bad usage).
+//! failed), 2 any error (bad file, bad usage, a full disk), 141 standard output closed by its
+//! reader (quietly, as a Unix tool stopped by `SIGPIPE`), 130 and 143 interrupted by
+//! `SIGINT` and `SIGTERM` (temporary files removed). `check` adds its own (see `check.rs`).
 
 mod check;
+mod out;
 mod qzip;
+mod signals;
+
+use out::outln;
 
 use clap::{Parser, Subcommand};
 use serde_json::{json, Map as JsonMap, Value};
@@ -25,7 +31,12 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
 #[command(
     name = "zipmesh",
     version,
-    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)"
+    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)",
+    after_help = "Exit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
+2 an error (bad file, bad usage, output that cannot be written); 3 `check`: every property held \
+on what ran but --time-limit cut the run; 141 standard output closed by its reader (quietly); \
+130/143 ended by SIGINT/SIGTERM (temporary files removed). A command that writes a file leaves \
+it in place only with status 0."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -69,17 +80,10 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    signals::install();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            let _ = e.print();
-            // Help and version are successes; every usage error exits 2.
-            return if e.use_stderr() {
-                ExitCode::from(2)
-            } else {
-                ExitCode::SUCCESS
-            };
-        }
+        Err(e) => return usage(&e),
     };
     let result = match cli.command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
@@ -87,12 +91,25 @@ fn main() -> ExitCode {
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
-        Ok(code) => code,
+        Ok(code) => out::finish(code),
+        // `zip` flushes before it commits its file; a closed pipe there ends quietly too.
+        Err(_) if out::closed() => ExitCode::from(out::CLOSED_PIPE),
         Err(e) => {
-            eprintln!("zipmesh: {e}");
-            ExitCode::from(2)
+            let code = out::finish(ExitCode::from(2));
+            out::error(e);
+            code
         }
     }
+}
+
+/// Help and version are successes (unless they cannot be written); usage errors exit 2.
+fn usage(e: &clap::Error) -> ExitCode {
+    if e.use_stderr() {
+        let _ = e.print();
+        return ExitCode::from(2);
+    }
+    out::push(format_args!("{}", e.render()));
+    out::finish(ExitCode::SUCCESS)
 }
 
 fn run(command: Command) -> Result<ExitCode, MeshFileError> {
@@ -112,14 +129,14 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
             if json {
                 let object: JsonMap<String, Value> =
                     stats.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
-                println!("{}", Value::Object(object));
+                outln!("{}", Value::Object(object));
             } else {
                 print_table(&name, &stats);
             }
         }
         Command::Hash { file } => {
             let (mesh, _) = io::read_mesh(&file)?;
-            println!("{:032x}", canonical_hash(&mesh.map));
+            outln!("{:032x}", canonical_hash(&mesh.map));
         }
         Command::Iso { a, b, mirror } => {
             let (ma, _) = io::read_mesh(&a)?;
@@ -135,7 +152,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
                 ""
             };
             let verdict = if same { "isomorphic" } else { "not isomorphic" };
-            println!("{verdict}: {} and {}{how}", a.display(), b.display());
+            outln!("{verdict}: {} and {}{how}", a.display(), b.display());
             return Ok(if same {
                 ExitCode::SUCCESS
             } else {
@@ -196,7 +213,7 @@ fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
 
 /// One `key  value` row per entry; histograms as `value:count` pairs in numeric order.
 fn print_table(name: &str, stats: &[(&str, Value)]) {
-    println!("{:<22} {name}", "file");
+    outln!("{:<22} {name}", "file");
     for (key, value) in stats {
         let text = match value {
             Value::Object(o) if *key == "gauss_bonnet" => format!(
@@ -226,6 +243,6 @@ fn print_table(name: &str, stats: &[(&str, Value)]) {
             Value::String(s) => s.clone(),
             other => other.to_string(),
         };
-        println!("{:<22} {text}", key.replace('_', " "));
+        outln!("{:<22} {text}", key.replace('_', " "));
     }
 }

@@ -11,6 +11,8 @@ use zipmesh::qzip::{
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
+use crate::out::{self, outln};
+
 /// Arguments shared by `moves` and `zip`.
 #[derive(Args)]
 pub struct PairArgs {
@@ -60,6 +62,12 @@ pub struct InputError(String);
 impl std::fmt::Display for InputError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.0)
+    }
+}
+
+impl From<out::OutputError> for InputError {
+    fn from(e: out::OutputError) -> Self {
+        InputError(e.to_string())
     }
 }
 
@@ -171,9 +179,9 @@ pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
         rows.push(row);
     }
     if args.pair.json {
-        println!("{}", Value::Array(rows));
+        outln!("{}", Value::Array(rows));
     } else {
-        println!(
+        outln!(
             "{}: moving {} -> {} along {}",
             args.pair.file.display(),
             args.pair.from,
@@ -182,7 +190,7 @@ pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
         );
         for r in &rows {
             if r["realizable"] == json!(true) {
-                println!(
+                outln!(
                     "{}  realizable: {} splits, {} collapses; the pair moves to {} and {} \
                      (vertex numbers after compaction)",
                     r["move"].as_str().unwrap_or("?"),
@@ -192,7 +200,7 @@ pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
                     r["moved"]["to"]
                 );
             } else {
-                println!(
+                outln!(
                     "{}  not realizable: {}",
                     r["move"].as_str().unwrap_or("?"),
                     r["reason"].as_str().unwrap_or("?")
@@ -227,7 +235,8 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     // The reverse run is found on the edited map before compaction renumbers it.
     let reverse = find_reverse(&mesh.map, r, &original.map);
     let c = mesh.compact();
-    io::write_mesh(&args.output, &mesh)?;
+    // Written now, in place only after the report is printed: no OUT with a failing status.
+    let pending = io::prepare_mesh(&args.output, &mesh)?;
     let moved_from = renumber(&c, r.moved_from());
     let moved_to = renumber(&c, r.moved_to());
     let undo = reverse.as_ref().map(|rev| {
@@ -258,9 +267,9 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
         "undo": undo,
     });
     if args.pair.json {
-        println!("{report}");
+        outln!("{report}");
     } else {
-        println!(
+        outln!(
             "{} -> {}: {} movement, {} splits, {} collapses; the pair moved to {} and {}",
             args.pair.file.display(),
             args.output.display(),
@@ -271,7 +280,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
             report["moved"]["to"]
         );
         match &reverse {
-            Some(rev) => println!(
+            Some(rev) => outln!(
                 "undo: zipmesh zip {} --from {} --to {} --move {} --path {} -o UNDONE",
                 args.output.display(),
                 report["moved"]["to"],
@@ -286,8 +295,10 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
                         .join(","))
                     .unwrap_or_default()
             ),
-            None => println!("undo: no reverse Q-zip restores the input here"),
+            None => outln!("undo: no reverse Q-zip restores the input here"),
         }
     }
+    out::flush()?;
+    pending.commit()?;
     Ok(ExitCode::SUCCESS)
 }
