@@ -478,16 +478,26 @@ fn given_path_defects_are_refused_with_the_reason() {
     assert_eq!(
         err(&[v(0), v(1)], v(4), v(1), &o),
         SketchError::WrongEnd {
+            start: true,
             expected: v(4),
             found: v(0)
         }
     );
     assert_eq!(
+        err(&[v(0), v(1)], v(4), v(1), &o).to_string(),
+        "the path should start at vertex 4 but starts at vertex 0"
+    );
+    assert_eq!(
         err(&[v(0), v(1)], v(0), v(2), &o),
         SketchError::WrongEnd {
+            start: false,
             expected: v(2),
             found: v(1)
         }
+    );
+    assert_eq!(
+        err(&[v(0), v(1)], v(0), v(2), &o).to_string(),
+        "the path should end on vertex 2 but ends on vertex 1"
     );
     assert_eq!(
         err(&[v(0), v(1), v(6)], v(0), v(6), &o),

@@ -308,6 +308,8 @@ pub enum SketchError {
     TooShort(usize),
     /// A given path does not start or end on the requested vertex.
     WrongEnd {
+        /// Whether it is the start (`from`) that is wrong; otherwise the end (`to`).
+        start: bool,
         /// The requested vertex.
         expected: Vert,
         /// The path's vertex there.
@@ -369,12 +371,23 @@ impl fmt::Display for SketchError {
                 edge.index()
             ),
             Self::TooShort(n) => write!(f, "a path needs at least two vertices, got {n}"),
-            Self::WrongEnd { expected, found } => write!(
-                f,
-                "the path should end on vertex {} but has vertex {} there",
-                expected.index(),
-                found.index()
-            ),
+            Self::WrongEnd {
+                start,
+                expected,
+                found,
+            } => {
+                let (which, verb) = if *start {
+                    ("start at", "starts at")
+                } else {
+                    ("end on", "ends on")
+                };
+                write!(
+                    f,
+                    "the path should {which} vertex {} but {verb} vertex {}",
+                    expected.index(),
+                    found.index()
+                )
+            }
             Self::NotAdjacent { index, a, b } => write!(
                 f,
                 "path vertices {} and {} (positions {index} and {}) share no edge",

@@ -39,9 +39,17 @@ pub fn validate_path(
             return Err(SketchError::DeadVertex(v));
         }
     }
-    for (expected, found) in [(from, vertices[0]), (to, vertices[vertices.len() - 1])] {
+    let ends = [
+        (true, from, vertices[0]),
+        (false, to, vertices[vertices.len() - 1]),
+    ];
+    for (start, expected, found) in ends {
         if expected != found {
-            return Err(SketchError::WrongEnd { expected, found });
+            return Err(SketchError::WrongEnd {
+                start,
+                expected,
+                found,
+            });
         }
     }
     for i in 0..vertices.len() {
