@@ -4,15 +4,16 @@
 
 mod common;
 
-use common::{ico_cc, pairs_within, singular};
+use common::{ico_cc, pairs_within};
 use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::invariants::{irregular_vertices, is_regular_interior, MeshKind};
 use zipmesh::qzip::{
     one_quad_sweeps, plan, sketch, start_turn, validate_path, Path, Qzip, SketchOptions, Tag,
 };
 use zipmesh::{gen, Map, Vert};
 
 fn regular(map: &Map, v: Vert) -> bool {
-    map.valence(v) == 4 && !map.is_boundary_vertex(v)
+    is_regular_interior(map, MeshKind::Quad, v)
 }
 
 /// The canonical hash of each of the four movements (in `Tag::CCW` order), `None` where
@@ -105,7 +106,7 @@ fn homotopic_paths_give_isomorphic_maps_on_real_meshes() {
 #[test]
 fn the_other_side_of_a_singularity_can_differ() {
     let map = ico_cc(2);
-    let sing = singular(&map);
+    let sing = irregular_vertices(&map, MeshKind::Quad);
     let mut differing = 0;
     for &a in &sing {
         for &b in &sing {
@@ -201,7 +202,7 @@ proptest::proptest! {
     fn random_sweeps_give_the_same_movement(levels in 2usize..4, i in 0usize..64,
                                             j in 0usize..64, s in 0usize..64, t in 0usize..4) {
         let map = ico_cc(levels);
-        let sing = singular(&map);
+        let sing = irregular_vertices(&map, MeshKind::Quad);
         let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
         proptest::prop_assume!(a != b);
         let p = sketch(&map, a, b, &SketchOptions::default()).unwrap();

@@ -3,9 +3,10 @@
 
 mod common;
 
-use common::{check_zip, ico_cc, pairs_within, singular, torus_with_splits};
+use common::{check_zip, ico_cc, pairs_within, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::invariants::{irregular_vertices, MeshKind};
 use zipmesh::qzip::{
     moves, plan, prepare, sketch, validate_path, EndRule, PrepareError, Qzip, QzipError,
     SketchOptions, StartRule, Tag,
@@ -70,7 +71,7 @@ fn crowded_clusters_keep_the_grid_or_refuse() {
 #[test]
 fn four_movements_differ() {
     let map = ico_cc(2);
-    let sing = singular(&map);
+    let sing = irregular_vertices(&map, MeshKind::Quad);
     let mut pairs = 0;
     for &a in &sing {
         for &b in &sing {
@@ -211,7 +212,7 @@ proptest! {
         let s2 = map2.rotate_cw(map2.rotate_cw(s1));
         prop_assume!(map2.valence(Vert::new(a2)) == 4);
         prop_assume!(zipmesh::ops::quad::split_vertex(&mut map2, s1, s2).is_ok());
-        let sing = singular(&map2);
+        let sing = irregular_vertices(&map2, MeshKind::Quad);
         let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
         prop_assume!(a != b);
         if let Ok(path) = sketch(&map2, a, b, &SketchOptions::default()) {
@@ -224,7 +225,7 @@ proptest! {
     fn random_icosahedron_pairs(levels in 2usize..4, i in 0usize..32, j in 0usize..32,
                                 tag in arb_tag()) {
         let map = ico_cc(levels);
-        let sing = singular(&map);
+        let sing = irregular_vertices(&map, MeshKind::Quad);
         let (a, b) = (sing[i % sing.len()], sing[j % sing.len()]);
         prop_assume!(a != b);
         let path = sketch(&map, a, b, &SketchOptions::default()).unwrap();
@@ -248,7 +249,7 @@ fn paths_touching_the_boundary() {
     let (mesh, _) = zipmesh::Mesh::from_polygons(ico.positions.clone(), &faces).unwrap();
     let map = mesh.map;
     assert_eq!(map.boundary_loops().len(), 1);
-    let sing = singular(&map);
+    let sing = irregular_vertices(&map, MeshKind::Quad);
     let (mut touching, mut done) = (0, 0);
     for &a in &sing {
         for &b in &sing {

@@ -7,6 +7,7 @@ use std::vec::Vec;
 
 use super::{Case, Outcome, Property};
 use crate::invariants::canonical::CanonicalCode;
+use crate::invariants::{is_regular_interior, MeshKind};
 use crate::qzip::{
     find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
 };
@@ -180,10 +181,6 @@ fn tally(checks: u64) -> Outcome {
     }
 }
 
-fn regular(map: &Map, v: Vert) -> bool {
-    map.valence(v) == 4 && !map.is_boundary_vertex(v)
-}
-
 fn outcomes(map: &Map, p: &Path) -> [Option<CanonicalCode>; 4] {
     Tag::CCW.map(|t| {
         let mut m = map.clone();
@@ -238,7 +235,8 @@ fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
 /// Whether the pair sits in a regular region: at least three edges apart, and every vertex
 /// within two edges of the path regular, the two ends excepted.
 fn in_regular_region(map: &Map, p: &Path) -> bool {
-    let ok = |y: Vert| y == p.start() || y == p.end() || regular(map, y);
+    let ok =
+        |y: Vert| y == p.start() || y == p.end() || is_regular_interior(map, MeshKind::Quad, y);
     p.len() >= 3
         && p.vertices().iter().all(|&x| {
             map.vertex_darts(x).all(|d| {

@@ -34,7 +34,7 @@ use core::fmt;
 use super::compass::Tag;
 use super::prepare::{EndRule, StartRule, Surgery};
 use super::quad::bounds_one_quad;
-use crate::invariants::{regular_valence, MeshKind};
+use crate::invariants::{is_regular_interior, regular_valence, MeshKind};
 use crate::ops::quad::{
     collapse_quad, remove_valence2, split_high_valence, split_vertex, QuadRecord,
 };
@@ -450,7 +450,7 @@ fn undo_all(map: &mut Map, records: &[QuadRecord]) {
 /// of opposite edges, in the order the surgery touched their far ends, whose far ends are
 /// both regular interior vertices (they become the two v5s).
 fn v6_first_dart(map: &Map, v: Vert, order: &[Seen]) -> Dart {
-    let regular = |x: Vert| map.valence(x) == 4 && !map.is_boundary_vertex(x);
+    let regular = |x: Vert| is_regular_interior(map, MeshKind::Quad, x);
     let good = |d: Dart| {
         let o = map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
         regular(map.dest(d)) && regular(map.dest(o))

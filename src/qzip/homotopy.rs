@@ -4,6 +4,7 @@
 use alloc::vec::Vec;
 
 use super::sketch::{validate_path, Path, SketchOptions};
+use crate::invariants::{is_regular_interior, MeshKind};
 use crate::{Dart, Map, Vert};
 
 /// The turn, in quarter turns counter-clockwise, from the first edge of `a` to the first
@@ -82,7 +83,7 @@ pub fn start_turn(map: &Map, a: &Path, b: &Path) -> Option<i32> {
 /// }
 /// ```
 pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
-    let regular = |v: Vert| map.valence(v) == 4 && !map.is_boundary_vertex(v);
+    let regular = |v: Vert| is_regular_interior(map, MeshKind::Quad, v);
     let v = path.vertices();
     let ends = [path.start(), path.end()];
     let mut out = Vec::new();

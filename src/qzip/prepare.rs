@@ -43,6 +43,7 @@ use core::fmt;
 
 use super::compass::{Plan, Tag};
 use super::quad::{bounds_one_quad, side_quad, SideQuad};
+use crate::invariants::{is_regular_interior, MeshKind};
 use crate::{Dart, Map, Vert};
 
 /// How the start of the path was adjusted (Sec. 2.6).
@@ -471,7 +472,7 @@ impl Draft {
                         .all(|w| [a, b, c, e].contains(&w))
             })
         });
-        let regular = |w: Vert| map.valence(w) == 4 && !map.is_boundary_vertex(w);
+        let regular = |w: Vert| is_regular_interior(map, MeshKind::Quad, w);
         if quad && regular(b) && regular(c) && !self.noops[m - 3] {
             self.hands[m - 3] = self.hands[m - 2];
             self.darts[m - 3] = side;

@@ -1,6 +1,7 @@
 //! Queries on the quads round a path edge or a short closed walk, shared by the preparation
 //! (stage 3) and the execution (stage 4).
 
+use crate::invariants::{is_regular_interior, MeshKind};
 use crate::{Dart, Map, Vert};
 
 /// Whether the closed walk `ring[0] -> ring[1] -> ring[2] -> ring[3] -> ring[0]` goes round
@@ -11,7 +12,7 @@ pub(super) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regul
     let ok = |w: Vert| {
         map.is_live_vertex(w)
             && !ends.contains(&w)
-            && (!regular || (map.valence(w) == 4 && !map.is_boundary_vertex(w)))
+            && (!regular || is_regular_interior(map, MeshKind::Quad, w))
     };
     ring[1..].iter().all(|&w| ok(w))
         && map.dart_between(ring[0], ring[1]).is_some_and(|d| {

@@ -4,7 +4,7 @@
 #[cfg(feature = "cli")]
 pub mod cli;
 
-use zipmesh::invariants::{irregular_valences, MeshKind};
+use zipmesh::invariants::{irregular_valences, irregular_vertices, MeshKind};
 use zipmesh::ops::quad;
 use zipmesh::qzip::{sketch, verify_edit, Path, Qzip, QzipError, SketchOptions, Tag, ZipReport};
 use zipmesh::{gen, Map, Mesh, Vert};
@@ -31,13 +31,6 @@ pub fn torus_with_splits(n: usize, at: &[u32]) -> Map {
     map
 }
 
-/// The irregular vertices (interior valence != 4, boundary valence != 3).
-pub fn singular(map: &Map) -> Vec<Vert> {
-    map.vertices()
-        .filter(|&v| map.valence(v) != if map.is_boundary_vertex(v) { 3 } else { 4 })
-        .collect()
-}
-
 /// The sorted multiset of (valence, boundary) of the irregular vertices.
 pub fn irregular_multiset(map: &Map) -> Vec<(usize, bool)> {
     irregular_valences(map, MeshKind::Quad)
@@ -46,7 +39,7 @@ pub fn irregular_multiset(map: &Map) -> Vec<(usize, bool)> {
 /// Every ordered pair of singularities of `map` within `max_len` edges, with its shortest
 /// path.
 pub fn pairs_within(map: &Map, max_len: usize) -> Vec<Path> {
-    let sing = singular(map);
+    let sing = irregular_vertices(map, MeshKind::Quad);
     let mut out = Vec::new();
     for &a in &sing {
         for &b in &sing {
