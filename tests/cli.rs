@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::cli::{s, shared, stderr, stdout, temp_dir, zipmesh};
+use common::cli::{s, shared, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
 use glam::DVec3;
 use serde_json::Value;
 use std::fs;
@@ -479,6 +479,12 @@ fn spot_quads() -> std::path::PathBuf {
 }
 
 /// One invocation of every subcommand that prints to standard output.
+/// The command left no file (no OUT, no temporary) in `dir`.
+fn assert_nothing_written(dir: &Path, args: &[String]) {
+    let left: Vec<_> = fs::read_dir(dir).unwrap().collect();
+    assert!(left.is_empty(), "{args:?}: left {left:?}");
+}
+
 fn every_printing_command(dir: &Path) -> Vec<Vec<String>> {
     let spot = spot_quads().to_str().unwrap().to_string();
     let out = dir.join("zipped.obj").to_str().unwrap().to_string();
@@ -528,10 +534,7 @@ fn a_closed_pipe_ends_every_command_quietly_with_141_and_zip_writes_nothing() {
             "{args:?}: quietly: {}",
             stderr(&out)
         );
-        assert!(
-            fs::read_dir(&dir).unwrap().next().is_none(),
-            "{args:?}: no OUT"
-        );
+        assert_nothing_written(&dir, &args);
     }
 }
 
@@ -556,10 +559,7 @@ fn a_full_disk_is_an_error_exit_2_and_zip_writes_nothing() {
             "{args:?}: {err}"
         );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
-        assert!(
-            fs::read_dir(&dir).unwrap().next().is_none(),
-            "{args:?}: no OUT"
-        );
+        assert_nothing_written(&dir, &args);
     }
 }
 
@@ -694,32 +694,14 @@ fn after_sigkill_the_target_is_never_partial_and_the_next_write_cleans_up() {
 #[test]
 fn check_with_a_billion_cases_and_a_time_limit_ends_cut_with_exit_3() {
     // Before: 8 GiB allocated up front, an abort. Now: what ran, then exit 3.
-    let out = zipmesh(&[
-        "check",
-        "--cases",
-        "1000000000",
-        "--time-limit",
-        "1",
-        "--property",
-        "validity",
-        "--json",
-    ]);
+    let out = zipmesh_words("check --cases 1000000000 --time-limit 1 --property validity --json");
     assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
     let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
     assert_eq!(v["planned"].as_u64(), Some(1_000_000_000));
     assert_eq!(v["timed_out"].as_bool(), Some(true));
     assert!(v["run"].as_u64().unwrap() < 1_000_000_000);
     // Sharded: planned is computed, not counted (counting 2^64 would take centuries).
-    let out = zipmesh(&[
-        "check",
-        "--cases",
-        "18446744073709551615",
-        "--shard",
-        "1/3",
-        "--time-limit",
-        "0",
-        "--json",
-    ]);
+    let out = zipmesh_words("check --cases 18446744073709551615 --shard 1/3 --time-limit 0 --json");
     assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
     let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
     assert_eq!(v["planned"].as_u64(), Some((u64::MAX - 2) / 3 + 1));

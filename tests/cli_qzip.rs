@@ -182,36 +182,19 @@ fn bad_input_exits_2_without_output() {
         );
         assert!(!out.exists());
     }
-    let r = zipmesh(&[
-        "zip",
-        torus.to_str().unwrap(),
-        "--from",
-        "0",
-        "--to",
-        "1",
-        "--move",
-        "LC",
-        "-o",
-        o,
-    ]);
-    assert_eq!(r.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&r.stderr).contains("not a quad mesh"));
+    let refused = |file: &std::path::Path, from: &str, to: &str, msg: &str| {
+        let file = file.to_str().unwrap();
+        let r = zipmesh(&[
+            "zip", file, "--from", from, "--to", to, "--move", "LC", "-o", o,
+        ]);
+        assert_eq!(r.status.code(), Some(2), "{file}");
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(err.contains(msg), "{file}: {err}");
+        assert!(!out.exists(), "{file}");
+    };
+    refused(&torus, "0", "1", "not a quad mesh");
     // Helmet: vertex 0 is a boundary corner (valence 2); Sec. 2.6 does not cover it.
-    let r = zipmesh(&[
-        "zip",
-        helmet.to_str().unwrap(),
-        "--from",
-        "0",
-        "--to",
-        "54",
-        "--move",
-        "LC",
-        "-o",
-        o,
-    ]);
-    assert_eq!(r.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&r.stderr).contains("not realizable"));
-    assert!(!out.exists());
+    refused(&helmet, "0", "54", "not realizable");
     let r = zipmesh(&[
         "zip",
         &spot(),

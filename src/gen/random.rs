@@ -77,10 +77,7 @@ pub const MAX_RANDOM_GENUS: usize = 1 << 14;
 /// assert!((c.faces as i64 - 500).abs() <= 500 / 8 + 64);
 /// ```
 pub fn random_quad(faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh {
-    let (faces, genus, holes) = clamp(faces, genus, holes);
-    attempt_quad(faces, genus, holes, seed, true)
-        .or_else(|| attempt_quad(faces, genus, holes, seed, false))
-        .unwrap_or_default()
+    random(Family::Quad, faces, genus, holes, seed)
 }
 
 /// A random connected triangle mesh of exactly the given genus with exactly `holes` boundary
@@ -97,10 +94,7 @@ pub fn random_quad(faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh 
 /// assert!(m.map.faces().all(|f| m.map.degree(f) == 3));
 /// ```
 pub fn random_triangle(faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh {
-    let (faces, genus, holes) = clamp(faces, genus, holes);
-    attempt_triangle(faces, genus, holes, seed, true)
-        .or_else(|| attempt_triangle(faces, genus, holes, seed, false))
-        .unwrap_or_default()
+    random(Family::Triangle, faces, genus, holes, seed)
 }
 
 /// A random connected quad-dominant mesh of exactly the given genus with exactly `holes`
@@ -117,10 +111,7 @@ pub fn random_triangle(faces: usize, genus: usize, holes: usize, seed: u64) -> M
 /// assert!(m.map.faces().any(|f| m.map.degree(f) == 3));
 /// ```
 pub fn random_mixed(faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh {
-    let (faces, genus, holes) = clamp(faces, genus, holes);
-    attempt_mixed(faces, genus, holes, seed, true)
-        .or_else(|| attempt_mixed(faces, genus, holes, seed, false))
-        .unwrap_or_default()
+    random(Family::Mixed, faces, genus, holes, seed)
 }
 
 fn clamp(faces: usize, genus: usize, holes: usize) -> (usize, usize, usize) {
@@ -131,56 +122,72 @@ fn clamp(faces: usize, genus: usize, holes: usize) -> (usize, usize, usize) {
     )
 }
 
-/// Streams for the three generators, so that equal seeds do not give related meshes.
-const QUAD_STREAM: u64 = 0x51AD_0000_0000_0001;
-const TRI_STREAM: u64 = 0x7121_0000_0000_0002;
-const MIXED_STREAM: u64 = 0x313E_0000_0000_0003;
-
-/// One try at [`random_quad`]; `fancy` enables singularities and the Catmull-Clark variant.
-pub(crate) fn attempt_quad(
-    faces: usize,
-    genus: usize,
-    holes: usize,
-    seed: u64,
-    fancy: bool,
-) -> Option<Mesh> {
-    let mut rng = Rng::new(seed ^ QUAD_STREAM);
-    let (pos, quads) = quad_polygons(faces, genus, holes, &mut rng, fancy)?;
-    validated(Mesh::from_polygons(pos, &quads).ok()?.0, genus, holes)
+/// The three generators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Family {
+    Quad,
+    Triangle,
+    Mixed,
 }
 
-pub(crate) fn attempt_triangle(
-    faces: usize,
-    genus: usize,
-    holes: usize,
-    seed: u64,
-    fancy: bool,
-) -> Option<Mesh> {
-    let mut rng = Rng::new(seed ^ TRI_STREAM);
-    let (pos, quads) = quad_polygons(faces / 2, genus, holes, &mut rng, fancy)?;
-    let mut tris = Vec::with_capacity(2 * quads.len());
-    for [a, b, c, d] in quads {
-        if rng.chance(1, 2) {
-            tris.extend([[a, b, c], [a, c, d]]);
-        } else {
-            tris.extend([[a, b, d], [b, c, d]]);
+impl Family {
+    #[cfg(test)]
+    pub(crate) const ALL: [Family; 3] = [Family::Quad, Family::Triangle, Family::Mixed];
+
+    /// A stream per generator, so that equal seeds do not give related meshes.
+    fn stream(self) -> u64 {
+        match self {
+            Family::Quad => 0x51AD_0000_0000_0001,
+            Family::Triangle => 0x7121_0000_0000_0002,
+            Family::Mixed => 0x313E_0000_0000_0003,
         }
     }
-    validated(Mesh::from_polygons(pos, &tris).ok()?.0, genus, holes)
 }
 
-pub(crate) fn attempt_mixed(
+/// The generator's mesh: a try with singularities and the Catmull-Clark variant, then a
+/// plain one; the empty mesh if neither fits (never seen: see the tests).
+fn random(family: Family, faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh {
+    let (faces, genus, holes) = clamp(faces, genus, holes);
+    attempt(family, faces, genus, holes, seed, true)
+        .or_else(|| attempt(family, faces, genus, holes, seed, false))
+        .unwrap_or_default()
+}
+
+/// One try at a generator; `fancy` enables singularities and the Catmull-Clark variant.
+pub(crate) fn attempt(
+    family: Family,
     faces: usize,
     genus: usize,
     holes: usize,
     seed: u64,
     fancy: bool,
 ) -> Option<Mesh> {
-    let mut rng = Rng::new(seed ^ MIXED_STREAM);
-    // Splits add about faces / 8 and merges remove up to as many: aim a little low.
-    let (pos, quads) = base_quads(faces * 16 / 17, genus, holes, &mut rng, fancy);
-    let polys = mixify(&quads, pos.len(), 8, &mut rng);
-    validated(Mesh::from_polygons(pos, &polys).ok()?.0, genus, holes)
+    let mut rng = Rng::new(seed ^ family.stream());
+    let mesh = match family {
+        Family::Quad => {
+            let (pos, quads) = quad_polygons(faces, genus, holes, &mut rng, fancy)?;
+            Mesh::from_polygons(pos, &quads).ok()?.0
+        }
+        Family::Triangle => {
+            let (pos, quads) = quad_polygons(faces / 2, genus, holes, &mut rng, fancy)?;
+            let mut tris = Vec::with_capacity(2 * quads.len());
+            for [a, b, c, d] in quads {
+                if rng.chance(1, 2) {
+                    tris.extend([[a, b, c], [a, c, d]]);
+                } else {
+                    tris.extend([[a, b, d], [b, c, d]]);
+                }
+            }
+            Mesh::from_polygons(pos, &tris).ok()?.0
+        }
+        Family::Mixed => {
+            // Splits add about faces / 8 and merges remove up to as many: aim a little low.
+            let (pos, quads) = base_quads(faces * 16 / 17, genus, holes, &mut rng, fancy);
+            let polys = mixify(&quads, pos.len(), 8, &mut rng);
+            Mesh::from_polygons(pos, &polys).ok()?.0
+        }
+    };
+    validated(mesh, genus, holes)
 }
 
 fn validated(mesh: Mesh, genus: usize, holes: usize) -> Option<Mesh> {
@@ -580,18 +587,12 @@ mod tests {
             for genus in 0..=3 {
                 for holes in 0..=2 {
                     let faces = [0, 10, 100, 700, 2000][(seed % 5) as usize];
-                    assert!(
-                        attempt_quad(faces, genus, holes, seed, true).is_some(),
-                        "quad {faces} {genus} {holes} {seed}"
-                    );
-                    assert!(
-                        attempt_triangle(faces, genus, holes, seed, true).is_some(),
-                        "tri {faces} {genus} {holes} {seed}"
-                    );
-                    assert!(
-                        attempt_mixed(faces, genus, holes, seed, true).is_some(),
-                        "mixed {faces} {genus} {holes} {seed}"
-                    );
+                    for family in Family::ALL {
+                        assert!(
+                            attempt(family, faces, genus, holes, seed, true).is_some(),
+                            "{family:?} {faces} {genus} {holes} {seed}"
+                        );
+                    }
                 }
             }
         }
@@ -603,9 +604,9 @@ mod tests {
             for (genus, holes) in [(9, 0), (0, 13), (5, 7), (20, 30), (1, 40)] {
                 let t = 64 * (genus + holes) + 256;
                 for faces in [0, t / 2, t, 3 * t] {
-                    assert!(attempt_quad(faces, genus, holes, seed, true).is_some());
-                    assert!(attempt_triangle(faces, genus, holes, seed, true).is_some());
-                    assert!(attempt_mixed(faces, genus, holes, seed, true).is_some());
+                    for family in Family::ALL {
+                        assert!(attempt(family, faces, genus, holes, seed, true).is_some());
+                    }
                 }
             }
         }
@@ -616,9 +617,9 @@ mod tests {
         for seed in 0..10u64 {
             for genus in 0..=4 {
                 for holes in 0..=3 {
-                    assert!(attempt_quad(300, genus, holes, seed, false).is_some());
-                    assert!(attempt_triangle(300, genus, holes, seed, false).is_some());
-                    assert!(attempt_mixed(300, genus, holes, seed, false).is_some());
+                    for family in Family::ALL {
+                        assert!(attempt(family, 300, genus, holes, seed, false).is_some());
+                    }
                 }
             }
         }

@@ -12,6 +12,11 @@ pub fn zipmesh(args: &[&str]) -> Output {
         .expect("the zipmesh binary runs")
 }
 
+/// Runs the binary with the words of `line` as arguments (for arguments without spaces).
+pub fn zipmesh_words(line: &str) -> Output {
+    zipmesh(&line.split_whitespace().collect::<Vec<_>>())
+}
+
 /// A fresh directory for one test's files.
 pub fn temp_dir(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
