@@ -5,8 +5,10 @@
 //! identities.
 //!
 //! The data flows one way, and so do the modules:
-//! mesh file ([`io`], `std`) → [`Map`] ([`map`], built by [`Map::from_polygons`]) →
-//! checks ([`Map::check`], [`invariants`]) → mesh file. [`gen`] makes the test meshes.
+//! mesh file ([`io`], `std`) → [`Map`] ([`map`], built by [`Map::from_polygons`]) with
+//! per-vertex data ([`mesh`]) → edits ([`ops`], [`qzip`]), each returning a
+//! [`mesh::Edited`] whose undo restores map and data → checks ([`Map::check`],
+//! [`invariants`], `campaign`) → mesh file. [`gen`] makes the test meshes.
 //!
 //! ```
 //! use zipmesh::{gen, invariants::Counts};
