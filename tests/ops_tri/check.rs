@@ -1,6 +1,8 @@
 //! The oracle for the triangle operators, shared by `tests/ops_tri.rs` and
-//! `proofs/ops_tri.rs`: apply an operator and check every documented promise using only the
-//! public accessors of the map (never the operator's own code paths).
+//! `proofs/ops_tri.rs`: apply an operator and check every documented promise: its effect on
+//! counts, valences and face degrees against the library's one statement of it
+//! (`TriOp::effect`), the rest using only the public accessors of the map (never the
+//! operator's own code paths).
 
 #![allow(dead_code)]
 
