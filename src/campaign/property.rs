@@ -574,24 +574,23 @@ fn documented<R: Undo + VertexChanges>(
 
 /// A quad operator at one site, with nothing to check beyond its effect.
 fn quad_op(before: &Map, work: &mut Map, op: QuadOp) -> Result<bool, String> {
-    documented(
-        before,
-        work,
-        op.effect(work),
-        |m| op.apply(m),
-        |_, _| Ok(()),
-    )
+    documented(before, work, op.effect(work), |m| op.apply(m), nothing)
 }
 
 /// A triangle operator at one site, with nothing to check beyond its effect.
 fn tri_op(before: &Map, work: &mut Map, op: TriOp) -> Result<bool, String> {
-    documented(
-        before,
-        work,
-        op.effect(work),
-        |m| op.apply(m),
-        |_, _| Ok(()),
-    )
+    documented(before, work, op.effect(work), |m| op.apply(m), nothing)
+}
+
+fn nothing<R>(_: &Map, _: &R) -> Result<(), String> {
+    Ok(())
+}
+
+/// A random dart around the origin of `d` other than `d`, the second separator of a vertex
+/// split; `None` below valence 2.
+fn other_dart(map: &Map, d: Dart, rng: &mut Rng) -> Option<Dart> {
+    let val = map.valence(map.origin(d));
+    (val >= 2).then(|| cw(map, d, 1 + rng.below(val - 1)))
 }
 
 /// The dart `k` steps clockwise from `d` around its origin.
@@ -607,12 +606,10 @@ fn collapse_quad(case: &Case) -> Outcome {
 
 fn quad_vertex_split(case: &Case) -> Outcome {
     at_sites(case, 2, 4, |before, work, s1, rng| {
-        let val = before.valence(before.origin(s1));
-        if val < 2 {
-            return Ok(false);
+        match other_dart(before, s1, rng) {
+            Some(s2) => quad_op(before, work, QuadOp::Split(s1, s2)),
+            None => Ok(false),
         }
-        let s2 = cw(before, s1, 1 + rng.below(val - 1));
-        quad_op(before, work, QuadOp::Split(s1, s2))
     })
 }
 
@@ -707,12 +704,10 @@ fn tri_collapse(case: &Case) -> Outcome {
 
 fn tri_vertex_split(case: &Case) -> Outcome {
     at_sites(case, 8, 3, |before, work, d1, rng| {
-        let val = before.valence(before.origin(d1));
-        if val < 2 {
-            return Ok(false);
+        match other_dart(before, d1, rng) {
+            Some(d2) => tri_op(before, work, TriOp::SplitVertex(d1, d2)),
+            None => Ok(false),
         }
-        let d2 = cw(before, d1, 1 + rng.below(val - 1));
-        tri_op(before, work, TriOp::SplitVertex(d1, d2))
     })
 }
 
