@@ -4,9 +4,9 @@
 //! Every attempt of an operator on a map is checked the same way (`try_op`): its `can_*`
 //! answer must equal `oracle`, an independent restatement of the documented rules in their
 //! documented order; then it is either refused with that reason and the map `==` the
-//! original, or applied with `check()` passing, the documented V/E/F deltas, the documented
-//! valence of every involved vertex, every other valence and every surviving face's degree
-//! unchanged, new faces quads, as many loops and parallel edges as before, and `undo`
+//! original, or applied with `check()` passing and its documented effect
+//! (`QuadOp::effect`: the V/E/F deltas, the valence of every involved vertex, every other
+//! valence and every surviving face's degree unchanged, new faces quads), as many loops and parallel edges as before, and `undo`
 //! giving a map `==` the original; in the first two families below the inverse operator,
 //! applied as an ordinary operator, must also be allowed and give back the canonical code.
 //!
@@ -35,7 +35,7 @@ use std::collections::BTreeMap;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::ops::quad::{QuadRecord, Rotation};
 use zipmesh::ops::Refusal;
-use zipmesh::{Dart, Face, Map, Vert};
+use zipmesh::{Dart, Map, Vert};
 
 /// The exhaustive bound on edges for single operators, and for two-operator sequences.
 const MAX_EDGES: usize = 4;
@@ -210,175 +210,44 @@ fn oracle(m: &Map, op: Op) -> Result<(), Refusal> {
     }
 }
 
-/// What the documentation promises for an applied operator, computed from the map before.
-struct Expect {
-    dv: i64,
-    de: i64,
-    df: i64,
-    /// Valence changes of surviving vertices (summed if a vertex is listed twice).
-    deltas: Vec<(Vert, i64)>,
-    /// The deleted vertex, and the new vertex's valence.
-    removed: Option<Vert>,
-    created: Option<usize>,
-    /// The vertex whose handle must be the origin of a given dart after (kept copies).
-    origins: Vec<(Dart, Vert)>,
-}
-
-fn steps_cw(m: &Map, from: Dart, to: Dart) -> usize {
-    let mut x = from;
-    let mut k = 0;
-    while x != to {
-        x = m.rotate_cw(x);
-        k += 1;
-        assert!(k <= m.num_darts());
-    }
-    k
-}
-
-fn expect(m: &Map, op: Op) -> Expect {
+/// The darts whose origin the documentation names after an applied operator (kept copies
+/// keep their handles), from the map before.
+fn origins(m: &Map, op: Op) -> Vec<(Dart, Vert)> {
     let o = |d: Dart| m.origin(d);
     let n = |d: Dart| m.next(d);
-    let val = |v: Vert| m.valence(v) as i64;
     match op {
-        Op::Collapse(d) => {
-            let (a, b, c, e) = (o(d), o(n(d)), o(n(n(d))), o(n(n(n(d)))));
-            Expect {
-                dv: -1,
-                de: -2,
-                df: -1,
-                deltas: vec![(a, val(c) - 2), (b, -1), (e, -1)],
-                removed: Some(c),
-                created: None,
-                origins: vec![(d, a), (n(n(d)), a)],
-            }
-        }
-        Op::Split(s1, _) | Op::HighValence(s1) => {
-            let s2 = match op {
-                Op::Split(_, s2) => s2,
-                _ => {
-                    let k = m.valence(o(s1));
-                    let mut x = s1;
-                    for _ in 0..k / 2 {
-                        x = m.rotate_cw(x);
-                    }
-                    x
-                }
-            };
-            let w = o(s1);
-            let arc1 = steps_cw(m, s1, s2) as i64 - 1;
-            let arc2 = val(w) - arc1 - 2;
-            Expect {
-                dv: 1,
-                de: 2,
-                df: 1,
-                deltas: vec![(w, arc1 + 2 - val(w)), (m.dest(s1), 1), (m.dest(s2), 1)],
-                removed: None,
-                created: Some((arc2 + 2) as usize),
-                origins: vec![(s1, w)],
-            }
-        }
-        Op::RemoveValence2(x) => {
-            let y = m.rotate_cw(x);
-            Expect {
-                dv: -1,
-                de: -2,
-                df: -1,
-                deltas: vec![(m.dest(x), -1), (m.dest(y), -1)],
-                removed: Some(o(x)),
-                created: None,
-                origins: vec![],
-            }
-        }
-        Op::InsertDoublet(d) => Expect {
-            dv: 1,
-            de: 2,
-            df: 1,
-            deltas: vec![(o(d), 1), (o(n(n(d))), 1)],
-            removed: None,
-            created: Some(2),
-            origins: vec![(d, o(d))],
-        },
+        Op::Collapse(d) => vec![(d, o(d)), (n(n(d)), o(d))],
+        Op::Split(s1, _) | Op::HighValence(s1) => vec![(s1, o(s1))],
+        Op::RemoveValence2(_) => vec![],
+        Op::InsertDoublet(d) => vec![(d, o(d))],
         Op::Rotate(h, r) => {
             let t = h.twin();
             // Counter-clockwise h becomes z→x, clockwise y→w (hexagon v x y u z w).
-            let (from, to) = match r {
-                Rotation::CounterClockwise => (o(n(n(t))), o(n(n(h)))),
-                Rotation::Clockwise => (o(n(n(n(h)))), o(n(n(n(t))))),
-            };
-            Expect {
-                dv: 0,
-                de: 0,
-                df: 0,
-                deltas: vec![(o(h), -1), (o(t), -1), (from, 1), (to, 1)],
-                removed: None,
-                created: None,
-                origins: vec![(h, from), (t, to)],
+            match r {
+                Rotation::CounterClockwise => vec![(h, o(n(n(t)))), (t, o(n(n(h))))],
+                Rotation::Clockwise => vec![(h, o(n(n(n(h))))), (t, o(n(n(n(t)))))],
             }
         }
     }
 }
 
-/// Checks the documented deltas of an applied operator.
-fn check_deltas(before: &Map, after: &Map, op: Op, e: &Expect) {
-    let c = |m: &Map| {
-        (
-            m.num_vertices() as i64,
-            m.num_edges() as i64,
-            m.num_faces() as i64,
-        )
-    };
-    let (b, a) = (c(before), c(after));
-    assert_eq!(
-        (a.0 - b.0, a.1 - b.1, a.2 - b.2),
-        (e.dv, e.de, e.df),
-        "{op:?}"
-    );
-    let mut want: BTreeMap<Vert, i64> = BTreeMap::new();
-    for &(v, d) in &e.deltas {
-        *want.entry(v).or_default() += d;
-    }
-    let mut created = Vec::new();
-    for i in 0..after.vertex_slots().max(before.vertex_slots()) {
-        let v = Vert::new(i as u32);
-        match (before.is_live_vertex(v), after.is_live_vertex(v)) {
-            (true, true) => assert_eq!(
-                after.valence(v) as i64,
-                before.valence(v) as i64 + want.get(&v).copied().unwrap_or(0),
-                "{op:?}: valence of {v:?}"
-            ),
-            (true, false) => assert_eq!(Some(v), e.removed, "{op:?}: {v:?} deleted"),
-            (false, true) => created.push(v),
-            (false, false) => {}
-        }
-    }
-    match e.created {
-        Some(k) => {
-            assert_eq!(created.len(), 1, "{op:?}");
-            assert_eq!(after.valence(created[0]), k, "{op:?}: new vertex");
-        }
-        None => assert!(created.is_empty(), "{op:?}"),
-    }
-    // Surviving faces keep their degree; new faces are quads.
-    for i in 0..after.face_slots() {
-        let f = Face::new(i as u32);
-        if after.is_live_face(f) {
-            let want = if before.is_live_face(f) {
-                before.degree(f)
-            } else {
-                4
-            };
-            assert_eq!(after.degree(f), want, "{op:?}: degree of {f:?}");
-        }
+/// Checks an applied operator against its documented effect ([`Op::effect`]: V/E/F, the
+/// valence of every vertex, the degree of every face), whole edges born or deleted, and the
+/// documented origins.
+fn check_applied(before: &Map, after: &Map, op: Op, rec: &QuadRecord) {
+    let effect = op.effect(before).expect("an applied operator is allowed");
+    if let Err(e) = effect.check(before, after, rec) {
+        panic!("{op:?} on {before:?}: {e}");
     }
     // Untouched handles stay valid: darts die or appear in whole deleted or new edges.
     let died = before.darts().filter(|&d| !after.is_live_dart(d)).count();
     let born = after.darts().filter(|&d| !before.is_live_dart(d)).count();
     assert_eq!(
         (born as i64 - died as i64, born.min(died)),
-        (2 * e.de, 0),
+        (2 * effect.deltas()[1], 0),
         "{op:?}"
     );
-    for &(d, v) in &e.origins {
+    for (d, v) in origins(before, op) {
         assert_eq!(after.origin(d), v, "{op:?}: origin of {d:?}");
     }
 }
@@ -454,7 +323,7 @@ pub fn try_op(m: &Map, op: Op, tally: &mut Tally, inverse: bool) -> Option<(Map,
             if let Err(v) = after.check() {
                 panic!("{op:?} on {m:?} gave an invalid map: {v:?}\n{after:?}");
             }
-            check_deltas(m, &after, op, &expect(m, op));
+            check_applied(m, &after, op, &rec);
             assert_eq!(defects(&after), defects(m), "{op:?} on {m:?}");
             if inverse {
                 let inv = inverse_op(m, &after, op, &rec);

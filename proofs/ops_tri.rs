@@ -2,8 +2,8 @@
 //!
 //! The oracle is `tests/ops_tri/check.rs`: each operator, called with any argument, is either
 //! refused with the same reason as its `can_*` and the map left equal (`==`) to before, or
-//! applied with `check()` passing, V, E, F, every vertex's valence and the liveness of every
-//! old element exactly as documented, and its record's `undo` giving back an equal map; the
+//! applied with `check()` passing, V, E, F, every vertex's valence (as `TriOp::effect` states
+//! them) and the liveness of every old element exactly as documented, and its record's `undo` giving back an equal map; the
 //! public inverse (flip again, collapse of a split, split of a collapse) gives back an
 //! isomorphic map, and is accepted wherever the documentation promises it.
 //!

@@ -3,9 +3,9 @@
 //!
 //! Each case runs a random sequence of operators at random places (half of them near the
 //! previous edits, so that operators interact). Every step is either refused, with the same
-//! reason as the `can_*` check and the mesh unchanged, or applied, with `check()` passing, the
-//! documented V/E/F deltas, the documented valence of every involved vertex, every other
-//! valence unchanged and every face still a quad. At the end the whole sequence is undone in
+//! reason as the `can_*` check and the mesh unchanged, or applied, with `check()` passing, its
+//! documented effect (`QuadOp::effect`: the V/E/F deltas, the valence of every involved
+//! vertex, every other valence unchanged) and every face still a quad. At the end the whole sequence is undone in
 //! reverse order and the mesh (topology and positions) must equal the original.
 
 use proptest::prelude::*;
@@ -16,134 +16,20 @@ use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::mesh::Edited;
 use zipmesh::ops::quad::{self, QuadRecord, Rotation};
 use zipmesh::rng::Rng;
-use zipmesh::{gen, Dart, Map, Mesh, Vert};
+use zipmesh::{gen, Dart, Map, Mesh};
 
 use zipmesh::ops::quad::QuadOp as Op;
 
-/// The documented effect of an operator, computed from the map before it.
-struct Expect {
-    dv: i64,
-    de: i64,
-    df: i64,
-    /// Exact valences after, for the involved surviving vertices.
-    valence: HashMap<Vert, usize>,
-    removed: Option<Vert>,
-    created: Option<usize>,
-}
-
-fn cw_steps(m: &Map, from: Dart, to: Dart) -> usize {
-    let mut x = from;
-    let mut k = 0;
-    while x != to {
-        x = m.rotate_cw(x);
-        k += 1;
-    }
-    k
-}
-
-fn expect(m: &Map, op: Op) -> Expect {
-    let o = |d: Dart| m.origin(d);
-    let n = |d: Dart| m.next(d);
-    let val = |v: Vert| m.valence(v);
-    let mut e = Expect {
-        dv: 0,
-        de: 0,
-        df: 0,
-        valence: HashMap::new(),
-        removed: None,
-        created: None,
-    };
-    match op {
-        Op::Collapse(d) => {
-            let (a, b, c, dd) = (o(d), o(n(d)), o(n(n(d))), o(n(n(n(d)))));
-            (e.dv, e.de, e.df) = (-1, -2, -1);
-            e.valence.insert(a, val(a) + val(c) - 2);
-            e.valence.insert(b, val(b) - 1);
-            e.valence.insert(dd, val(dd) - 1);
-            e.removed = Some(c);
-        }
-        Op::Split(s1, _) | Op::HighValence(s1) => {
-            let w = o(s1);
-            let s2 = match op {
-                Op::Split(_, s2) => s2,
-                _ => (0..val(w) / 2).fold(s1, |x, _| m.rotate_cw(x)),
-            };
-            let arc1 = cw_steps(m, s1, s2) - 1;
-            (e.dv, e.de, e.df) = (1, 2, 1);
-            e.valence.insert(w, arc1 + 2);
-            e.valence.insert(m.dest(s1), val(m.dest(s1)) + 1);
-            e.valence.insert(m.dest(s2), val(m.dest(s2)) + 1);
-            e.created = Some(val(w) - arc1);
-        }
-        Op::RemoveValence2(x) => {
-            let (p, q) = (m.dest(x), m.dest(m.rotate_cw(x)));
-            (e.dv, e.de, e.df) = (-1, -2, -1);
-            e.valence.insert(p, val(p) - 1);
-            e.valence.insert(q, val(q) - 1);
-            e.removed = Some(o(x));
-        }
-        Op::InsertDoublet(d) => {
-            let (p, q) = (o(d), o(n(n(d))));
-            (e.dv, e.de, e.df) = (1, 2, 1);
-            e.valence.insert(p, val(p) + 1);
-            e.valence.insert(q, val(q) + 1);
-            e.created = Some(2);
-        }
-        Op::Rotate(h, r) => {
-            let t = h.twin();
-            let (x, z) = match r {
-                Rotation::CounterClockwise => (o(n(n(h))), o(n(n(t)))),
-                Rotation::Clockwise => (o(n(n(n(h)))), o(n(n(n(t))))),
-            };
-            for (v, k) in [(o(h), -1i64), (o(t), -1), (x, 1), (z, 1)] {
-                e.valence.insert(v, (val(v) as i64 + k) as usize);
-            }
-        }
-    }
-    e
-}
-
-fn valences(m: &Map) -> Vec<usize> {
-    (0..m.vertex_slots())
-        .map(|i| m.valence(Vert::new(i as u32)))
-        .collect()
-}
-
-/// Checks an applied operator against its documented effect.
-fn check_applied(before: &Map, before_val: &[usize], after: &Map, op: Op, e: &Expect) {
+/// Checks an applied operator against its documented effect ([`Op::effect`], computed on
+/// the map before).
+fn check_applied(before: &Map, after: &Map, op: Op, rec: &QuadRecord) {
     if let Err(v) = after.check() {
         panic!("{op:?} left an invalid map: {v:?}");
     }
-    let d = |a: usize, b: usize| a as i64 - b as i64;
-    assert_eq!(
-        (
-            d(after.num_vertices(), before.num_vertices()),
-            d(after.num_edges(), before.num_edges()),
-            d(after.num_faces(), before.num_faces())
-        ),
-        (e.dv, e.de, e.df),
-        "{op:?}"
-    );
-    let mut created = 0;
-    let slots = after.vertex_slots().max(before.vertex_slots());
-    for (i, v) in (0..slots as u32).map(Vert::new).enumerate() {
-        let was = before.is_live_vertex(v);
-        let now = after.is_live_vertex(v);
-        if !now {
-            assert!(!was || e.removed == Some(v), "{op:?} deleted {v:?}");
-            continue;
-        }
-        let k = after.valence(v);
-        if !was {
-            created += 1;
-            assert_eq!(Some(k), e.created, "{op:?}: new vertex {v:?}");
-        } else if let Some(&want) = e.valence.get(&v) {
-            assert_eq!(k, want, "{op:?}: involved vertex {v:?}");
-        } else {
-            assert_eq!(k, before_val[i], "{op:?}: uninvolved vertex {v:?}");
-        }
+    let effect = op.effect(before).expect("an applied operator is allowed");
+    if let Err(e) = effect.check(before, after, rec) {
+        panic!("{op:?}: {e}");
     }
-    assert_eq!(created, usize::from(e.created.is_some()), "{op:?}");
     assert!(after.faces().all(|f| after.degree(f) == 4), "{op:?}");
     assert_eq!(defects(after), defects(before), "{op:?}");
 }
@@ -208,9 +94,7 @@ fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
     for _ in 0..steps {
         let op = random_op(&mesh.map, &mut rng, &hot);
         let before = mesh.clone();
-        let before_val = valences(&before.map);
         let can = op.can(&mesh.map);
-        let expected = can.is_ok().then(|| expect(&mesh.map, op));
         match op.apply_mesh(&mut mesh) {
             Err(r) => {
                 assert_eq!(can, Err(r), "{op:?}");
@@ -222,13 +106,7 @@ fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
             }
             Ok(edit) => {
                 assert_eq!(can, Ok(()), "{op:?}");
-                check_applied(
-                    &before.map,
-                    &before_val,
-                    &mesh.map,
-                    op,
-                    &expected.expect("expected"),
-                );
+                check_applied(&before.map, &mesh.map, op, edit.record());
                 assert!(mesh.positions.len() >= mesh.map.vertex_slots());
                 // Work near this edit next: darts around the touched vertices.
                 let d = match op {

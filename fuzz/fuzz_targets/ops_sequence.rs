@@ -1,14 +1,15 @@
 //! Arbitrary operator sequences on generated quad and triangle meshes: never a panic, every
 //! refusal leaves the map unchanged and agrees with its `can_*`, `check()` passes after every
-//! step, and undoing the whole sequence gives back the original map (arrays and canonical code).
+//! step, each applied operator has its documented effect (`QuadOp::effect`,
+//! `TriOp::effect`), and undoing the whole sequence gives back the original map (arrays and
+//! canonical code).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::ops::quad::{QuadOp, Rotation};
 use zipmesh::ops::tri::TriOp;
-use zipmesh::ops::Refusal;
-use zipmesh::ops::Undo;
+use zipmesh::ops::{Effect, Refusal, Undo, VertexChanges};
 use zipmesh::{gen, Dart, Map};
 
 /// The mesh the bytes ask for: small, so that sequences run into every refusal rule.
@@ -45,11 +46,10 @@ fn mesh(pick: u8, a: u8, b: u8, seed: u64) -> (Map, bool) {
 type Record = Box<dyn Undo>;
 
 /// Applies operator `op` at dart `d` (`e` picks the second dart of a split), checking the
-/// refusal contract; returns the record when it applied.
+/// refusal contract and the documented effect; returns the record when it applied.
 fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record> {
     let second = |m: &Map| (0..=usize::from(e % 8)).fold(d, |x, _| m.rotate_cw(x));
-    let before = map.clone();
-    let (can, done): (Result<(), Refusal>, Result<Record, Refusal>) = if is_quad {
+    if is_quad {
         let op = match op % 6 {
             0 => QuadOp::Collapse(d),
             1 => QuadOp::Split(d, second(map)),
@@ -59,7 +59,7 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
             4 => QuadOp::Rotate(d, Rotation::CounterClockwise),
             _ => QuadOp::HighValence(d),
         };
-        (op.can(map), op.apply(map).map(|r| Box::new(r) as Record))
+        checked(map, op.can(map), op.effect(map), |m| op.apply(m))
     } else {
         let op = match op % 4 {
             0 => TriOp::Flip(d),
@@ -67,13 +67,28 @@ fn apply(map: &mut Map, is_quad: bool, op: u8, d: Dart, e: u8) -> Option<Record>
             2 => TriOp::SplitEdge(d),
             _ => TriOp::SplitVertex(d, second(map)),
         };
-        (op.can(map), op.apply(map).map(|r| Box::new(r) as Record))
-    };
-    match done {
+        checked(map, op.can(map), op.effect(map), |m| op.apply(m))
+    }
+}
+
+/// Runs `apply`: a refusal must be `can`'s and change nothing; an application must pass
+/// `check()` and meet `effect`.
+fn checked<R: Undo + VertexChanges + 'static>(
+    map: &mut Map,
+    can: Result<(), Refusal>,
+    effect: Result<Effect, Refusal>,
+    apply: impl FnOnce(&mut Map) -> Result<R, Refusal>,
+) -> Option<Record> {
+    let before = map.clone();
+    match apply(map) {
         Ok(r) => {
             assert_eq!(can, Ok(()), "applied although can_* refused");
             assert_eq!(map.check(), Ok(()));
-            Some(r)
+            let effect = effect.expect("the effect of an allowed operator");
+            if let Err(e) = effect.check(&before, map, &r) {
+                panic!("not the documented effect: {e}");
+            }
+            Some(Box::new(r))
         }
         Err(why) => {
             assert_eq!(can, Err(why), "refusal differs from can_*");

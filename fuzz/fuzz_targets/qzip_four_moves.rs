@@ -9,7 +9,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::qzip::{sketch, Qzip, Path, SketchOptions, Tag};
+use zipmesh::qzip::{sketch, Path, Qzip, SketchOptions, Tag};
 use zipmesh::{Map, Vert};
 
 #[path = "common/qzip_case.rs"]

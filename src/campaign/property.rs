@@ -4,7 +4,9 @@ use super::case::Case;
 use crate::invariants::canonical::CanonicalCode;
 use crate::invariants::{euler_characteristic, gauss_bonnet, Counts, MeshKind};
 use crate::map::{Dart, Map, Vert};
-use crate::ops::{quad, tri, Refusal, Undo};
+use crate::ops::quad::{self, QuadOp};
+use crate::ops::tri::TriOp;
+use crate::ops::{Effect, Refusal, Undo, VertexChanges};
 use crate::rng::Rng;
 use alloc::format;
 use alloc::string::{String, ToString};
@@ -309,7 +311,7 @@ where
             |before, work, d, _| match apply(work, d) {
                 Err(_) if work == before => Ok(false),
                 Err(_) => Err("refused but changed the map".to_string()),
-                Ok(record) => settle(before, work, Ok(()), Ok(record), |_| Ok(())),
+                Ok(record) => settle(before, work, Ok(()), Ok(record), |_, _| Ok(())),
             },
         )
     })
@@ -452,7 +454,7 @@ fn shuffle<T>(v: &mut [T], rng: &mut Rng) {
 }
 
 // ------------------------------------------------------------------------------------
-// Operator properties: one harness, one expectation per operator.
+// Operator properties: one harness; the expectation is each operator's `effect`.
 
 /// One site's check: `(before, working copy, site, rng) -> applied?` or the failure.
 type Attempt<'a> = dyn FnMut(&Map, &mut Map, Dart, &mut Rng) -> Result<bool, String> + 'a;
@@ -511,13 +513,14 @@ fn at_darts(
 }
 
 /// The common contract: `can` and the operator agree; a refusal leaves the map as it was;
-/// an application gives a valid map meeting `expect`, and its undo restores `before`.
+/// an application gives a valid map meeting `expect` (given the map after and the record),
+/// and its undo restores `before`.
 fn settle<R: Undo>(
     before: &Map,
     work: &mut Map,
     can: Result<(), Refusal>,
     result: Result<R, Refusal>,
-    expect: impl FnOnce(&Map) -> Result<(), String>,
+    expect: impl FnOnce(&Map, &R) -> Result<(), String>,
 ) -> Result<bool, String> {
     match (can, result) {
         (Err(a), Err(b)) if a == b => {
@@ -535,7 +538,7 @@ fn settle<R: Undo>(
         (Ok(()), Ok(record)) => {
             work.check()
                 .map_err(|v| format!("the result fails check(): {v:?}"))?;
-            expect(work)?;
+            expect(work, &record)?;
             record
                 .undo(work)
                 .map_err(|r| format!("undo refused: {r}"))?;
@@ -547,35 +550,47 @@ fn settle<R: Undo>(
     }
 }
 
-/// `(V, E, F)` of `map`.
-fn vef(map: &Map) -> [i64; 3] {
-    [
-        map.num_vertices() as i64,
-        map.num_edges() as i64,
-        map.num_faces() as i64,
-    ]
+/// An operator at one site, checked against its documented effect ([`quad::QuadOp::effect`],
+/// [`tri::TriOp::effect`], computed on `before`): `effect` is also the `can_*` answer (it is
+/// the check's refusal where the operator does not apply); `more` checks what else the
+/// property promises.
+fn documented<R: Undo + VertexChanges>(
+    before: &Map,
+    work: &mut Map,
+    effect: Result<Effect, Refusal>,
+    apply: impl FnOnce(&mut Map) -> Result<R, Refusal>,
+    more: impl FnOnce(&Map, &R) -> Result<(), String>,
+) -> Result<bool, String> {
+    let can = effect.as_ref().map(|_| ()).map_err(|r| *r);
+    let result = apply(work);
+    settle(before, work, can, result, |after, record| {
+        let effect = effect.map_err(|r| r.to_string())?;
+        effect
+            .check(before, after, record)
+            .map_err(|e| e.to_string())?;
+        more(after, record)
+    })
 }
 
-fn deltas(before: [i64; 3], after: &Map, want: [i64; 3]) -> Result<(), String> {
-    let now = vef(after);
-    let got = [now[0] - before[0], now[1] - before[1], now[2] - before[2]];
-    if got == want {
-        Ok(())
-    } else {
-        Err(format!("(V, E, F) changed by {got:?}, documented {want:?}"))
-    }
+/// A quad operator at one site, with nothing to check beyond its effect.
+fn quad_op(before: &Map, work: &mut Map, op: QuadOp) -> Result<bool, String> {
+    documented(before, work, op.effect(work), |m| op.apply(m), nothing)
 }
 
-fn valence_is(map: &Map, v: Vert, want: usize, what: &str) -> Result<(), String> {
-    let got = map.valence(v);
-    if got == want {
-        Ok(())
-    } else {
-        Err(format!(
-            "{what} (vertex {}) has valence {got}, documented {want}",
-            v.index()
-        ))
-    }
+/// A triangle operator at one site, with nothing to check beyond its effect.
+fn tri_op(before: &Map, work: &mut Map, op: TriOp) -> Result<bool, String> {
+    documented(before, work, op.effect(work), |m| op.apply(m), nothing)
+}
+
+fn nothing<R>(_: &Map, _: &R) -> Result<(), String> {
+    Ok(())
+}
+
+/// A random dart around the origin of `d` other than `d`, the second separator of a vertex
+/// split; `None` below valence 2.
+fn other_dart(map: &Map, d: Dart, rng: &mut Rng) -> Option<Dart> {
+    let val = map.valence(map.origin(d));
+    (val >= 2).then(|| cw(map, d, 1 + rng.below(val - 1)))
 }
 
 /// The dart `k` steps clockwise from `d` around its origin.
@@ -585,50 +600,16 @@ fn cw(map: &Map, d: Dart, k: usize) -> Dart {
 
 fn collapse_quad(case: &Case) -> Outcome {
     at_sites(case, 1, 4, |before, work, d, _| {
-        let (a, b) = (before.origin(d), before.dest(d));
-        let h2 = before.next(before.next(d));
-        let (c, dd) = (before.origin(h2), before.dest(h2));
-        let (va, vb, vc, vd) = (
-            before.valence(a),
-            before.valence(b),
-            before.valence(c),
-            before.valence(dd),
-        );
-        let counts = vef(before);
-        let can = quad::can_collapse_quad(work, d);
-        let res = quad::collapse_quad(work, d);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [-1, -2, -1])?;
-            valence_is(m, a, (va + vc).saturating_sub(2), "the merged vertex")?;
-            valence_is(m, b, vb.saturating_sub(1), "corner b")?;
-            valence_is(m, dd, vd.saturating_sub(1), "corner d")
-        })
+        quad_op(before, work, QuadOp::Collapse(d))
     })
 }
 
 fn quad_vertex_split(case: &Case) -> Outcome {
     at_sites(case, 2, 4, |before, work, s1, rng| {
-        let w = before.origin(s1);
-        let val = before.valence(w);
-        if val < 2 {
-            return Ok(false);
+        match other_dart(before, s1, rng) {
+            Some(s2) => quad_op(before, work, QuadOp::Split(s1, s2)),
+            None => Ok(false),
         }
-        let k = 1 + rng.below(val - 1);
-        let s2 = cw(before, s1, k);
-        let (a, b) = (before.dest(s1), before.dest(s2));
-        let (va, vb) = (before.valence(a), before.valence(b));
-        let counts = vef(before);
-        let can = quad::can_split_vertex(work, s1, s2);
-        let res = quad::split_vertex(work, s1, s2);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [1, 2, 1])?;
-            valence_is(m, w, k + 1, "the split vertex")?;
-            if a != b {
-                valence_is(m, a, va + 1, "end a")?;
-                valence_is(m, b, vb + 1, "end b")?;
-            }
-            Ok(())
-        })
     })
 }
 
@@ -654,23 +635,7 @@ fn quad_high_valence_split(case: &Case) -> Outcome {
         sites.push(cw(map, map.vertex_dart(v), k));
     }
     at_darts(case, 3, 4, sites, &mut |before, work, first, _| {
-        let v = before.origin(first);
-        let k = before.valence(v);
-        let other = cw(before, first, k / 2);
-        let (a, b) = (before.dest(first), before.dest(other));
-        let (va, vb) = (before.valence(a), before.valence(b));
-        let counts = vef(before);
-        let can = quad::can_split_high_valence(work, v, first);
-        let res = quad::split_high_valence(work, v, first);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [1, 2, 1])?;
-            valence_is(m, v, k / 2 + 1, "the split vertex")?;
-            if a != b {
-                valence_is(m, a, va + 1, "end a")?;
-                valence_is(m, b, vb + 1, "end b")?;
-            }
-            Ok(())
-        })
+        quad_op(before, work, QuadOp::HighValence(first))
     })
 }
 
@@ -678,39 +643,39 @@ fn quad_doublet(case: &Case) -> Outcome {
     // The code of the case's map, computed at the first application only.
     let mut code_before: Option<CanonicalCode> = None;
     at_sites(case, 4, 4, |before, work, d, _| {
-        let p = before.origin(d);
-        let q = before.origin(before.next(before.next(d)));
-        let (vp, vq) = (before.valence(p), before.valence(q));
-        let counts = vef(before);
-        let can = quad::can_insert_doublet(work, d);
-        let res = quad::insert_doublet(work, d);
-        let created = res.as_ref().ok().map(|r| r.vertex());
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [1, 2, 1])?;
-            valence_is(m, p, vp + 1, "diagonal end p")?;
-            valence_is(m, q, vq + 1, "diagonal end q")?;
-            let v = created.ok_or("no new vertex")?;
-            valence_is(m, v, 2, "the new vertex")?;
-            // The removal of the new vertex is the inverse, up to handles: check it on a copy.
-            let mut removed = m.clone();
-            let x = removed.vertex_dart(v);
-            let rec = quad::remove_valence2(&mut removed, x)
-                .map_err(|r| format!("removing the new valence-2 vertex is refused: {r}"))?;
-            removed
-                .check()
-                .map_err(|e| format!("after the removal, check() fails: {e:?}"))?;
-            deltas(counts, &removed, [0, 0, 0])?;
-            let code = code_before.get_or_insert_with(|| CanonicalCode::of(before));
-            if CanonicalCode::of(&removed) != *code {
-                return Err("removing the doublet does not give back an isomorphic map".into());
-            }
-            rec.undo(&mut removed)
-                .map_err(|r| format!("undo of the removal refused: {r}"))?;
-            if removed != *m {
-                return Err("undo of the removal did not restore the map exactly".into());
-            }
-            Ok(())
-        })
+        let op = QuadOp::InsertDoublet(d);
+        documented(
+            before,
+            work,
+            op.effect(work),
+            |m| op.apply(m),
+            |m, record| {
+                let v = record.created_vertex().ok_or("no new vertex")?;
+                // The removal of the new vertex is the inverse, up to handles: check it on a copy.
+                let refused =
+                    |r: Refusal| format!("removing the new valence-2 vertex is refused: {r}");
+                let remove = QuadOp::RemoveValence2(m.vertex_dart(v));
+                let effect = remove.effect(m).map_err(refused)?;
+                let mut removed = m.clone();
+                let rec = remove.apply(&mut removed).map_err(refused)?;
+                removed
+                    .check()
+                    .map_err(|e| format!("after the removal, check() fails: {e:?}"))?;
+                effect
+                    .check(m, &removed, &rec)
+                    .map_err(|e| format!("the removal: {e}"))?;
+                let code = code_before.get_or_insert_with(|| CanonicalCode::of(before));
+                if CanonicalCode::of(&removed) != *code {
+                    return Err("removing the doublet does not give back an isomorphic map".into());
+                }
+                rec.undo(&mut removed)
+                    .map_err(|r| format!("undo of the removal refused: {r}"))?;
+                if removed != *m {
+                    return Err("undo of the removal did not restore the map exactly".into());
+                }
+                Ok(())
+            },
+        )
     })
 }
 
@@ -721,132 +686,33 @@ fn quad_rotate(case: &Case) -> Outcome {
         } else {
             quad::Rotation::CounterClockwise
         };
-        let (u, v) = (before.origin(h), before.dest(h));
-        let (vu, vv) = (before.valence(u), before.valence(v));
-        let counts = vef(before);
-        let can = quad::can_rotate_edge(work, h, dir);
-        let res = quad::rotate_edge(work, h, dir);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [0, 0, 0])?;
-            valence_is(m, u, vu.saturating_sub(1), "old end u")?;
-            valence_is(m, v, vv.saturating_sub(1), "old end v")?;
-            let (x, y) = (m.origin(h), m.dest(h));
-            valence_is(m, x, before.valence(x) + 1, "new end")?;
-            valence_is(m, y, before.valence(y) + 1, "new end")
-        })
+        quad_op(before, work, QuadOp::Rotate(h, dir))
     })
 }
 
 fn tri_flip(case: &Case) -> Outcome {
     at_sites(case, 6, 3, |before, work, h, _| {
-        let (a, b) = (before.origin(h), before.dest(h));
-        let c = before.origin(before.next(before.next(h)));
-        let t = h.twin();
-        let d = before.origin(before.next(before.next(t)));
-        let vals: Vec<usize> = [a, b, c, d].iter().map(|&x| before.valence(x)).collect();
-        let counts = vef(before);
-        let can = tri::can_flip_edge(work, h);
-        let res = tri::flip_edge(work, h);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [0, 0, 0])?;
-            valence_is(m, a, vals[0].saturating_sub(1), "end a")?;
-            valence_is(m, b, vals[1].saturating_sub(1), "end b")?;
-            valence_is(m, c, vals[2] + 1, "apex c")?;
-            valence_is(m, d, vals[3] + 1, "apex d")
-        })
+        tri_op(before, work, TriOp::Flip(h))
     })
 }
 
 fn tri_collapse(case: &Case) -> Outcome {
     at_sites(case, 7, 3, |before, work, h, _| {
-        let (v, u) = (before.origin(h), before.dest(h));
-        let t = h.twin();
-        let apex = |x: Dart| {
-            before
-                .face(x)
-                .map(|_| before.origin(before.next(before.next(x))))
-        };
-        let (c, d) = (apex(h), apex(t));
-        let interior = c.is_some() && d.is_some();
-        let (vu, vv) = (before.valence(u), before.valence(v));
-        let vc = c.map(|x| before.valence(x));
-        let vd = d.map(|x| before.valence(x));
-        let counts = vef(before);
-        let can = tri::can_collapse_edge(work, h);
-        let res = tri::collapse_edge(work, h);
-        settle(before, work, can, res, |m| {
-            if interior {
-                deltas(counts, m, [-1, -3, -2])?;
-                valence_is(m, u, (vu + vv).saturating_sub(4), "the kept vertex u")?;
-            } else {
-                deltas(counts, m, [-1, -2, -1])?;
-                valence_is(m, u, (vu + vv).saturating_sub(3), "the kept vertex u")?;
-            }
-            if let (Some(c), Some(vc)) = (c, vc) {
-                valence_is(m, c, vc.saturating_sub(1), "apex c")?;
-            }
-            if let (Some(d), Some(vd)) = (d, vd) {
-                valence_is(m, d, vd.saturating_sub(1), "apex d")?;
-            }
-            Ok(())
-        })
+        tri_op(before, work, TriOp::Collapse(h))
     })
 }
 
 fn tri_vertex_split(case: &Case) -> Outcome {
     at_sites(case, 8, 3, |before, work, d1, rng| {
-        let w = before.origin(d1);
-        let val = before.valence(w);
-        if val < 2 {
-            return Ok(false);
+        match other_dart(before, d1, rng) {
+            Some(d2) => tri_op(before, work, TriOp::SplitVertex(d1, d2)),
+            None => Ok(false),
         }
-        let k = 1 + rng.below(val - 1);
-        let d2 = cw(before, d1, k);
-        let (a, b) = (before.dest(d1), before.dest(d2));
-        let (va, vb) = (before.valence(a), before.valence(b));
-        let counts = vef(before);
-        let can = tri::can_split_vertex(work, d1, d2);
-        let res = tri::split_vertex(work, d1, d2);
-        settle(before, work, can, res, |m| {
-            deltas(counts, m, [1, 3, 2])?;
-            // k_w: the darts strictly between d1 and d2 clockwise stay at w.
-            valence_is(m, w, (k - 1) + 3, "the split vertex w")?;
-            valence_is(m, a, va + 1, "end a")?;
-            valence_is(m, b, vb + 1, "end b")
-        })
     })
 }
 
 fn tri_edge_split(case: &Case) -> Outcome {
     at_sites(case, 9, 3, |before, work, h, _| {
-        let (a, b) = (before.origin(h), before.dest(h));
-        let t = h.twin();
-        let apex = |x: Dart| {
-            before
-                .face(x)
-                .map(|_| before.origin(before.next(before.next(x))))
-        };
-        let apexes: Vec<(Vert, usize)> = [apex(h), apex(t)]
-            .into_iter()
-            .flatten()
-            .map(|x| (x, before.valence(x)))
-            .collect();
-        let (va, vb) = (before.valence(a), before.valence(b));
-        let counts = vef(before);
-        let can = tri::can_split_edge(work, h);
-        let res = tri::split_edge(work, h);
-        settle(before, work, can, res, |m| {
-            if apexes.len() == 2 {
-                deltas(counts, m, [1, 3, 2])?;
-            } else {
-                deltas(counts, m, [1, 2, 1])?;
-            }
-            valence_is(m, a, va, "end a")?;
-            valence_is(m, b, vb, "end b")?;
-            for &(x, vx) in &apexes {
-                valence_is(m, x, vx + 1, "apex")?;
-            }
-            Ok(())
-        })
+        tri_op(before, work, TriOp::SplitEdge(h))
     })
 }

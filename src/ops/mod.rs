@@ -14,6 +14,9 @@
 
 use core::fmt;
 
+pub use effect::{Effect, EffectMismatch, VertexChanges};
+
+mod effect;
 mod guard;
 pub mod quad;
 mod slots;

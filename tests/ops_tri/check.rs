@@ -1,6 +1,8 @@
 //! The oracle for the triangle operators, shared by `tests/ops_tri.rs` and
-//! `proofs/ops_tri.rs`: apply an operator and check every documented promise using only the
-//! public accessors of the map (never the operator's own code paths).
+//! `proofs/ops_tri.rs`: apply an operator and check every documented promise: its effect on
+//! counts, valences and face degrees against the library's one statement of it
+//! (`TriOp::effect`), the rest using only the public accessors of the map (never the
+//! operator's own code paths).
 
 #![allow(dead_code)]
 
@@ -17,24 +19,6 @@ pub fn can(map: &Map, op: Op) -> Result<(), Refusal> {
 
 pub fn run(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
     op.apply(map)
-}
-
-/// Per vertex slot: its valence if live.
-pub fn valences(map: &Map) -> Vec<Option<usize>> {
-    (0..map.vertex_slots() as u32)
-        .map(|v| {
-            let v = Vert::new(v);
-            map.is_live_vertex(v).then(|| map.valence(v))
-        })
-        .collect()
-}
-
-fn counts(map: &Map) -> [i64; 3] {
-    [
-        map.num_vertices() as i64,
-        map.num_edges() as i64,
-        map.num_faces() as i64,
-    ]
 }
 
 /// The third corner of the face of `d` (a triangle), from the public accessors.
@@ -69,121 +53,16 @@ pub fn checked(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
     }
 }
 
-/// The documented changes of an applied operator, checked against the maps before and after.
+/// The documented changes of an applied operator, checked against the maps before and
+/// after: its effect (`TriOp::effect`: V, E, F, the valence of every vertex, the degree of
+/// every face), the handles each operator names, the valence minimum and the liveness of
+/// every old element.
 pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
-    let vb = valences(before);
-    let va = valences(after);
-    let mut want: Vec<Option<i64>> = vb.iter().map(|x| x.map(|v| v as i64)).collect();
-    want.resize(va.len().max(want.len()), None);
-    let add = |w: &mut Vec<Option<i64>>, v: Vert, k: i64| {
-        let x = w[v.index()].as_mut().expect("a changed vertex was live");
-        *x += k;
-    };
-    let val = |v: Vert| vb[v.index()].expect("live") as i64;
-    // Elements that the operator removes (checked dead after; all others stay live).
-    let mut dead_edges: Vec<Edge> = Vec::new();
-    let mut dead_verts: Vec<Vert> = Vec::new();
-    let mut dead_faces: Vec<Face> = Vec::new();
-    let dc: [i64; 3];
-    match (op, rec) {
-        (Op::Flip(h), Rec::Flip(r)) => {
-            let (a, b) = (before.origin(h), before.dest(h));
-            let (c, d) = (apex(before, h), apex(before, h.twin()));
-            add(&mut want, a, -1);
-            add(&mut want, b, -1);
-            add(&mut want, c, 1);
-            add(&mut want, d, 1);
-            assert_eq!(r.dart(), h);
-            assert_eq!(
-                (after.origin(h), after.dest(h)),
-                (d, c),
-                "{op:?}: h runs d -> c"
-            );
-            dc = [0, 0, 0];
-        }
-        (Op::Collapse(h), Rec::Collapse(r)) => {
-            let (v, u) = (before.origin(h), before.dest(h));
-            let has_l = before.face(h).is_some();
-            let has_r = before.face(h.twin()).is_some();
-            let interior = has_l && has_r;
-            assert_eq!((r.kept(), r.removed()), (u, v));
-            want[u.index()] = Some(val(u) + val(v) - if interior { 4 } else { 3 });
-            want[v.index()] = None;
-            dead_verts.push(v);
-            dead_edges.push(h.edge());
-            if has_l {
-                add(&mut want, apex(before, h), -1);
-                dead_edges.push(before.next(before.next(h)).edge());
-                dead_faces.push(before.face(h).unwrap());
-            }
-            if has_r {
-                add(&mut want, apex(before, h.twin()), -1);
-                dead_edges.push(before.next(h.twin()).edge());
-                dead_faces.push(before.face(h.twin()).unwrap());
-            }
-            dc = if interior { [-1, -3, -2] } else { [-1, -2, -1] };
-        }
-        (Op::SplitVertex(d1, d2), Rec::SplitVertex(r)) => {
-            let w = before.origin(d1);
-            let (a, b) = (before.dest(d1), before.dest(d2));
-            // Kept arc: clockwise from d1 to d2; moved arc: clockwise from d2 to d1.
-            let arc = |from: Dart, to: Dart| {
-                let mut out = Vec::new();
-                let mut x = before.rotate_cw(from);
-                while x != to {
-                    out.push(x);
-                    x = before.rotate_cw(x);
-                }
-                out
-            };
-            let kept = arc(d1, d2);
-            let moved = arc(d2, d1);
-            assert_eq!(kept.len() + moved.len() + 2, val(w) as usize);
-            let v = r.created();
-            assert!(
-                !before.is_live_vertex(v),
-                "the new vertex reused a live slot"
-            );
-            assert!(want.len() > v.index());
-            want[v.index()] = Some(moved.len() as i64 + 3);
-            want[w.index()] = Some(kept.len() as i64 + 3);
-            add(&mut want, a, 1);
-            add(&mut want, b, 1);
-            assert_eq!((after.origin(r.edge()), after.dest(r.edge())), (v, w));
-            for &x in &moved {
-                assert_eq!(after.origin(x), v, "{op:?}: moved dart {x:?}");
-            }
-            for &x in kept.iter().chain([&d1, &d2]) {
-                assert_eq!(after.origin(x), w, "{op:?}: kept dart {x:?}");
-            }
-            // The new triangles (v, w, a) and (w, v, b).
-            let corners = |d: Dart| [after.origin(d), after.dest(d), apex(after, d)];
-            assert_eq!(corners(r.edge()), [v, w, a]);
-            assert_eq!(corners(r.edge().twin()), [w, v, b]);
-            dc = [1, 3, 2];
-        }
-        (Op::SplitEdge(h), Rec::SplitEdge(r)) => {
-            let (a, b) = (before.origin(h), before.dest(h));
-            let has_l = before.face(h).is_some();
-            let has_r = before.face(h.twin()).is_some();
-            let m = r.created();
-            assert!(
-                !before.is_live_vertex(m),
-                "the new vertex reused a live slot"
-            );
-            want[m.index()] = Some(if has_l && has_r { 4 } else { 3 });
-            if has_l {
-                add(&mut want, apex(before, h), 1);
-            }
-            if has_r {
-                add(&mut want, apex(before, h.twin()), 1);
-            }
-            assert_eq!((after.origin(h), after.dest(h)), (a, m));
-            assert_eq!((after.origin(r.dart()), after.dest(r.dart())), (m, b));
-            dc = if has_l && has_r { [1, 3, 2] } else { [1, 2, 1] };
-        }
-        _ => unreachable!("record kind does not match the operator"),
+    let effect = op.effect(before).expect("an applied operator is allowed");
+    if let Err(e) = effect.check(before, after, rec) {
+        panic!("{op:?} on {before:?}: {e}");
     }
+    let (dead_edges, dead_faces) = handles(before, after, op, rec);
     // The valence minimum: no vertex is newly left below it (3 inside, 2 on the boundary):
     // every vertex that is new, that lost darts, or that is the kept end of a collapse.
     let kept = match rec {
@@ -191,26 +70,14 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
         _ => None,
     };
     for v in after.vertices() {
-        let (a, b) = (va[v.index()].unwrap(), vb.get(v.index()).copied().flatten());
-        if b.is_none_or(|b| a < b) || kept == Some(v) {
+        let a = after.valence(v);
+        if !before.is_live_vertex(v) || a < before.valence(v) || kept == Some(v) {
             let min = if after.is_boundary_vertex(v) { 2 } else { 3 };
             assert!(a >= min, "{op:?} left {v:?} with valence {a} on {before:?}");
         }
     }
-    let (cb, ca) = (counts(before), counts(after));
-    assert_eq!(
-        [ca[0] - cb[0], ca[1] - cb[1], ca[2] - cb[2]],
-        dc,
-        "{op:?}: V, E, F deltas"
-    );
-    let got: Vec<Option<i64>> = (0..want.len())
-        .map(|i| va.get(i).copied().flatten().map(|x| x as i64))
-        .collect();
-    assert_eq!(
-        got, want,
-        "{op:?}: valences (per vertex slot) on {before:?}"
-    );
-    // Every element alive before, and not removed, is alive after (handles stay valid).
+    // Every dart and face alive before, and not removed, is alive after (handles stay
+    // valid; the effect checked the vertices).
     for d in before.darts() {
         assert_eq!(
             after.is_live_dart(d),
@@ -225,23 +92,82 @@ pub fn deltas(before: &Map, after: &Map, op: Op, rec: &Rec) {
             "{op:?}: {f:?}"
         );
     }
-    for v in before.vertices() {
-        assert_eq!(
-            after.is_live_vertex(v),
-            !dead_verts.contains(&v),
-            "{op:?}: {v:?}"
-        );
+}
+
+/// Checks the handles the documentation of `op` names after it; returns the edges and faces
+/// it deletes.
+fn handles(before: &Map, after: &Map, op: Op, rec: &Rec) -> (Vec<Edge>, Vec<Face>) {
+    let mut dead_edges: Vec<Edge> = Vec::new();
+    let mut dead_faces: Vec<Face> = Vec::new();
+    match (op, rec) {
+        (Op::Flip(h), Rec::Flip(r)) => {
+            let (c, d) = (apex(before, h), apex(before, h.twin()));
+            assert_eq!(r.dart(), h);
+            assert_eq!(
+                (after.origin(h), after.dest(h)),
+                (d, c),
+                "{op:?}: h runs d -> c"
+            );
+        }
+        (Op::Collapse(h), Rec::Collapse(r)) => {
+            assert_eq!((r.kept(), r.removed()), (before.dest(h), before.origin(h)));
+            dead_edges.push(h.edge());
+            if let Some(f) = before.face(h) {
+                dead_edges.push(before.next(before.next(h)).edge());
+                dead_faces.push(f);
+            }
+            if let Some(f) = before.face(h.twin()) {
+                dead_edges.push(before.next(h.twin()).edge());
+                dead_faces.push(f);
+            }
+        }
+        (Op::SplitVertex(d1, d2), Rec::SplitVertex(r)) => {
+            split_vertex_handles(before, after, [d1, d2], r)
+        }
+        (Op::SplitEdge(h), Rec::SplitEdge(r)) => {
+            let (a, b, m) = (before.origin(h), before.dest(h), r.created());
+            assert_eq!((after.origin(h), after.dest(h)), (a, m));
+            assert_eq!((after.origin(r.dart()), after.dest(r.dart())), (m, b));
+        }
+        _ => unreachable!("record kind does not match the operator"),
     }
-    // Faces: every surviving face keeps its degree (so no face below degree 3 appears), and
-    // every new face is a triangle.
-    for f in after.faces() {
-        let want = if before.is_live_face(f) {
-            before.degree(f)
-        } else {
-            3
-        };
-        assert_eq!(after.degree(f), want, "{op:?}: degree of {f:?}");
+    (dead_edges, dead_faces)
+}
+
+/// A vertex split's handles: the moved arc's darts leave the new vertex `v`, the kept ones
+/// still leave `w`, and the new triangles are (v, w, a) and (w, v, b).
+fn split_vertex_handles(
+    before: &Map,
+    after: &Map,
+    [d1, d2]: [Dart; 2],
+    r: &zipmesh::ops::tri::VertexSplit,
+) {
+    let w = before.origin(d1);
+    let (a, b) = (before.dest(d1), before.dest(d2));
+    // Kept arc: clockwise from d1 to d2; moved arc: clockwise from d2 to d1.
+    let arc = |from: Dart, to: Dart| {
+        let mut out = Vec::new();
+        let mut x = before.rotate_cw(from);
+        while x != to {
+            out.push(x);
+            x = before.rotate_cw(x);
+        }
+        out
+    };
+    let kept = arc(d1, d2);
+    let moved = arc(d2, d1);
+    assert_eq!(kept.len() + moved.len() + 2, before.valence(w));
+    let v = r.created();
+    assert_eq!((after.origin(r.edge()), after.dest(r.edge())), (v, w));
+    for &x in &moved {
+        assert_eq!(after.origin(x), v, "moved dart {x:?}");
     }
+    for &x in kept.iter().chain([&d1, &d2]) {
+        assert_eq!(after.origin(x), w, "kept dart {x:?}");
+    }
+    let corners = |d: Dart| [after.origin(d), after.dest(d), apex(after, d)];
+    assert_eq!(corners(r.edge()), [v, w, a]);
+    assert_eq!(corners(r.edge().twin()), [w, v, b]);
 }
 
 /// Applies `op` checked; if it applied, undoes it and checks the map is equal to before,

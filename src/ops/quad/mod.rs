@@ -16,6 +16,10 @@
 //! | [`insert_doublet`] | +1 | +2 | +1 | new vertex 2; the diagonal's ends +1 |
 //! | [`rotate_edge`] | 0 | 0 | 0 | old ends −1, new ends +1 |
 //!
+//! Every other vertex keeps its valence. This table is the rule for people;
+//! [`QuadOp::effect`] is the same rule as code (an [`Effect`](crate::ops::Effect), one copy),
+//! against which the proofs, the tests and the campaign check every application.
+//!
 //! **Policies shared by all of them.** Loops and multi-edges are never created, and none
 //! exists at a vertex whose edges an operator redistributes (so every operator and its inverse
 //! refuse exactly the same configurations: the inverse of an applied operator is always
@@ -45,6 +49,7 @@ use alloc::vec::Vec;
 
 mod collapse;
 mod doublet;
+mod effect;
 mod mesh;
 mod rotate;
 #[cfg(test)]

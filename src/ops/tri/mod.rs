@@ -40,7 +40,9 @@
 //! | [`split_edge`] of a-b, interior edge | +1 | +3 | +2 | new m: 4; apexes +1 |
 //! | [`split_edge`] of a-b, boundary edge | +1 | +2 | +1 | new m: 3; apex +1 |
 //!
-//! Every other vertex keeps its valence. `k_w` and `k_v` count the darts of `w` strictly
+//! Every other vertex keeps its valence. This table is the rule for people; [`TriOp::effect`]
+//! is the same rule as code (an [`Effect`](crate::ops::Effect), one copy), against which the
+//! proofs, the tests and the campaign check every application. `k_w` and `k_v` count the darts of `w` strictly
 //! inside the kept and the moved arc (see [`split_vertex`]); the paper's `d1 + 3`, `d2 + 3`.
 //! Diagrams and the reasons for each rule: `docs/operators-tri.md`.
 //!
@@ -56,6 +58,7 @@ use crate::map::{Dart, Map, Vert, NONE};
 
 mod collapse;
 mod edge_split;
+mod effect;
 mod flip;
 mod mesh;
 #[cfg(test)]

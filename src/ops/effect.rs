@@ -1,0 +1,352 @@
+//! The documented effect of an operator as a value: what [`crate::ops::quad::QuadOp::effect`]
+//! and [`crate::ops::tri::TriOp::effect`] compute on the map before an application, and the
+//! check of an applied operator against it. The tables in the module docs of
+//! [`crate::ops::quad`] and [`crate::ops::tri`] state the same rules in prose; this is their
+//! executable form, used by the proofs, the tests and the campaign.
+
+use crate::map::{Face, Map, Vert};
+use alloc::vec::Vec;
+use core::fmt;
+
+/// What one application of an operator does to the counts and valences, computed on the map
+/// before it (see [`crate::ops::quad::QuadOp::effect`], [`crate::ops::tri::TriOp::effect`]):
+/// the changes of V, E and F, the valence after of each vertex the operator names, the vertex
+/// it deletes and the valence of the one it creates, and the degree of every new face. Every
+/// other vertex keeps its valence and every surviving face its degree.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let before = map.clone();
+/// let op = QuadOp::InsertDoublet(Dart::new(0));
+/// let effect = op.effect(&map).unwrap();
+/// assert_eq!(effect.deltas(), [1, 2, 1]);
+/// assert_eq!(effect.created_valence(), Some(2));
+/// let record = op.apply(&mut map).unwrap();
+/// assert_eq!(effect.check(&before, &map, &record), Ok(()));
+/// // Against the map before, the new vertex is missing: the check says so.
+/// assert!(effect.check(&before, &before, &record).is_err());
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Effect {
+    deltas: [i64; 3],
+    named: Vec<Named>,
+    removed: Option<Vert>,
+    created: Option<usize>,
+    face_degree: usize,
+}
+
+/// A vertex the effect names: its role for messages and its valence after.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Named {
+    vertex: Vert,
+    role: &'static str,
+    after: i64,
+}
+
+impl Effect {
+    /// An effect with these V/E/F deltas whose new faces have `face_degree` sides.
+    pub(crate) fn new(deltas: [i64; 3], face_degree: usize) -> Effect {
+        Effect {
+            deltas,
+            named: Vec::new(),
+            removed: None,
+            created: None,
+            face_degree,
+        }
+    }
+
+    /// `v`'s valence changes by `delta` (summed if `v` is named again; the first role stays).
+    pub(crate) fn change(mut self, map: &Map, v: Vert, role: &'static str, delta: i64) -> Effect {
+        match self.named.iter_mut().find(|n| n.vertex == v) {
+            Some(n) => n.after += delta,
+            None => self.named.push(Named {
+                vertex: v,
+                role,
+                after: map.valence(v) as i64 + delta,
+            }),
+        }
+        self
+    }
+
+    /// The operator deletes `v`.
+    pub(crate) fn removes(mut self, v: Vert) -> Effect {
+        self.removed = Some(v);
+        self
+    }
+
+    /// The operator creates one vertex of valence `k`.
+    pub(crate) fn creates(mut self, k: usize) -> Effect {
+        self.created = Some(k);
+        self
+    }
+
+    /// The changes of `[V, E, F]`.
+    ///
+    /// See [`Effect`] for an example.
+    pub fn deltas(&self) -> [i64; 3] {
+        self.deltas
+    }
+
+    /// The vertices whose valence the operator states, with their valence after (every
+    /// other surviving vertex keeps its own).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+    /// let map = gen::torus_grid(5, 5).map;
+    /// let effect = QuadOp::Collapse(Dart::new(0)).effect(&map).unwrap();
+    /// // The merged vertex gets 4 + 4 - 2, the two other corners 3.
+    /// let mut after: Vec<usize> = effect.valences().map(|(_, k)| k).collect();
+    /// after.sort();
+    /// assert_eq!(after, [3, 3, 6]);
+    /// ```
+    pub fn valences(&self) -> impl Iterator<Item = (Vert, usize)> + '_ {
+        self.named
+            .iter()
+            .map(|n| (n.vertex, usize::try_from(n.after).unwrap_or(0)))
+    }
+
+    /// The vertex the operator deletes, if it deletes one.
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad::QuadOp, Dart};
+    /// let map = gen::torus_grid(5, 5).map;
+    /// let effect = QuadOp::Collapse(Dart::new(0)).effect(&map).unwrap();
+    /// assert_eq!(effect.removed(), Some(map.origin(map.next(map.next(Dart::new(0))))));
+    /// ```
+    pub fn removed(&self) -> Option<Vert> {
+        self.removed
+    }
+
+    /// The valence of the vertex the operator creates, if it creates one (its handle is
+    /// known only after, from the record: [`VertexChanges::created_vertex`]).
+    ///
+    /// See [`Effect`] for an example.
+    pub fn created_valence(&self) -> Option<usize> {
+        self.created
+    }
+
+    /// Checks an application: `after` is the map `before` with the operator applied and
+    /// `record` its record. `Ok` if V, E, F changed by [`Effect::deltas`], every named vertex
+    /// has its stated valence, the deleted vertex is gone and is the record's, exactly one
+    /// vertex is new when the effect creates one and it is the record's with the stated
+    /// valence, every other vertex kept its valence, every surviving face its degree, and
+    /// every new face has the family's degree (4 quad, 3 triangle). Otherwise the first
+    /// difference found.
+    ///
+    /// See [`Effect`] for an example.
+    pub fn check(
+        &self,
+        before: &Map,
+        after: &Map,
+        record: &impl VertexChanges,
+    ) -> Result<(), EffectMismatch> {
+        let got = [
+            after.num_vertices() as i64 - before.num_vertices() as i64,
+            after.num_edges() as i64 - before.num_edges() as i64,
+            after.num_faces() as i64 - before.num_faces() as i64,
+        ];
+        if got != self.deltas {
+            return Err(EffectMismatch::Counts {
+                got,
+                want: self.deltas,
+            });
+        }
+        let (created, removed) = (record.created_vertex(), record.removed_vertex());
+        let created_fits = match (created, self.created) {
+            (Some(v), Some(_)) => !before.is_live_vertex(v) && after.is_live_vertex(v),
+            (None, None) => true,
+            _ => false,
+        };
+        if !created_fits || removed != self.removed {
+            return Err(EffectMismatch::Record { created, removed });
+        }
+        self.check_vertices(before, after, created)?;
+        self.check_faces(before, after)
+    }
+
+    /// Every vertex slot of either map: named ones as stated, the record's new one as
+    /// stated, the deleted one gone, every other one as it was.
+    fn check_vertices(
+        &self,
+        before: &Map,
+        after: &Map,
+        created: Option<Vert>,
+    ) -> Result<(), EffectMismatch> {
+        let slots = before.vertex_slots().max(after.vertex_slots());
+        for v in (0..slots as u32).map(Vert::new) {
+            let (want, role) = match (before.is_live_vertex(v), after.is_live_vertex(v)) {
+                (true, false) if Some(v) == self.removed => continue,
+                (true, false) => return Err(EffectMismatch::Deleted(v)),
+                (true, true) if Some(v) == self.removed => return Err(EffectMismatch::Survived(v)),
+                (true, true) => match self.named.iter().find(|n| n.vertex == v) {
+                    Some(n) => (usize::try_from(n.after).unwrap_or(0), n.role),
+                    None => (before.valence(v), "an uninvolved vertex"),
+                },
+                (false, true) if Some(v) == created => {
+                    (self.created.unwrap_or(0), "the new vertex")
+                }
+                (false, true) => return Err(EffectMismatch::Appeared(v)),
+                (false, false) => continue,
+            };
+            let got = after.valence(v);
+            if got != want {
+                return Err(EffectMismatch::Valence {
+                    vertex: v,
+                    role,
+                    got,
+                    want,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Surviving faces keep their degree; new faces have the family's.
+    fn check_faces(&self, before: &Map, after: &Map) -> Result<(), EffectMismatch> {
+        for face in after.faces() {
+            let want = if before.is_live_face(face) {
+                before.degree(face)
+            } else {
+                self.face_degree
+            };
+            let got = after.degree(face);
+            if got != want {
+                return Err(EffectMismatch::FaceDegree { face, got, want });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What [`Effect::check`] reads from a record: the vertex its operation created (a new
+/// vertex takes a free slot, so only the record knows its handle) and the one it deleted.
+/// Implemented by [`crate::ops::quad::QuadRecord`] and [`crate::ops::tri::TriRecord`].
+///
+/// ```
+/// use zipmesh::{gen, ops::{quad::QuadOp, VertexChanges}, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let c = map.origin(map.next(map.next(Dart::new(0))));
+/// let record = QuadOp::Collapse(Dart::new(0)).apply(&mut map).unwrap();
+/// assert_eq!((record.created_vertex(), record.removed_vertex()), (None, Some(c)));
+/// ```
+pub trait VertexChanges {
+    /// The vertex the operation created, if any.
+    fn created_vertex(&self) -> Option<Vert>;
+    /// The vertex the operation deleted (its handle before), if any.
+    fn removed_vertex(&self) -> Option<Vert>;
+}
+
+/// How an application differs from its [`Effect`]: the first difference
+/// [`Effect::check`] finds.
+///
+/// ```
+/// use zipmesh::{gen, ops::{quad::QuadOp, EffectMismatch}, Dart};
+/// let mut map = gen::torus_grid(5, 5).map;
+/// let before = map.clone();
+/// let effect = QuadOp::Collapse(Dart::new(0)).effect(&map).unwrap();
+/// // Checked against another operator's result, the counts differ.
+/// let record = QuadOp::InsertDoublet(Dart::new(0)).apply(&mut map).unwrap();
+/// let e = effect.check(&before, &map, &record).unwrap_err();
+/// assert_eq!(e, EffectMismatch::Counts { got: [1, 2, 1], want: [-1, -2, -1] });
+/// assert_eq!(e.to_string(), "(V, E, F) changed by [1, 2, 1], documented [-1, -2, -1]");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EffectMismatch {
+    /// V, E, F changed by `got`, not by the documented `want`.
+    Counts {
+        /// The changes of `[V, E, F]` seen.
+        got: [i64; 3],
+        /// The documented ones.
+        want: [i64; 3],
+    },
+    /// The record's created or deleted vertex does not fit the effect: a created vertex
+    /// must be there exactly when the effect creates one, dead before and live after; the
+    /// deleted one must be the effect's.
+    Record {
+        /// The record's created vertex.
+        created: Option<Vert>,
+        /// The record's deleted vertex.
+        removed: Option<Vert>,
+    },
+    /// A vertex the operator keeps was deleted.
+    Deleted(Vert),
+    /// The vertex the operator deletes is still live.
+    Survived(Vert),
+    /// A vertex is new that is not the record's created vertex.
+    Appeared(Vert),
+    /// A vertex has another valence than documented.
+    Valence {
+        /// The vertex.
+        vertex: Vert,
+        /// Its role in the operator's documentation ("an uninvolved vertex" if none).
+        role: &'static str,
+        /// Its valence after.
+        got: usize,
+        /// The documented valence.
+        want: usize,
+    },
+    /// A face has another degree than before (or, if new, than the family's).
+    FaceDegree {
+        /// The face.
+        face: Face,
+        /// Its degree after.
+        got: usize,
+        /// The documented degree.
+        want: usize,
+    },
+}
+
+impl fmt::Display for EffectMismatch {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            EffectMismatch::Counts { got, want } => {
+                write!(f, "(V, E, F) changed by {got:?}, documented {want:?}")
+            }
+            EffectMismatch::Record { created, removed } => write!(
+                f,
+                "the record's vertices (created {created:?}, deleted {removed:?}) do not fit the documented effect"
+            ),
+            EffectMismatch::Deleted(v) => write!(f, "vertex {} was deleted", v.index()),
+            EffectMismatch::Survived(v) => {
+                write!(f, "vertex {} should be deleted but is live", v.index())
+            }
+            EffectMismatch::Appeared(v) => {
+                write!(f, "vertex {} is new but not the record's", v.index())
+            }
+            EffectMismatch::Valence {
+                vertex,
+                role,
+                got,
+                want,
+            } => write!(
+                f,
+                "{role} (vertex {}) has valence {got}, documented {want}",
+                vertex.index()
+            ),
+            EffectMismatch::FaceDegree { face, got, want } => write!(
+                f,
+                "face {} has degree {got}, documented {want}",
+                face.index()
+            ),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for EffectMismatch {}
+
+/// How many clockwise steps lead from `from` to `to` around their common origin; the whole
+/// valence if `to` is not met (callers have checked that it is).
+pub(crate) fn cw_steps(map: &Map, from: crate::map::Dart, to: crate::map::Dart) -> usize {
+    let mut x = from;
+    let k = map.valence(map.origin(from));
+    for i in 0..k {
+        if x == to {
+            return i;
+        }
+        x = map.rotate_cw(x);
+    }
+    k
+}
