@@ -374,3 +374,66 @@ fn replay_of_an_unshrunk_given_case_names_the_file_seed_and_focus() {
         "zipmesh check meshes/cube.obj --seed 12 --property no-cubes --focus 3"
     );
 }
+
+/// `qzip-reversal` counts the movements with no reverse run found as `unchecked` (table and
+/// JSON) instead of skipping them silently: on the preprocessed toroidal tetrahedron most of
+/// its movements miss. Other properties report 0, and the property still passes.
+#[test]
+fn reversal_misses_are_counted_as_unchecked() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data/quad/osd_catmark_toroidal_tet.obj");
+    let (mut mesh, _) = io::read_mesh(&file).unwrap();
+    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    let cases = [Case::from_mesh(mesh, 0, 0, "toroidal tet, preprocessed")];
+    let choice = campaign::PairChoice {
+        max_distance: 2,
+        per_case: None,
+    };
+    let mut props = campaign::select(
+        &campaign::qzip_properties(choice),
+        &["qzip-grid".into(), "qzip-reversal".into()],
+    )
+    .unwrap();
+    props.push(campaign::kernel()[0].clone());
+    let r = campaign::run_cases(&Config::default(), &cases, &props, &|| {});
+    assert!(r.passed(), "{}", r.table(false));
+    let (grid, rev, validity) = (&r.rows[0], &r.rows[1], &r.rows[2]);
+    assert!(rev.unchecked > 0 && rev.checks > 0, "{}", r.table(false));
+    assert_eq!(rev.passed, 1);
+    // Every movement done is reversed or unchecked; grid also counts the refusals.
+    assert!(
+        rev.checks + rev.unchecked <= grid.checks,
+        "{}",
+        r.table(false)
+    );
+    assert_eq!((grid.unchecked, validity.unchecked), (0, 0));
+    let json = r.to_json(false);
+    assert!(
+        json.contains(&format!("\"unchecked\":{}", rev.unchecked)),
+        "{json}"
+    );
+    let table = r.table(false);
+    assert!(
+        table.lines().next().unwrap().ends_with("unchecked"),
+        "{table}"
+    );
+    let line = table
+        .lines()
+        .find(|l| l.starts_with("qzip-reversal"))
+        .unwrap();
+    assert!(line.ends_with(&format!(" {}", rev.unchecked)), "{table}");
+}
+
+/// `Case::note_unchecked` does nothing outside a campaign; inside, a case with only
+/// unchecked items and a pass counts as passed, with the items in the row.
+#[test]
+fn note_unchecked_outside_a_campaign_does_nothing() {
+    let case = Case::generate(0, 0, 60);
+    case.note_unchecked(3);
+    let p = Property::new("misses-only", "", |c: &Case| {
+        c.note_unchecked(2);
+        Outcome::Pass { checks: 0 }
+    });
+    let r = campaign::run_cases(&Config::default(), &[case], &[p], &|| {});
+    assert_eq!((r.rows[0].unchecked, r.rows[0].passed), (2, 1));
+}

@@ -210,3 +210,75 @@ fn bad_input_exits_2_without_output() {
     assert_eq!(r.status.code(), Some(2));
     assert!(!out.exists());
 }
+
+/// A movement with no reverse Q-zip: on the toroidal tetrahedron after `--preprocess` (every
+/// vertex of valence 6 split into v5 pairs one edge apart), LS from 0 to 1 is done but no
+/// reverse run restores the preprocessed input. `--json` gives `"undo": null` and the text
+/// says so; the exit status is 0 and OUT is written (the edit itself is fine).
+#[test]
+fn zip_without_a_reverse_run_gives_undo_null() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data/quad/osd_catmark_toroidal_tet.obj")
+        .to_str()
+        .unwrap()
+        .to_string();
+    // The premise, from the library: the movement is done and find_reverse finds nothing.
+    let (mut mesh, _) = io::read_mesh(&file).unwrap();
+    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    let path = sketch(
+        &mesh.map,
+        Vert::new(0),
+        Vert::new(1),
+        &SketchOptions::default(),
+    )
+    .unwrap();
+    let mut edited = mesh.map.clone();
+    let r = zipmesh::qzip::Qzip::new()
+        .zip_along(&mut edited, &path, Tag::LS)
+        .unwrap();
+    assert!(zipmesh::qzip::find_reverse(&edited, &r, &mesh.map).is_none());
+
+    let dir = temp_dir("qzip-no-undo");
+    let out = dir.join("out.obj");
+    let args = |json: bool| {
+        let mut a = vec![
+            "zip",
+            &file,
+            "--preprocess",
+            "--from",
+            "0",
+            "--to",
+            "1",
+            "--move",
+            "LS",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        if json {
+            a.push("--json");
+        }
+        zipmesh(&a)
+    };
+    let v = json(&args(true));
+    assert!(v.get("undo").is_some_and(Value::is_null), "{v}");
+    assert!(v["moved"]["from"].is_u64() && v["splits"].is_u64());
+    assert!(out.exists());
+    std::fs::remove_file(&out).unwrap();
+    let o = args(false);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("undo: no reverse Q-zip restores the input here"),
+        "{text}"
+    );
+    assert!(out.exists());
+}
+
+/// `zip --help` says when `undo` is null.
+#[test]
+fn zip_help_documents_a_null_undo() {
+    let o = zipmesh(&["zip", "--help"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("\"undo\": null"), "{text}");
+}

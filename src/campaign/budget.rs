@@ -1,5 +1,7 @@
 //! The time limit inside a case: the runner sets a budget for the thread that checks a
-//! property, and the property polls it between its checks with [`Case::out_of_time`].
+//! property, and the property polls it between its checks with [`Case::out_of_time`]. The
+//! same budget takes the count of what the property found but could not check
+//! ([`Case::note_unchecked`]).
 //!
 //! A thread-local rather than a field of [`Case`], so that given cases are checked by
 //! reference (no copy of a large mesh per property) and property signatures stay as they are.
@@ -45,28 +47,44 @@ struct Budget {
     deadline: Option<Instant>,
     counter: CheckCounter,
     cut: bool,
+    unchecked: u64,
+}
+
+/// What the runner learns of one property on one case besides its outcome.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Notes {
+    /// It polled after the deadline.
+    pub cut: bool,
+    /// The sum of its [`Case::note_unchecked`] calls.
+    pub unchecked: u64,
 }
 
 std::thread_local! {
     static CURRENT: RefCell<Option<Budget>> = const { RefCell::new(None) };
 }
 
-/// Runs `f` (one property on one case) under the deadline; returns its result and whether
-/// it was cut short (it polled after the deadline).
+/// Runs `f` (one property on one case) under the deadline; returns its result, whether it
+/// was cut short and what it left unchecked.
 pub(crate) fn within<R>(
     deadline: Option<Instant>,
     counter: &CheckCounter,
     f: impl FnOnce() -> R,
-) -> (R, bool) {
+) -> (R, Notes) {
     let budget = Budget {
         deadline,
         counter: counter.clone(),
         cut: false,
+        unchecked: 0,
     };
     let previous = CURRENT.with(|c| c.replace(Some(budget)));
     let result = f();
-    let cut = CURRENT.with(|c| c.replace(previous)).is_some_and(|b| b.cut);
-    (result, cut)
+    let notes = CURRENT
+        .with(|c| c.replace(previous))
+        .map_or(Notes::default(), |b| Notes {
+            cut: b.cut,
+            unchecked: b.unchecked,
+        });
+    (result, notes)
 }
 
 impl Case {
@@ -101,5 +119,30 @@ impl Case {
                 b.cut
             }
         })
+    }
+
+    /// Records that the property found `n` things it could not check: for `qzip-reversal`,
+    /// movements for which no reverse run was found. The report sums them per property
+    /// ([`Row::unchecked`](super::Row::unchecked)) beside its checks; they neither fail nor
+    /// skip the case. Outside a campaign it does nothing.
+    ///
+    /// ```
+    /// use zipmesh::campaign::{self, Case, Config, Outcome, Property};
+    /// let p = Property::new("odd-faces", "", |case: &Case| {
+    ///     let n = case.mesh.map.num_faces() as u64;
+    ///     case.note_unchecked(n % 2); // an odd face out, say, that it cannot check
+    ///     Outcome::Pass { checks: n / 2 }
+    /// });
+    /// let c = Config { cases: 4, max_faces: 100, ..Config::default() };
+    /// let r = campaign::run(&c, &[p]);
+    /// assert!(r.passed() && r.rows[0].unchecked <= 4);
+    /// assert!(r.to_json(false).contains("\"unchecked\":"));
+    /// ```
+    pub fn note_unchecked(&self, n: u64) {
+        CURRENT.with(|c| {
+            if let Some(b) = c.borrow_mut().as_mut() {
+                b.unchecked = b.unchecked.saturating_add(n);
+            }
+        });
     }
 }

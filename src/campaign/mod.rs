@@ -340,8 +340,9 @@ pub(crate) fn guarded(property: &Property, case: &Case) -> Outcome {
 type MakeCase<'a> = dyn Fn(u64) -> Option<Cow<'a, Case>> + Sync + 'a;
 type Replay<'r> = dyn Fn(&Case, &str) -> String + Sync + 'r;
 
-/// Per property: the outcome, the time it took and whether the time limit cut it short.
-type CaseResult = Vec<(Outcome, Duration, bool)>;
+/// Per property: the outcome, the time it took, whether the time limit cut it short and
+/// what it left unchecked.
+type CaseResult = Vec<(Outcome, Duration, budget::Notes)>;
 
 /// The rows and first failures, merged case by case as workers finish them, so memory
 /// does not grow with the number of cases.
@@ -361,6 +362,7 @@ impl Tally {
             skipped: 0,
             checks: 0,
             cut: 0,
+            unchecked: 0,
             time: Duration::ZERO,
         };
         Tally {
@@ -374,10 +376,11 @@ impl Tally {
     /// whatever order the workers finish in.
     fn add(&mut self, p: u64, result: CaseResult) {
         self.ran += 1;
-        for (k, (outcome, time, cut)) in result.into_iter().enumerate() {
+        for (k, (outcome, time, notes)) in result.into_iter().enumerate() {
             let row = &mut self.rows[k];
             row.time += time;
-            row.cut += u64::from(cut);
+            row.cut += u64::from(notes.cut);
+            row.unchecked = row.unchecked.saturating_add(notes.unchecked);
             match outcome {
                 Outcome::Pass { checks } => {
                     row.cases += 1;
@@ -408,8 +411,8 @@ fn check_case(
         .iter()
         .map(|prop| {
             let start = Instant::now();
-            let (outcome, cut) = budget::within(deadline, &config.checks, || guarded(prop, case));
-            (outcome, start.elapsed(), cut)
+            let (outcome, notes) = budget::within(deadline, &config.checks, || guarded(prop, case));
+            (outcome, start.elapsed(), notes)
         })
         .collect()
 }

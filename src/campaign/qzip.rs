@@ -142,7 +142,7 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
     };
     let map = &case.mesh.map;
     let code = CanonicalCode::of(map);
-    let mut checks = 0;
+    let (mut checks, mut missed) = (0, 0);
     for path in paths.iter().take_while(|_| !case.out_of_time()) {
         for tag in Tag::CCW {
             let edited = match checked_zip(map, path, tag) {
@@ -151,25 +151,34 @@ fn reversal(case: &Case, choice: PairChoice) -> Outcome {
                 Err(e) => return Outcome::fail(e, Some(path.start())),
             };
             let (m, r) = edited;
-            // A run found is re-executed independently; a movement with no restoring run
-            // is counted (the docs say where our reverse path misses) but not failed.
-            if let Some(back) = find_reverse(&m, &r, map) {
-                let mut again = m.clone();
-                let ok = Qzip::new()
-                    .zip_along(&mut again, &back.path, back.tag)
-                    .is_ok()
-                    && CanonicalCode::of(&again) == code;
-                if !ok {
-                    return Outcome::fail(
-                        format!("the reverse run {} of {tag} does not restore", back.tag),
-                        Some(path.start()),
-                    );
-                }
-                checks += 1;
+            // A run found is re-executed independently. A movement with no restoring run
+            // is reported as unchecked, not failed: the search is known to miss some
+            // (docs/qzip.md), and some edits have no single restoring Q-zip at all.
+            let Some(back) = find_reverse(&m, &r, map) else {
+                missed += 1;
+                case.note_unchecked(1);
+                continue;
+            };
+            let mut again = m.clone();
+            let ok = Qzip::new()
+                .zip_along(&mut again, &back.path, back.tag)
+                .is_ok()
+                && CanonicalCode::of(&again) == code;
+            if !ok {
+                return Outcome::fail(
+                    format!("the reverse run {} of {tag} does not restore", back.tag),
+                    Some(path.start()),
+                );
             }
+            checks += 1;
         }
     }
-    tally(checks)
+    // A case whose movements all missed applied (its misses are in the row), checking none.
+    if missed > 0 {
+        Outcome::Pass { checks }
+    } else {
+        tally(checks)
+    }
 }
 
 /// Pass with the number of checks made, or Skip if the property found nothing to check.
@@ -280,7 +289,9 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
 /// The Q-zip properties with this choice of pairs: `qzip-grid` (every movement done keeps
 /// a valid pure-quad map with the same Euler characteristic, boundary loops and irregular
 /// valences, moves the pair's valences, and undoes exactly; a refusal changes nothing),
-/// `qzip-reversal` (the reverse run found restores the original up to isomorphism),
+/// `qzip-reversal` (the reverse run found restores the original up to isomorphism; a
+/// movement with no reverse run found is counted in [`Row::unchecked`](super::Row::unchecked),
+/// not failed),
 /// `qzip-homotopy` (paths one swept quad apart give the same maps, labels matched by
 /// [`start_turn`]), `qzip-four-moves` (in a regular region the movements done are pairwise
 /// different).

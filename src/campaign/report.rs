@@ -34,6 +34,10 @@ pub struct Row {
     /// [`Case::out_of_time`](super::Case::out_of_time) after the deadline): their outcome
     /// covers only the checks that ran, which `checks` counts.
     pub cut: u64,
+    /// What the property found but could not check, summed over the cases
+    /// ([`Case::note_unchecked`](super::Case::note_unchecked)); for `qzip-reversal`, the
+    /// movements with no reverse run found. Not in `checks`, and not failures.
+    pub unchecked: u64,
     /// Time spent in the property, summed over the cases and workers (so it can exceed the
     /// wall time with several jobs). Not deterministic, unlike every other field.
     pub time: Duration,
@@ -117,8 +121,8 @@ impl Report {
         self.failures.is_empty() && self.rows.iter().all(|r| r.failed == 0)
     }
 
-    /// The table: property, cases, passed, failed, skipped, checks, cut and, if `times`, the
-    /// time in seconds. Without times the text is the same for the same campaign on any
+    /// The table: property, cases, passed, failed, skipped, checks, cut, unchecked and, if
+    /// `times`, the time in seconds. Without times the text is the same for the same campaign on any
     /// machine and with any number of jobs.
     ///
     /// ```
@@ -139,8 +143,8 @@ impl Report {
         let mut s = String::new();
         let _ = write!(
             s,
-            "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5}",
-            "property", "cases", "passed", "failed", "skipped", "checks", "cut"
+            "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5} {:>9}",
+            "property", "cases", "passed", "failed", "skipped", "checks", "cut", "unchecked"
         );
         if times {
             let _ = write!(s, " {:>9}", "time (s)");
@@ -149,8 +153,8 @@ impl Report {
         for r in &self.rows {
             let _ = write!(
                 s,
-                "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5}",
-                r.property, r.cases, r.passed, r.failed, r.skipped, r.checks, r.cut
+                "{:<width$} {:>7} {:>7} {:>7} {:>7} {:>9} {:>5} {:>9}",
+                r.property, r.cases, r.passed, r.failed, r.skipped, r.checks, r.cut, r.unchecked
             );
             if times {
                 let _ = write!(s, " {:>9.3}", r.time.as_secs_f64());
@@ -162,7 +166,7 @@ impl Report {
 
     /// The report as one JSON object: `seed`, `shard` (`"i/n"`), `planned`, `run`,
     /// `timed_out`, `passed`, `properties` (a list of objects with `name`, `cases`, `passed`,
-    /// `failed`, `skipped`, `checks`, `cut` and, if `times`, `seconds`), if `times` the campaign's
+    /// `failed`, `skipped`, `checks`, `cut`, `unchecked` and, if `times`, `seconds`), if `times` the campaign's
     /// wall time `seconds`, and `failures` (a list of
     /// objects with `property`, `case`, `description`, `message`, `original_faces`,
     /// `shrunk_faces`, `counterexample` (a path or null) and `replay`).
@@ -191,14 +195,15 @@ impl Report {
             }
             let _ = write!(
                 s,
-                "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{}",
+                "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{},\"unchecked\":{}",
                 quote(&r.property),
                 r.cases,
                 r.passed,
                 r.failed,
                 r.skipped,
                 r.checks,
-                r.cut
+                r.cut,
+                r.unchecked
             );
             if times {
                 let _ = write!(s, ",\"seconds\":{}", r.time.as_secs_f64());

@@ -244,6 +244,13 @@ fn print_text(report: &Report) {
             );
         }
     }
+    for r in report.rows.iter().filter(|r| r.unchecked > 0) {
+        outln!(
+            "{} left {} unchecked (not failures; for qzip-reversal: movements with no reverse run found)",
+            r.property,
+            r.unchecked
+        );
+    }
     for f in &report.failures {
         outln!();
         outln!(

@@ -76,6 +76,11 @@ enum Command {
     Moves(qzip::MovesArgs),
     /// Move a pair of singularities of a quad mesh (Q-zip) and write the result; prints the
     /// report and the command that undoes it.
+    ///
+    /// The undo is a Q-zip back along the moved pair, found by search; when none restores
+    /// the input (a third singularity on or next to the path can prevent it) the text says
+    /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
+    /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
     Zip(qzip::ZipArgs),
 }
 
