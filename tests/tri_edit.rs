@@ -5,7 +5,11 @@
 use proptest::prelude::*;
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::tri;
-use zipmesh::tri_edit::{can_move_pair, move_pair, move_pair_with, Direction, PairMove};
+use zipmesh::tri_edit::{
+    can_generate_pair, can_move_pair, can_remove_pair, generate_pair, generate_pair_with,
+    geodesic_sphere, move_pair, move_pair_with, remove_pair, remove_pair_with, Direction, Moved,
+    PairMove, Via,
+};
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
 /// A quad torus grid with every quad cut along the same diagonal: every vertex of valence 6.
@@ -222,5 +226,110 @@ proptest! {
                 prop_assert_eq!(&m, &map);
             }
         }
+    }
+}
+
+/// `before`'s irregular multiset with `add` added.
+fn with_added(before: &Map, add: &[(usize, bool)]) -> Vec<(usize, bool)> {
+    let mut v = irregular(before);
+    v.extend_from_slice(add);
+    v.sort();
+    v
+}
+
+/// Every generation at every v5 of `map`, every via, both readings: refused with the map
+/// unchanged, or one v5 and one v7 more, the named vertices as documented, exact undo, and
+/// the removal of the generated pair gives back `map` up to isomorphism. Returns how many
+/// applied.
+fn check_generations(map: &Map) -> usize {
+    let mut applied = 0;
+    let v5: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+    for v in v5 {
+        for d in map.vertex_darts(v).collect::<Vec<_>>() {
+            for via in [Via::Flip, Via::Collapse, Via::Split] {
+                for moved in [Moved::First, Moved::Second] {
+                    let mut m = map.clone();
+                    let can = can_generate_pair(&m, d, via);
+                    let g = match generate_pair(&mut m, d, via, moved) {
+                        Ok(g) => g,
+                        Err(e) => {
+                            assert_eq!(can, Err(e));
+                            assert_eq!(&m, map);
+                            continue;
+                        }
+                    };
+                    applied += 1;
+                    m.check().unwrap();
+                    let (p, q) = g.pair().unwrap();
+                    assert_eq!(
+                        (m.valence(g.moved()), m.valence(p), m.valence(q)),
+                        (5, 5, 7)
+                    );
+                    assert!(m.dart_between(p, q).is_some() && g.moved() != p);
+                    assert_eq!(irregular(&m), with_added(map, &[(5, false), (7, false)]));
+                    let generated = m.clone();
+                    g.undo(&mut m).unwrap();
+                    assert_eq!(&m, map);
+                    // The inverse reading: remove the pair, the moved v5 steps back.
+                    let mut m = generated;
+                    assert_eq!(can_remove_pair(&m, g.moved(), p, q), Ok(()));
+                    let r = remove_pair(&mut m, g.moved(), p, q).unwrap();
+                    m.check().unwrap();
+                    assert_eq!(m.valence(r.moved()), 5);
+                    assert!(is_isomorphic(&m, map), "{via:?} {moved:?}");
+                }
+            }
+        }
+    }
+    applied
+}
+
+#[test]
+fn v5_moves_with_pair_generation_and_removal() {
+    // Twelve lone v5 in a regular neighbourhood: every configuration applies.
+    let ico = geodesic_sphere(2);
+    assert_eq!(check_generations(&ico), 12 * 5 * 3 * 2);
+    // Random meshes: refusals or the documented effect.
+    for seed in 0..3 {
+        check_generations(&gen::random_triangle(300, 1, 1, seed).map);
+    }
+}
+
+#[test]
+fn removal_refusals_leave_the_map() {
+    let map = gen::random_triangle(300, 0, 1, 9).map;
+    let vs: Vec<Vert> = map.vertices().take(30).collect();
+    for &a in &vs {
+        for &b in &vs {
+            for &c in vs.iter().take(6) {
+                let mut m = map.clone();
+                let can = can_remove_pair(&m, a, b, c);
+                match remove_pair(&mut m, a, b, c) {
+                    Ok(r) => {
+                        m.check().unwrap();
+                        r.undo(&mut m).unwrap();
+                    }
+                    Err(e) => assert_eq!(can, Err(e)),
+                }
+                assert_eq!(m, map);
+            }
+        }
+    }
+}
+
+#[test]
+fn generation_with_attributes_comes_back() {
+    let mut map = geodesic_sphere(2);
+    let mut marks: Vec<f64> = (0..map.vertex_slots()).map(|i| i as f64).collect();
+    let before = (map.clone(), marks.clone());
+    for via in [Via::Flip, Via::Collapse, Via::Split] {
+        let d = map.vertex_dart(vert(0));
+        let e = generate_pair_with(&mut map, &mut marks, d, via, Moved::First).unwrap();
+        let (p, q) = e.record().pair().unwrap();
+        let moved = e.record().moved();
+        let r = remove_pair_with(&mut map, &mut marks, moved, p, q).unwrap();
+        r.undo_with(&mut map, &mut marks).unwrap();
+        e.undo_with(&mut map, &mut marks).unwrap();
+        assert_eq!((&map, &marks), (&before.0, &before.1));
     }
 }

@@ -41,9 +41,16 @@ use crate::map::{Dart, Map, Vert};
 use crate::ops::Refusal;
 use core::fmt;
 
+mod generate;
 mod pair;
+mod sphere;
 
+pub use generate::{
+    can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
+    remove_pair_with, Moved, V5Move, Via,
+};
 pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
+pub use sphere::geodesic_sphere;
 
 /// Why a semantic edit refuses (the map is then unchanged).
 ///
