@@ -6,9 +6,10 @@ use proptest::prelude::*;
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{
-    can_generate_pair, can_move_pair, can_remove_pair, generate_pair, generate_pair_with,
-    geodesic_sphere, move_pair, move_pair_with, remove_pair, remove_pair_with, Direction, Moved,
-    PairMove, Via,
+    aggregate_type, can_aggregate_type, can_generate_pair, can_move_pair, can_remove_pair,
+    can_split_type, generate_pair, generate_pair_with, geodesic_sphere, move_pair, move_pair_with,
+    remove_pair, remove_pair_with, split_type, subdivided_bipyramid, subdivided_tetrahedron,
+    Direction, Moved, PairMove, TriEditError, Via,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -332,4 +333,102 @@ fn generation_with_attributes_comes_back() {
         e.undo_with(&mut map, &mut marks).unwrap();
         assert_eq!((&map, &marks), (&before.0, &before.1));
     }
+}
+
+/// `before`'s irregular multiset with one `(k, false)` removed and `add` added.
+fn replaced(before: &Map, k: usize, add: &[(usize, bool)]) -> Vec<(usize, bool)> {
+    let mut v = irregular(before);
+    let i = v.iter().position(|&x| x == (k, false)).unwrap();
+    v.remove(i);
+    v.extend_from_slice(add);
+    v.sort();
+    v
+}
+
+/// A type split of `v` (valence `k`): refused with the map unchanged, or the documented
+/// irregular vertices, `check()`, exact undo; with `back`, aggregation restores the type.
+fn check_type_split(map: &Map, v: Vert, back: bool) -> bool {
+    let k = map.valence(v);
+    let mut m = map.clone();
+    let can = can_split_type(&m, v);
+    let s = match split_type(&mut m, v) {
+        Ok(s) => s,
+        Err(e) => {
+            assert_eq!(can, Err(e));
+            assert_eq!(&m, map);
+            return false;
+        }
+    };
+    assert_eq!(can, Ok(()));
+    m.check().unwrap();
+    let (n, val) = if k > 7 { (k - 6, 7) } else { (6 - k, 5) };
+    let got: Vec<usize> = s.vertices().iter().map(|&x| m.valence(x)).collect();
+    assert_eq!(got, vec![val; n], "v{k}");
+    assert_eq!(irregular(&m), replaced(map, k, &vec![(val, false); n]));
+    if back {
+        let mut a = m.clone();
+        let g = aggregate_type(&mut a, s.vertices()).unwrap();
+        a.check().unwrap();
+        assert_eq!(a.valence(g.vertices()[0]), k);
+        assert!(is_isomorphic(&a, map));
+        g.undo(&mut a).unwrap();
+        assert_eq!(a, m);
+    }
+    s.undo(&mut m).unwrap();
+    assert_eq!(&m, map);
+    true
+}
+
+#[test]
+fn type_splitting_and_aggregation() {
+    for k in 8..=13 {
+        let map = subdivided_bipyramid(k, 2);
+        assert!(check_type_split(&map, vert(0), false), "v{k}");
+        // The ring's v4s split into two v5 and aggregate back.
+        assert!(check_type_split(&map, vert(2), true));
+    }
+    let tet = subdivided_tetrahedron(2);
+    for v in 0..4 {
+        assert!(check_type_split(&tet, vert(v), true));
+    }
+    // Regular and v5 vertices are not split; nothing changes.
+    let ico = geodesic_sphere(2);
+    let mut m = ico.clone();
+    assert_eq!(
+        split_type(&mut m, vert(0)).unwrap_err(),
+        TriEditError::WrongValence
+    );
+    assert_eq!(
+        split_type(&mut m, vert(100)).unwrap_err(),
+        TriEditError::WrongValence
+    );
+    assert_eq!(m, ico);
+}
+
+#[test]
+fn type_splits_on_random_meshes() {
+    let mut applied = 0;
+    for seed in 0..4 {
+        let map = gen::random_triangle(300, 1, 1, seed).map;
+        for v in map.vertices().collect::<Vec<_>>() {
+            applied += usize::from(check_type_split(&map, v, false));
+        }
+        // Aggregation refusals leave the map: random pairs and triples of v5.
+        let v5: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+        for w in v5.windows(3).take(40) {
+            for args in [&w[..2], w] {
+                let mut m = map.clone();
+                let can = can_aggregate_type(&m, args);
+                match aggregate_type(&mut m, args) {
+                    Ok(g) => {
+                        m.check().unwrap();
+                        g.undo(&mut m).unwrap();
+                    }
+                    Err(e) => assert_eq!(can, Err(e)),
+                }
+                assert_eq!(m, map);
+            }
+        }
+    }
+    println!("{applied} type splits applied");
 }

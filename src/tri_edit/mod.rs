@@ -43,14 +43,16 @@ use core::fmt;
 
 mod generate;
 mod pair;
-mod sphere;
+mod solids;
+mod types;
 
 pub use generate::{
     can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
     remove_pair_with, Moved, V5Move, Via,
 };
 pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
-pub use sphere::geodesic_sphere;
+pub use solids::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
+pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
 
 /// Why a semantic edit refuses (the map is then unchanged).
 ///
@@ -73,6 +75,9 @@ pub enum TriEditError {
     /// operation would not have its semantic effect (the paper assumes a regular
     /// neighbourhood).
     Irregular,
+    /// The vertex does not have a valence the operation works on (a type split needs an
+    /// interior v3, v4 or vk with k > 7).
+    WrongValence,
     /// The graph operator refused, for this reason.
     Refused(Refusal),
 }
@@ -88,6 +93,7 @@ impl fmt::Display for TriEditError {
         match self {
             TriEditError::DeadHandle => f.write_str("a vertex is not live in this map"),
             TriEditError::NotAPair => f.write_str("the vertices are not an adjacent 5-7 pair"),
+            TriEditError::WrongValence => f.write_str("the vertex has the wrong valence"),
             TriEditError::Irregular => f.write_str("a vertex that must be regular is not"),
             TriEditError::Refused(r) => write!(f, "the graph operator refused: {r}"),
         }
