@@ -1,15 +1,16 @@
 //! Semantic triangle edits (`zipmesh::tri_edit`, irregular-vertex paper Sec. 6.2-6.3) on a
 //! regular triangulated torus and on random triangle meshes: valence effects, exact undo,
-//! refusals that leave the map unchanged, and the six directions of a 5-7 movement.
+//! refusals that leave the map unchanged, the six directions of a 5-7 movement, 5-7 generation, type splits, 5-5-7-7 quadruples.
 
 use proptest::prelude::*;
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{
-    aggregate_type, can_aggregate_type, can_generate_pair, can_move_pair, can_remove_pair,
-    can_split_type, generate_pair, generate_pair_with, geodesic_sphere, move_pair, move_pair_with,
-    remove_pair, remove_pair_with, split_type, subdivided_bipyramid, subdivided_tetrahedron,
-    Direction, Moved, PairMove, TriEditError, Via,
+    aggregate_type, can_aggregate_type, can_generate_pair, can_generate_quadruple, can_move_pair,
+    can_remove_pair, can_remove_quadruple, can_split_type, generate_pair, generate_pair_with,
+    generate_quadruple, geodesic_sphere, move_pair, move_pair_with, remove_pair, remove_pair_with,
+    remove_quadruple, split_type, subdivided_bipyramid, subdivided_tetrahedron, Direction, Moved,
+    PairMove, Quadruple, TriEditError, Via,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -431,4 +432,87 @@ fn type_splits_on_random_meshes() {
         }
     }
     println!("{applied} type splits applied");
+}
+
+#[test]
+fn quadruple_generation_and_removal() {
+    let map = geodesic_sphere(3);
+    let regular_v: Vec<Vert> = map
+        .vertices()
+        .filter(|&v| map.valence(v) == 6)
+        .step_by(37)
+        .collect();
+    let mut applied = [0usize; 3];
+    for &v in &regular_v {
+        for d in map.vertex_darts(v).collect::<Vec<_>>() {
+            for how in Quadruple::ALL {
+                let mut m = map.clone();
+                let can = can_generate_quadruple(&m, d, how);
+                let g = match generate_quadruple(&mut m, d, how) {
+                    Ok(g) => g,
+                    Err(e) => {
+                        assert_eq!(e, TriEditError::Irregular);
+                        assert_eq!(can, Err(e));
+                        assert_eq!(m, map);
+                        continue;
+                    }
+                };
+                assert_eq!(can, Ok(()));
+                applied[how as usize] += 1;
+                m.check().unwrap();
+                let mut got: Vec<usize> = g.vertices().iter().map(|&x| m.valence(x)).collect();
+                got.sort();
+                assert_eq!(got, [5, 5, 7, 7], "{how:?}");
+                let add = [(5, false), (5, false), (7, false), (7, false)];
+                assert_eq!(irregular(&m), with_added(&map, &add));
+                // Flip and split give a quadruple in two triangles; collapse-then-flip a chain.
+                assert_eq!(
+                    g.in_two_triangles(&m),
+                    how != Quadruple::CollapseFlip,
+                    "{how:?}"
+                );
+                if how != Quadruple::CollapseFlip {
+                    let mut r = m.clone();
+                    assert_eq!(can_remove_quadruple(&r, g.vertices()), Ok(()));
+                    remove_quadruple(&mut r, g.vertices()).unwrap();
+                    r.check().unwrap();
+                    assert!(is_isomorphic(&r, &map));
+                } else {
+                    let r = remove_quadruple(&mut m.clone(), g.vertices());
+                    assert_eq!(r.unwrap_err(), TriEditError::NotAPair);
+                }
+                g.undo(&mut m).unwrap();
+                assert_eq!(m, map);
+            }
+        }
+    }
+    // Every configuration applies (starts next to a v5 refuse as `Irregular`, below).
+    assert!(applied.iter().all(|&n| n > 90), "{applied:?}");
+    // A v5 is not a start: refused, unchanged.
+    let mut m = map.clone();
+    let d = m.vertex_dart(vert(0));
+    assert_eq!(
+        generate_quadruple(&mut m, d, Quadruple::Flip).unwrap_err(),
+        TriEditError::WrongValence
+    );
+    assert_eq!(m, map);
+}
+
+#[test]
+fn quadruple_generation_on_random_meshes() {
+    for seed in 0..3 {
+        let map = gen::random_triangle(300, 1, 1, seed).map;
+        for d in map.darts().step_by(5).collect::<Vec<_>>() {
+            for how in Quadruple::ALL {
+                let mut m = map.clone();
+                if let Ok(g) = generate_quadruple(&mut m, d, how) {
+                    m.check().unwrap();
+                    let add = [(5, false), (5, false), (7, false), (7, false)];
+                    assert_eq!(irregular(&m), with_added(&map, &add));
+                    g.undo(&mut m).unwrap();
+                }
+                assert_eq!(m, map);
+            }
+        }
+    }
 }

@@ -43,6 +43,7 @@ use core::fmt;
 
 mod generate;
 mod pair;
+mod quadruple;
 mod solids;
 mod types;
 
@@ -51,6 +52,10 @@ pub use generate::{
     remove_pair_with, Moved, V5Move, Via,
 };
 pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
+pub use quadruple::{
+    can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,
+    QuadrupleEdit,
+};
 pub use solids::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
 pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
 

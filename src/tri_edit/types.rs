@@ -25,15 +25,21 @@ fn turn(map: &Map, d: Dart, k: usize) -> Dart {
 }
 
 /// The vertices other than a new one whose valence `op` changes, read before it applies.
-fn involved(map: &Map, op: TriOp) -> [Option<Vert>; 3] {
+fn involved(map: &Map, op: TriOp) -> [Option<Vert>; 4] {
     match op {
-        TriOp::SplitVertex(d1, d2) => [map.origin(d1), map.dest(d1), map.dest(d2)].map(Some),
-        TriOp::Collapse(d) => [
+        TriOp::SplitVertex(d1, d2) => [
+            Some(map.origin(d1)),
+            Some(map.dest(d1)),
+            Some(map.dest(d2)),
+            None,
+        ],
+        TriOp::Collapse(d) | TriOp::Flip(d) => [
+            Some(map.origin(d)),
             Some(map.dest(d)),
             super::apex(map, d),
             super::apex(map, d.twin()),
         ],
-        _ => [None; 3],
+        TriOp::SplitEdge(_) => [None; 4],
     }
 }
 
@@ -43,7 +49,7 @@ type Done = (Vec<TriRecord>, Vec<Vert>);
 
 /// Applies operations one at a time, each computed from the map so far; on a refusal undoes
 /// the steps done in reverse, leaving the map as it was.
-fn run(
+pub(super) fn run(
     map: &mut Map,
     mut next: impl FnMut(&Map, &[TriRecord]) -> Result<Option<TriOp>, TriEditError>,
 ) -> Result<Done, TriEditError> {
@@ -175,7 +181,7 @@ pub fn split_type(map: &mut Map, v: Vert) -> Result<TypeEdit, TriEditError> {
 }
 
 /// The live irregular vertices among `seen`, sorted, once each.
-fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
+pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
     seen.retain(|&v| map.is_live_vertex(v) && map.valence(v) != 6);
     seen.sort();
     seen.dedup();
