@@ -516,3 +516,75 @@ fn quadruple_generation_on_random_meshes() {
         }
     }
 }
+
+/// The discrete Gauss-Bonnet identity (paper Eq. 2) for a region `R` (a set of triangles)
+/// of a closed triangle mesh whose boundary is a union of simple loops:
+///
+/// `sum over boundary vertices of (3 - t(v)) + sum over interior vertices of (6 - l(v))
+///  = 6 chi(R)`,
+///
+/// with `t(v)` the number of triangles of `R` at `v`, `l(v)` the valence and `chi(R) =
+/// V - E + F` of `R`'s closure. With a regular boundary (`l = 6`) `3 - t(v) = m(v) - 3`, the
+/// paper's turning term (`m(v)` triangles outside `R`); for a disk `chi(R) = 1` (the paper's
+/// right side reads `6 chi(M)`, which is the case `R = M`). Returns whether the region was
+/// tested (false when its boundary pinches).
+fn gauss_bonnet_region(map: &Map, region: &std::collections::HashSet<zipmesh::Face>) -> bool {
+    use std::collections::{HashMap, HashSet};
+    let inside = |d: zipmesh::Dart| map.face(d).is_some_and(|f| region.contains(&f));
+    let mut t: HashMap<Vert, i64> = HashMap::new();
+    let mut edges = HashSet::new();
+    let mut boundary_edges: HashMap<Vert, i64> = HashMap::new();
+    for &f in region {
+        for d in map.face_darts(f) {
+            *t.entry(map.origin(d)).or_default() += 1;
+            edges.insert(d.edge());
+            if !inside(d.twin()) {
+                *boundary_edges.entry(map.origin(d)).or_default() += 1;
+            }
+        }
+    }
+    if boundary_edges.values().any(|&k| k != 1) {
+        return false; // a boundary vertex on two loops: not a surface with boundary
+    }
+    let chi = t.len() as i64 - edges.len() as i64 + region.len() as i64;
+    let total: i64 = t
+        .iter()
+        .map(|(&v, &tv)| {
+            if boundary_edges.contains_key(&v) {
+                3 - tv
+            } else {
+                6 - map.valence(v) as i64
+            }
+        })
+        .sum();
+    assert_eq!(total, 6 * chi, "region of {} faces", region.len());
+    true
+}
+
+#[test]
+fn gauss_bonnet_on_random_regions() {
+    use std::collections::HashSet;
+    let mut rng = zipmesh::rng::Rng::new(13);
+    let mut tested = 0;
+    for seed in 0..6 {
+        let map = gen::random_triangle(400, seed as usize % 3, 0, seed).map;
+        let faces: Vec<zipmesh::Face> = map.faces().collect();
+        for _ in 0..20 {
+            // Grow a region from a random face through random neighbours.
+            let mut region = HashSet::new();
+            let mut front = vec![faces[rng.below(faces.len())]];
+            let size = 1 + rng.below(120);
+            while region.len() < size && !front.is_empty() {
+                let f = front.swap_remove(rng.below(front.len()));
+                if region.insert(f) {
+                    front.extend(map.face_darts(f).filter_map(|d| map.face(d.twin())));
+                }
+            }
+            tested += usize::from(gauss_bonnet_region(&map, &region));
+        }
+        // The whole mesh: chi(M).
+        let all: HashSet<_> = faces.iter().copied().collect();
+        assert!(gauss_bonnet_region(&map, &all));
+    }
+    assert!(tested > 60, "{tested}");
+}
