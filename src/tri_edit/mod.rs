@@ -34,8 +34,18 @@
 //! # let _ = flip;
 //! ```
 //!
-//! The readings chosen where the paper's figures are missing, with diagrams:
-//! `docs/tri-edit.md`.
+//! The operations:
+//! * atomic 5-7 movement in six [`Direction`]s: [`move_pair`] (Fig. 6);
+//! * v5 movement with 5-7 generation, read two ways ([`Moved`]): [`generate_pair`], and its
+//!   inverse with 5-7 removal, [`remove_pair`] (Fig. 7);
+//! * 5-5-7-7 generation from a regular vertex in three configurations ([`Quadruple`]):
+//!   [`generate_quadruple`], and removal of a quadruple inside two triangles,
+//!   [`remove_quadruple`] (Fig. 8);
+//! * type splitting and aggregation: [`split_type`], [`aggregate_type`] (Sec. 6.3).
+//!
+//! [`geodesic_sphere`], [`subdivided_tetrahedron`] and [`subdivided_bipyramid`] make meshes
+//! with lone v5, v3, v4 and vk in regular neighbourhoods to try them on. The readings chosen
+//! where the paper's figures are missing, with diagrams: `docs/tri-edit.md`.
 
 use crate::map::{Dart, Map, Vert};
 use crate::ops::Refusal;
