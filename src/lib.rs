@@ -47,6 +47,7 @@ pub mod mesh;
 pub mod ops;
 pub mod qzip;
 pub mod rng;
+pub mod tri_edit;
 
 pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
 pub use map::{
