@@ -1,6 +1,6 @@
 //! Edge flip: the diagonal of the two triangles at an edge turns a quarter turn.
 
-use super::{joined, min_valence, sides, valence_at_least, Undo};
+use super::{distinct_corners, joined, min_valence, triangle, valence_at_least, Undo};
 use crate::map::{Dart, Face, Map, Vert, NONE};
 use crate::ops::guard::Guard;
 use crate::ops::Refusal;
@@ -109,6 +109,7 @@ pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
 
 /// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`;
 /// `x[joins]` is the one dart that comes from the other face (the others are in `f`).
+#[inline]
 fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
     map.set_next(x[0], x[1]);
     map.set_next(x[1], x[2]);
@@ -118,6 +119,7 @@ fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
 }
 
 /// The record of face `f` (`NONE` for none).
+#[inline]
 fn face_dart(map: &Map, f: Option<Face>) -> Dart {
     f.map_or(Dart(NONE), |f| map.face_dart(f))
 }
@@ -131,9 +133,11 @@ fn plan(map: &Map, h: Dart) -> Result<[Dart; 6], Refusal> {
     if map.face(h).is_none() || map.face(t).is_none() {
         return Err(Refusal::Boundary);
     }
-    let [Some(l), Some(r)] = sides(map, h)? else {
-        return Err(Refusal::Boundary); // unreachable: both faces exist
-    };
+    // Both faces exist: the sides' degrees, then their corners (the order `sides` checks).
+    let (l, r) = (triangle(map, h)?, triangle(map, t)?);
+    if !distinct_corners(map, l) || !distinct_corners(map, r) {
+        return Err(Refusal::DegenerateTriangle);
+    }
     let (c, d) = (map.origin(l[2]), map.origin(r[2]));
     if c == d {
         return Err(Refusal::Loop);
