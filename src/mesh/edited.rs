@@ -129,8 +129,10 @@ impl<A: VertexAttributes> Journal<A> {
     /// assert_eq!(marks, vec![false, false]);
     /// ```
     pub fn set(&mut self, attrs: &mut A, v: Vert, value: A::Value) {
-        if !self.saved.iter().any(|&(s, _)| s == v) {
-            if let Some(old) = attrs.value(v) {
+        // Only slots the layer already reached are saved, so the scan runs over the (few)
+        // overwritten vertices, never over the new ones an edit appends.
+        if let Some(old) = attrs.value(v) {
+            if !self.saved.iter().any(|&(s, _)| s == v) {
                 self.saved.push((v, old));
             }
         }
