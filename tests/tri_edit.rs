@@ -3,14 +3,14 @@
 //! refusals that leave the map unchanged, the six directions of a 5-7 movement, 5-7 generation, type splits, 5-5-7-7 quadruples.
 
 use proptest::prelude::*;
+use zipmesh::gen::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{
     aggregate_type, can_aggregate_type, can_generate_pair, can_generate_quadruple, can_move_pair,
     can_remove_pair, can_remove_quadruple, can_split_type, generate_pair, generate_pair_with,
-    generate_quadruple, geodesic_sphere, move_pair, move_pair_with, remove_pair, remove_pair_with,
-    remove_quadruple, split_type, subdivided_bipyramid, subdivided_tetrahedron, Direction, Moved,
-    PairMove, Quadruple, TriEditError, Via,
+    generate_quadruple, move_pair, move_pair_with, remove_pair, remove_pair_with, remove_quadruple,
+    split_type, Direction, Moved, PairMove, Quadruple, TriEditError, Via,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 

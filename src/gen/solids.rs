@@ -31,7 +31,7 @@ fn subdivide(mut tris: Vec<[u32; 3]>, mut n: u32, levels: usize) -> Map {
 /// (vertices 0 to 11) `2^levels` edges apart, every other vertex regular.
 ///
 /// ```
-/// let s = zipmesh::tri_edit::geodesic_sphere(2);
+/// let s = zipmesh::gen::geodesic_sphere(2);
 /// assert_eq!((s.num_vertices(), s.num_faces()), (162, 320));
 /// assert_eq!(s.vertices().filter(|&v| s.valence(v) == 5).count(), 12);
 /// ```
@@ -48,7 +48,7 @@ pub fn geodesic_sphere(levels: usize) -> Map {
 /// `levels` clamped to 5): four v3s (vertices 0 to 3), every other vertex regular.
 ///
 /// ```
-/// let t = zipmesh::tri_edit::subdivided_tetrahedron(2);
+/// let t = zipmesh::gen::subdivided_tetrahedron(2);
 /// assert_eq!(t.vertices().filter(|&v| t.valence(v) == 3).count(), 4);
 /// ```
 pub fn subdivided_tetrahedron(levels: usize) -> Map {
@@ -64,7 +64,7 @@ pub fn subdivided_tetrahedron(levels: usize) -> Map {
 /// vertex regular.
 ///
 /// ```
-/// let b = zipmesh::tri_edit::subdivided_bipyramid(9, 2);
+/// let b = zipmesh::gen::subdivided_bipyramid(9, 2);
 /// assert_eq!(b.valence(zipmesh::Vert::new(0)), 9);
 /// assert_eq!(b.vertices().filter(|&v| b.valence(v) == 4).count(), 9);
 /// ```

@@ -115,7 +115,7 @@ pub fn can_generate_pair(map: &Map, d: Dart, via: Via) -> Result<(), TriEditErro
 ///
 /// ```
 /// use zipmesh::tri_edit::{can_generate_pair, generate_pair, Moved, Via};
-/// let mut map = zipmesh::tri_edit::geodesic_sphere(2); // twelve lone v5
+/// let mut map = zipmesh::gen::geodesic_sphere(2); // twelve lone v5
 /// let before = map.clone();
 /// let v = map.vertices().find(|&v| map.valence(v) == 5).unwrap();
 /// let d = map.vertex_dart(v);
@@ -140,7 +140,8 @@ pub fn generate_pair(
 /// [`generate_pair`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
 ///
 /// ```
-/// use zipmesh::tri_edit::{generate_pair_with, geodesic_sphere, Moved, Via};
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{generate_pair_with, Moved, Via};
 /// use zipmesh::Vert;
 /// let mut map = geodesic_sphere(2);
 /// let mut marks = vec![1.0f64; map.vertex_slots()];
@@ -253,7 +254,7 @@ pub fn can_remove_pair(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEd
 /// ```
 /// use zipmesh::tri_edit::{generate_pair, remove_pair, Moved, Via};
 /// use zipmesh::is_isomorphic;
-/// let mut map = zipmesh::tri_edit::geodesic_sphere(2);
+/// let mut map = zipmesh::gen::geodesic_sphere(2);
 /// let before = map.clone();
 /// let v = map.vertices().find(|&v| map.valence(v) == 5).unwrap();
 /// let d = map.vertex_dart(v);

@@ -43,7 +43,7 @@
 //!   [`remove_quadruple`] (Fig. 8);
 //! * type splitting and aggregation: [`split_type`], [`aggregate_type`] (Sec. 6.3).
 //!
-//! [`geodesic_sphere`], [`subdivided_tetrahedron`] and [`subdivided_bipyramid`] make meshes
+//! [`crate::gen::geodesic_sphere`], [`crate::gen::subdivided_tetrahedron`] and [`crate::gen::subdivided_bipyramid`] make meshes
 //! with lone v5, v3, v4 and vk in regular neighbourhoods to try them on. The readings chosen
 //! where the paper's figures are missing, with diagrams: `docs/tri-edit.md`.
 
@@ -54,7 +54,6 @@ use core::fmt;
 mod generate;
 mod pair;
 mod quadruple;
-mod solids;
 mod types;
 
 pub use generate::{
@@ -66,7 +65,6 @@ pub use quadruple::{
     can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,
     QuadrupleEdit,
 };
-pub use solids::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
 pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
 
 /// Why a semantic edit refuses (the map is then unchanged).

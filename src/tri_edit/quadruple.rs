@@ -105,7 +105,8 @@ fn check_start(map: &Map, d: Dart) -> Result<(), TriEditError> {
 /// gains {5, 5, 7, 7}; [`QuadrupleEdit::vertices`] lists the four.
 ///
 /// ```
-/// use zipmesh::tri_edit::{generate_quadruple, geodesic_sphere, Quadruple};
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{generate_quadruple, Quadruple};
 /// use zipmesh::Vert;
 /// let mut map = geodesic_sphere(3);
 /// let before = map.clone();
@@ -144,7 +145,8 @@ pub fn generate_quadruple(
 /// ([`TriEditError::NotAPair`]).
 ///
 /// ```
-/// use zipmesh::tri_edit::{generate_quadruple, geodesic_sphere, remove_quadruple, Quadruple};
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{generate_quadruple, remove_quadruple, Quadruple};
 /// use zipmesh::{is_isomorphic, Vert};
 /// let mut map = geodesic_sphere(3);
 /// let before = map.clone();

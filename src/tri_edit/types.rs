@@ -150,7 +150,8 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 /// valence.
 ///
 /// ```
-/// use zipmesh::tri_edit::{split_type, subdivided_bipyramid};
+/// use zipmesh::gen::subdivided_bipyramid;
+/// use zipmesh::tri_edit::split_type;
 /// use zipmesh::Vert;
 /// let mut map = subdivided_bipyramid(10, 2);
 /// let before = map.clone();
@@ -194,7 +195,8 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// [`TypeEdit::vertices`] is the new vertex.
 ///
 /// ```
-/// use zipmesh::tri_edit::{aggregate_type, split_type, subdivided_bipyramid};
+/// use zipmesh::gen::subdivided_bipyramid;
+/// use zipmesh::tri_edit::{aggregate_type, split_type};
 /// use zipmesh::{is_isomorphic, Vert};
 /// let mut map = subdivided_bipyramid(8, 2);
 /// let before = map.clone();
