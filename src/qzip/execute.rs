@@ -432,6 +432,12 @@ impl Touched {
 /// Surgeries of at most this many vertices look path vertices up by a scan.
 const SCAN_LIMIT: usize = 24;
 
+/// The records a chain has applied so far, in order (undone in reverse on an error).
+type Records = Vec<QuadRecord>;
+
+/// What one step of the chain gives: done, or why the chain stops.
+type Step = Result<(), ZipError>;
+
 /// Undoes records made in order on `map`, last first; stops at the first refusal.
 pub(crate) fn undo_records(records: &[QuadRecord], map: &mut Map) -> Result<(), Refusal> {
     for r in records.iter().rev() {
@@ -642,13 +648,7 @@ impl<'s> Chain<'s> {
 
     /// LS / RS at `p = origin(edge)`: split `p` along its edges to the guide and to the next
     /// vertex; the copy on the hand's side continues the path and becomes the guide.
-    fn split_step(
-        &mut self,
-        map: &mut Map,
-        tag: Tag,
-        edge: Dart,
-        records: &mut Vec<QuadRecord>,
-    ) -> Result<(), ZipError> {
+    fn split_step(&mut self, map: &mut Map, tag: Tag, edge: Dart, out: &mut Records) -> Step {
         let index = self.index;
         let (p, n) = (map.origin(edge), map.dest(edge));
         let guide = self.guide.ok_or(ZipError::StalePlan { index })?;
@@ -688,7 +688,7 @@ impl<'s> Chain<'s> {
                 self.footprint_edges.push(d.edge());
             }
         }
-        records.push(r.into());
+        out.push(r.into());
         self.advance(index + 1, self.vertex_at(index + 1));
         Ok(())
     }
@@ -705,13 +705,7 @@ impl<'s> Chain<'s> {
 
     /// LC / RC along `edge: P -> N`: collapse the quad on the hand's side, merging `N` with
     /// that quad's corner next to `P`; the corner next to `N` becomes the guide.
-    fn collapse_step(
-        &mut self,
-        map: &mut Map,
-        tag: Tag,
-        edge: Dart,
-        records: &mut Vec<QuadRecord>,
-    ) -> Result<(), ZipError> {
+    fn collapse_step(&mut self, map: &mut Map, tag: Tag, edge: Dart, out: &mut Records) -> Step {
         let index = self.index;
         let (p, n) = (map.origin(edge), map.dest(edge));
         let (at, far) = strip_quad(map, edge, tag);
@@ -750,7 +744,7 @@ impl<'s> Chain<'s> {
         self.to_candidates = [far, far, n, p];
         self.guide = Some(far);
         self.track_collapsed(r.face(), r.merged_edges());
-        records.push(r.into());
+        out.push(r.into());
         if let Some(j) = round {
             let ring = [
                 n,
