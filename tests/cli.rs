@@ -538,20 +538,29 @@ fn a_closed_pipe_ends_every_command_quietly_with_141_and_zip_writes_nothing() {
     }
 }
 
+/// Runs the binary with its standard output (`stdout`) or standard error on `/dev/full`.
+#[cfg(target_os = "linux")]
+fn run_on_dev_full<S: AsRef<std::ffi::OsStr>>(args: &[S], stdout: bool) -> std::process::Output {
+    let full = fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_zipmesh"));
+    cmd.args(args);
+    if stdout {
+        cmd.stdout(full);
+    } else {
+        cmd.stderr(full);
+    }
+    cmd.output().unwrap()
+}
+
 #[cfg(target_os = "linux")]
 #[test]
 fn a_full_disk_is_an_error_exit_2_and_zip_writes_nothing() {
     let dir = temp_dir("full-disk");
     for args in every_printing_command(&dir) {
-        let full = fs::OpenOptions::new()
-            .write(true)
-            .open("/dev/full")
-            .unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
-            .args(&args)
-            .stdout(full)
-            .output()
-            .unwrap();
+        let out = run_on_dev_full(&args, true);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         let err = stderr(&out);
         assert!(
@@ -574,15 +583,7 @@ fn a_full_standard_error_keeps_the_exit_status() {
         (vec!["frobnicate"], 2),
         (vec!["hash", s(&spot_quads())], 0),
     ] {
-        let full = fs::OpenOptions::new()
-            .write(true)
-            .open("/dev/full")
-            .unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_zipmesh"))
-            .args(&args)
-            .stderr(full)
-            .output()
-            .unwrap();
+        let out = run_on_dev_full(&args, false);
         assert_eq!(out.status.code(), Some(code), "{args:?}");
     }
 }
