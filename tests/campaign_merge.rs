@@ -103,7 +103,10 @@ fn assert_same_report(merged: &Report, one: &Report) {
             (&o.property, o.case, o.position, &o.description, &o.message)
         );
         assert_eq!(m.original_faces, o.original_faces);
-        assert_eq!((&m.path, &m.replay, &m.case_replay), (&o.path, &o.replay, &o.case_replay));
+        assert_eq!(
+            (&m.path, &m.replay, &m.case_replay),
+            (&o.path, &o.replay, &o.case_replay)
+        );
         match (&m.shrunk, &o.shrunk) {
             (Some(a), Some(b)) => {
                 assert_eq!(a.mesh.map, b.mesh.map, "{}", o.property);
@@ -132,9 +135,10 @@ fn four_shards_merged_equal_one_run_cell_by_cell() {
     assert!(parts.iter().all(|p| p.planned < one.planned));
     // The shards' counterexamples name their own directories ...
     let mut merged = campaign::merge(&parts).unwrap();
-    assert!(merged.failures.iter().any(|f| f
-        .replay
-        .contains(&format!("shard{}", f.position % 4))));
+    assert!(merged
+        .failures
+        .iter()
+        .any(|f| f.replay.contains(&format!("shard{}", f.position % 4))));
     // ... and written again where the one run wrote them, the reports are equal.
     let written: Vec<Vec<u8>> = one
         .failures
@@ -154,7 +158,10 @@ fn four_shards_merged_equal_one_run_cell_by_cell() {
     // Row times are the shards' sums; the wall time is the longest shard's.
     let sum: Duration = parts.iter().map(|p| p.rows[0].time).sum();
     assert_eq!(merged.rows[0].time, sum);
-    assert_eq!(merged.elapsed, parts.iter().map(|p| p.elapsed).max().unwrap());
+    assert_eq!(
+        merged.elapsed,
+        parts.iter().map(|p| p.elapsed).max().unwrap()
+    );
 }
 
 #[test]
@@ -172,7 +179,10 @@ fn shards_of_given_cases_merge_by_position() {
     let run = |c: Config| campaign::run_cases(&c, &cases, &all, &|| {});
     let one = run(config(Shard::ALL, &base.join("one")));
     let failure = &one.failures[0]; // the kernel holds: only no-boundary fails
-    assert_eq!((failure.property.as_str(), failure.position), ("no-boundary", 2));
+    assert_eq!(
+        (failure.property.as_str(), failure.position),
+        ("no-boundary", 2)
+    );
     for n in [2, 3, 5] {
         let mut merged = campaign::merge(&shards(n, &base, run)).unwrap();
         merged.write_counterexamples(&base.join("one"));
@@ -203,14 +213,12 @@ fn merging_refuses_shards_of_different_campaigns() {
         change(&mut c);
         campaign::run(&c, properties)
     };
-    let differs = |part: Report| {
-        match campaign::merge(&[good[0].clone(), part]).unwrap_err() {
-            MergeError::Differs { what, report, .. } => {
-                assert_eq!(report, 1);
-                what
-            }
-            e => panic!("{e}"),
+    let differs = |part: Report| match campaign::merge(&[good[0].clone(), part]).unwrap_err() {
+        MergeError::Differs { what, report, .. } => {
+            assert_eq!(report, 1);
+            what
         }
+        e => panic!("{e}"),
     };
     assert_eq!(differs(other(&|c| c.seed = 12, &kernel)), "seed");
     assert_eq!(differs(other(&|c| c.cases = 15, &kernel)), "cases");
