@@ -62,10 +62,13 @@ pub use generate::{
 };
 pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
 pub use quadruple::{
-    can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,
-    QuadrupleEdit,
+    can_generate_quadruple, can_remove_quadruple, generate_quadruple, generate_quadruple_with,
+    remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
-pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
+pub use types::{
+    aggregate_type, aggregate_type_with, can_aggregate_type, can_split_type, split_type,
+    split_type_with, TypeEdit,
+};
 
 /// Why a semantic edit refuses (the map is then unchanged).
 ///
