@@ -28,6 +28,7 @@
 
 use std::collections::HashSet;
 use zipmesh::map::{Dart, Face, Map, Vert};
+use zipmesh::tri_edit::{move_pair, Direction};
 
 /// A region's boundary: the cycle (region on the left) and the triangles at each vertex.
 #[derive(Clone, Debug)]
@@ -278,7 +279,6 @@ pub fn region_boundary(
 }
 
 /// The faces of `map` with a corner at graph distance below `r` from `seeds`.
-#[allow(dead_code)]
 pub fn faces_near(map: &Map, seeds: &[Vert], r: usize) -> HashSet<Face> {
     let mut dist = std::collections::HashMap::new();
     let mut frontier: Vec<Vert> = seeds.to_vec();
@@ -290,8 +290,8 @@ pub fn faces_near(map: &Map, seeds: &[Vert], r: usize) -> HashSet<Face> {
         for &v in &frontier {
             for d in map.vertex_darts(v) {
                 let w = map.dest(d);
-                if !dist.contains_key(&w) {
-                    dist.insert(w, step);
+                if let std::collections::hash_map::Entry::Vacant(e) = dist.entry(w) {
+                    e.insert(step);
                     next.push(w);
                 }
             }
@@ -519,4 +519,315 @@ fn retriangulation_search_matches_browns_count() {
         total += found.disks.len() as u64;
     }
     println!("retriangulation search: {total} disks, as Brown's formula counts them");
+}
+
+/// Grows `faces` until it is convex (every boundary vertex with at most 3 triangles of the
+/// region) and a disk (no pinched vertex): the faces around a concave or pinched vertex are
+/// added. `None` when the region reaches the mesh's boundary.
+pub fn convexify(map: &Map, mut faces: HashSet<Face>) -> Option<HashSet<Face>> {
+    loop {
+        let mut add = Vec::new();
+        let verts: HashSet<Vert> = faces
+            .iter()
+            .flat_map(|&f| map.face_darts(f).map(|d| map.origin(d)))
+            .collect();
+        for &v in &verts {
+            let ds: Vec<Dart> = map.vertex_darts(v).collect();
+            let inside = |d: Dart| map.face(d).is_some_and(|f| faces.contains(&f));
+            let t = ds.iter().filter(|&&d| inside(d)).count();
+            if t == ds.len() && !map.is_boundary_vertex(v) {
+                continue; // interior
+            }
+            // Boundary darts of the region out of v: more than one is a pinch.
+            let out = ds
+                .iter()
+                .filter(|&&d| inside(d) && !inside(d.twin()))
+                .count();
+            if t >= 4 || out > 1 {
+                if map.is_boundary_vertex(v) {
+                    return None;
+                }
+                add.extend(ds.iter().filter_map(|&d| map.face(d)));
+            }
+        }
+        if add.is_empty() {
+            return Some(faces);
+        }
+        faces.extend(add);
+    }
+}
+
+/// Graph distances from `from` over the whole map.
+fn distances(map: &Map, from: Vert) -> std::collections::HashMap<Vert, usize> {
+    let mut dist = std::collections::HashMap::from([(from, 0)]);
+    let mut queue = std::collections::VecDeque::from([from]);
+    while let Some(v) = queue.pop_front() {
+        let dv = dist[&v];
+        for d in map.vertex_darts(v) {
+            let w = map.dest(d);
+            if let std::collections::hash_map::Entry::Vacant(e) = dist.entry(w) {
+                e.insert(dv + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    dist
+}
+
+/// The sides of a convex region: for each unit of turning (a vertex with `t` triangles
+/// turns by `3 - t`), in order, the side's length `b` (edges) and its distance `d` to `v0`
+/// (the least distance of its vertices, corners included). A vertex that turns by 2 is two
+/// corners with a side of length 0 between them.
+fn sides(
+    cycle: &[Vert],
+    b: &Boundary,
+    dist: &std::collections::HashMap<Vert, usize>,
+) -> Vec<(usize, usize)> {
+    let n = cycle.len();
+    let Some(first) = (0..n).find(|&j| b.t[j] < 3) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut j = first;
+    // Walk from corner to corner.
+    loop {
+        // A corner turning by 2 contributes an empty side first.
+        if b.t[j] == 1 {
+            out.push((0, dist[&cycle[j]]));
+        }
+        let mut len = 0;
+        let mut d = dist[&cycle[j]];
+        let mut k = j;
+        loop {
+            k = (k + 1) % n;
+            len += 1;
+            d = d.min(dist[&cycle[k]]);
+            if b.t[k] < 3 {
+                break;
+            }
+        }
+        out.push((len, d));
+        j = k;
+        if j == first {
+            break;
+        }
+    }
+    out
+}
+
+/// A convex region of `map` around the vertex `centre`: the stars of the vertices on
+/// shortest paths from it to a few random vertices within `reach`, made convex.
+fn random_convex_region(
+    map: &Map,
+    centre: Vert,
+    reach: usize,
+    rng: &mut zipmesh::rng::Rng,
+) -> Option<HashSet<Face>> {
+    let dist = distances(map, centre);
+    let mut near: Vec<Vert> = dist
+        .iter()
+        .filter(|&(_, &d)| d <= reach)
+        .map(|(&v, _)| v)
+        .collect();
+    near.sort();
+    let mut seeds = vec![centre];
+    for _ in 0..rng.range(0, 4) {
+        // Walk back to the centre, each step to a neighbour one closer.
+        let mut v = near[rng.below(near.len())];
+        while v != centre {
+            seeds.push(v);
+            v = map
+                .vertex_darts(v)
+                .map(|d| map.dest(d))
+                .find(|w| dist[w] + 1 == dist[&v])?;
+        }
+    }
+    convexify(map, faces_near(map, &seeds, 1))
+}
+
+/// Lemma 5.4: for a convex region with one irregular vertex `v0` of valence `k` inside, the
+/// boundary has `k` sides (counting turns) and `b_i = d_(i-1) + d_(i+1) - d_i`.
+#[test]
+fn lemma_5_4_on_random_convex_regions() {
+    let mut rng = zipmesh::rng::Rng::new(54);
+    let (mut checked, mut skipped) = (0, 0);
+    let mut shapes = HashSet::new();
+    for k in [3, 4, 5, 7, 8, 9] {
+        let map = cone_disk(k, 9);
+        let dist = distances(&map, Vert::new(0));
+        for _ in 0..40 {
+            let Some(faces) = random_convex_region(&map, Vert::new(0), 3, &mut rng) else {
+                skipped += 1;
+                continue;
+            };
+            let (cycle, b, _) = region_boundary(&map, &faces).expect("a disk");
+            let s = sides(&cycle, &b, &dist);
+            assert_eq!(s.len(), k, "v{k}: {s:?}");
+            for i in 0..k {
+                let (bi, di) = s[i];
+                let (dp, dn) = (s[(i + k - 1) % k].1, s[(i + 1) % k].1);
+                assert_eq!(bi + di, dp + dn, "v{k}, side {i}: {s:?}");
+            }
+            shapes.insert(s);
+            checked += 1;
+        }
+    }
+    println!(
+        "Lemma 5.4: {checked} convex regions checked ({} distinct side lists), {skipped} skipped (reached the cone's rim)",
+        shapes.len()
+    );
+    assert!(checked >= 150 && shapes.len() >= 60);
+}
+
+/// Lemma 5.6: a convex region of the regular lattice has six sides (counting turns) with
+/// `b1 + b2 = b4 + b5`, `b2 + b3 = b5 + b6`, `b3 + b4 = b6 + b1`.
+#[test]
+fn lemma_5_6_on_random_convex_regions() {
+    let mut rng = zipmesh::rng::Rng::new(56);
+    let map = cone_disk(6, 10);
+    let dist = distances(&map, Vert::new(0));
+    let (mut checked, mut skipped) = (0, 0);
+    let mut shapes = HashSet::new();
+    for _ in 0..200 {
+        let Some(faces) = random_convex_region(&map, Vert::new(0), 4, &mut rng) else {
+            skipped += 1;
+            continue;
+        };
+        let (cycle, b, _) = region_boundary(&map, &faces).expect("a disk");
+        let s: Vec<usize> = sides(&cycle, &b, &dist).iter().map(|x| x.0).collect();
+        assert_eq!(s.len(), 6, "{s:?}");
+        for i in 0..3 {
+            assert_eq!(s[i] + s[i + 1], s[(i + 3) % 6] + s[(i + 4) % 6], "{s:?}");
+        }
+        shapes.insert(s);
+        checked += 1;
+    }
+    println!(
+        "Lemma 5.6: {checked} convex regions checked ({} distinct side lists), {skipped} skipped",
+        shapes.len()
+    );
+    assert!(checked >= 150 && shapes.len() >= 30);
+}
+
+/// A 14 x 14 triangulated torus with one diagonal flipped (two 5-7 pairs) and one pair
+/// moved three steps away: an adjacent 5-7 pair `(p, q)` in a regular neighbourhood.
+fn torus_lone_pair() -> (Map, Vert, Vert) {
+    let n = 14;
+    let tris: Vec<[u32; 3]> = zipmesh::gen::torus_quads(n, n)
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    let mut map = Map::from_polygons(n * n, &tris).expect("a torus");
+    let d = map
+        .dart_between(Vert::new(0), Vert::new(n as u32 + 1))
+        .expect("a diagonal");
+    zipmesh::ops::tri::flip_edge(&mut map, d).expect("a flip");
+    let (mut p, mut q) = (Vert::new(0), Vert::new(1));
+    for _ in 0..3 {
+        let m = move_pair(&mut map, p, q, Direction::SplitRight).expect("a regular neighbourhood");
+        (p, q) = (m.p(), m.q());
+    }
+    (map, p, q)
+}
+
+/// Theorem 5.5, as stated: convex regions around an adjacent 5-7 pair have no
+/// retriangulation free of irregular vertices (up to the stated number of interior
+/// vertices).
+#[test]
+fn retriangulation_theorem_5_5_pair_regions() {
+    let (map, p, q) = torus_lone_pair();
+    for (r, extra) in [(1, 3), (2, 2)] {
+        let faces = convexify(&map, faces_near(&map, &[p, q], r)).expect("inside the torus");
+        let (cycle, _, interior) = region_boundary(&map, &faces).expect("a disk");
+        let irregular: Vec<usize> = interior
+            .iter()
+            .map(|&v| map.valence(v))
+            .filter(|&l| l != 6)
+            .collect();
+        assert_eq!(irregular, {
+            let mut x = vec![map.valence(p), map.valence(q)];
+            x.sort();
+            x
+        });
+        let bounds = Bounds {
+            max_interior: interior.len() + extra,
+            max_irregular: 0,
+            max_valence: 6,
+        };
+        let (found, i0) = run(&map, &faces, bounds, false);
+        println!(
+            "Theorem 5.5: 5-7 pair, region of radius {r} ({} boundary, {i0} interior vertices, up to {}): {} regular retriangulations, {} nodes",
+            cycle.len(),
+            i0 + extra,
+            found.disks.len(),
+            found.nodes
+        );
+        assert!(found.disks.is_empty());
+        // The control: allowing two irregular vertices, the search finds the region itself
+        // (so it does meet pairs), and every disk it finds has a pair summing to 12.
+        let two = Bounds {
+            max_irregular: 2,
+            max_valence: 9,
+            ..bounds
+        };
+        let (with_pair, _) = run(&map, &faces, two, true);
+        for d in &with_pair.disks {
+            let irr = irregular_of(cycle.len(), d);
+            assert!(irr.len() == 2 && irr[0] + irr[1] == 12, "{irr:?}");
+        }
+        println!(
+            "  allowing two irregular vertices: {} disk(s) with a pair, {} nodes",
+            with_pair.disks.len(),
+            with_pair.nodes
+        );
+    }
+}
+
+/// Theorem 5.5 read from the other side: a convex region of the regular lattice has the
+/// same boundary data as any retriangulation of it, and by Gauss-Bonnet two irregular
+/// vertices inside have valences summing to 12; so the theorem says no retriangulation
+/// has exactly two irregular vertices. The search allows two (valences 3 to 9) and finds
+/// only the regular region itself: every pair (5-7, 4-8, 3-9) in every position at once.
+#[test]
+fn retriangulation_theorem_5_5_flat_regions() {
+    let mut rng = zipmesh::rng::Rng::new(55);
+    let flat = cone_disk(6, 8);
+    let mut regions: Vec<(String, Map, HashSet<Face>)> = Vec::new();
+    for r in [1, 2] {
+        let m = cone_disk(6, r);
+        let f = m.faces().collect();
+        regions.push((format!("hexagon of side {r}"), m, f));
+    }
+    let mut tries = 0;
+    while regions.len() < 14 && tries < 600 {
+        tries += 1;
+        let Some(f) = random_convex_region(&flat, Vert::new(0), 3, &mut rng) else {
+            continue;
+        };
+        let (_, _, interior) = region_boundary(&flat, &f).expect("a disk");
+        if (4..=16).contains(&interior.len()) {
+            regions.push((
+                format!("random convex region {}", regions.len() - 1),
+                flat.clone(),
+                f,
+            ));
+        }
+    }
+    for (name, map, faces) in &regions {
+        let (_, _, interior) = region_boundary(map, faces).expect("a disk");
+        let extra = if interior.len() <= 8 { 2 } else { 1 };
+        let bounds = Bounds {
+            max_interior: interior.len() + extra,
+            max_irregular: 2,
+            max_valence: 9,
+        };
+        let (found, i0) = run(map, faces, bounds, true);
+        println!(
+            "Theorem 5.5 (flat side): {name}, {i0} interior vertices, up to {}: {} disk(s), {} nodes",
+            i0 + extra,
+            found.disks.len(),
+            found.nodes
+        );
+        assert_eq!(found.disks.len(), 1, "{name}: a pair appeared");
+    }
 }
