@@ -208,30 +208,9 @@ fn place(b: &Boundary, bounds: Bounds, s: &mut State, tri: [u8; 3]) -> bool {
     true
 }
 
-/// The lattice cone of a centre of valence `k`, out to ring `r`: vertex 0 the centre, ring
-/// `j` (1..=r) of `k * j` vertices, counter-clockwise; every vertex inside of valence 6.
+/// The lattice cone disk of [`zipmesh::gen::cone_disk`].
 pub fn cone_disk(k: usize, r: usize) -> Map {
-    let ring = |j: usize, s: usize, t: usize| -> u32 {
-        if j == 0 {
-            return 0;
-        }
-        let (s, t) = if t == j { ((s + 1) % k, 0) } else { (s, t) };
-        (1 + k * j * (j - 1) / 2 + s * j + t) as u32
-    };
-    let mut tris = Vec::new();
-    for j in 1..=r {
-        for s in 0..k {
-            for t in 0..j {
-                let inner = if j == 1 { 0 } else { ring(j - 1, s, t) };
-                tris.push([inner, ring(j, s, t), ring(j, s, t + 1)]);
-            }
-            for t in 0..j.saturating_sub(1) {
-                tris.push([ring(j - 1, s, t), ring(j, s, t + 1), ring(j - 1, s, t + 1)]);
-            }
-        }
-    }
-    let n = 1 + k * r * (r + 1) / 2;
-    Map::from_polygons(n, &tris).expect("a cone disk")
+    zipmesh::gen::cone_disk(k, r)
 }
 
 /// The boundary of the region `faces` of `map` (a disk: one simple loop), its vertices in
