@@ -387,7 +387,8 @@ pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> 
 /// let mut map = geodesic_sphere(2);
 /// let before = map.clone();
 /// // 7.3: a v5 moves and generates a pair: a 5-5-7 triple ...
-/// let g = generate_pair(&mut map, map.vertex_dart(Vert::new(0)), Via::Flip, Moved::First).unwrap();
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
 /// let (p, q) = g.pair().unwrap();
 /// // ... and 7.2 cancels it into one v5.
 /// let c = cancel_triple(&mut map, &[g.moved(), p, q]).unwrap();
