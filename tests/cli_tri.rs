@@ -11,7 +11,7 @@ use glam::DVec3;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Output;
-use zipmesh::gen::{geodesic_sphere, subdivided_bipyramid};
+use zipmesh::gen::{cone_disk, geodesic_sphere, subdivided_bipyramid};
 use zipmesh::invariants::canonical::is_isomorphic;
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{move_pair, Direction};
@@ -218,11 +218,37 @@ fn tri_commands_refuse_bad_input() {
             "--steps",
             "5",
         ],
-        vec!["tri-generate", s(&file), "--at", &p.to_string()],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            &p.to_string(),
+            "--config",
+            "collapse-flip",
+        ],
         vec!["tri-type", s(&file), "--split", "0"],
         vec!["tri-type", s(&file), "--aggregate", "0,1"],
         vec!["tri-cancel", s(&file), "--quadruple", "0,1,2"],
         vec!["tri-cancel", s(&file), "--quadruple", "0,1,2,3"],
+        vec!["tri-cancel", s(&file), "--triple", "0,1"],
+        vec!["tri-cancel", s(&file), "--triple", &format!("{p},{q},0")],
+        vec!["tri-cancel", s(&file)],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            &q.to_string(),
+            "--config",
+            "collapse",
+        ],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            "0",
+            "--config",
+            "collapse",
+        ],
     ]
     .into_iter()
     .map(|v| v.into_iter().map(String::from).collect())
@@ -390,4 +416,84 @@ fn tri_type_split_and_aggregate() {
     let agg = read(&back);
     assert_eq!(agg.map.valence(Vert::new(numbers(&a["vertices"])[0])), 4);
     assert!(is_isomorphic(&agg.map, &input.map));
+}
+
+/// Sec. 7.3 then 7.2 from the command line: `tri-generate` at a v5 (the geodesic sphere)
+/// or a v7 (a lattice cone) makes a triple whose printed `tri-cancel --triple` gives back
+/// a mesh isomorphic to the input, and that cancellation's own printed undo generates the
+/// triple again (up to isomorphism).
+#[test]
+fn tri_generate_triples_and_cancel_them() {
+    let dir = temp_dir("tri-triple");
+    let cases = [
+        (
+            write(&dir, "sphere.obj", geodesic_sphere(2)),
+            0u32,
+            vec!["flip", "collapse", "split"],
+            5,
+        ),
+        (
+            write(&dir, "cone.obj", cone_disk(7, 5)),
+            0u32,
+            vec!["flip", "split"],
+            7,
+        ),
+    ];
+    for (file, at, configs, k) in cases {
+        let input = read(&file);
+        assert_eq!(input.map.valence(Vert::new(at)), k);
+        for config in configs {
+            let out = dir.join(format!("t{k}-{config}.obj"));
+            let v = json(&zipmesh(&[
+                "tri-generate",
+                s(&file),
+                "--at",
+                &at.to_string(),
+                "--config",
+                config,
+                "-o",
+                s(&out),
+                "--json",
+            ]));
+            let g = read(&out);
+            let three = numbers(&v["three"]);
+            let vals: Vec<usize> = three.iter().map(|&x| g.map.valence(Vert::new(x))).collect();
+            let want = if k == 5 { [5, 5, 7] } else { [7, 5, 7] };
+            assert_eq!(vals, want, "{config}: {v}");
+            assert!(positions_lost(&input, &g) <= 2);
+            let back = dir.join(format!("c{k}-{config}.obj"));
+            let c = json(&zipmesh(&[
+                "tri-cancel",
+                s(&out),
+                "--triple",
+                &join(&numbers(&v["undo"]["triple"])),
+                "-o",
+                s(&back),
+                "--json",
+            ]));
+            let cancelled = read(&back);
+            assert!(is_isomorphic(&cancelled.map, &input.map), "{k} {config}");
+            let left = c["remaining"].as_u64().unwrap() as u32;
+            assert_eq!(cancelled.map.valence(Vert::new(left)), k);
+            let u = &c["undo"];
+            let again = dir.join(format!("a{k}-{config}.obj"));
+            let o = zipmesh(&[
+                "tri-generate",
+                s(&back),
+                "--at",
+                &u["at"].to_string(),
+                "--toward",
+                &u["toward"].to_string(),
+                "--config",
+                u["config"].as_str().unwrap(),
+                "-o",
+                s(&again),
+            ]);
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(
+                is_isomorphic(&read(&again).map, &g.map),
+                "{k} {config}: {u}"
+            );
+        }
+    }
 }

@@ -13,10 +13,12 @@ use std::process::ExitCode;
 use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
 use zipmesh::tri_edit::{
-    aggregate_type_with, can_generate_quadruple, generate_quadruple_with, move_pair_with,
-    remove_quadruple_with, split_type_with, Direction, Quadruple, TriEditError,
+    aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
+    cancel_triple_with, generate_pair, generate_pair_v7, generate_pair_v7_with, generate_pair_with,
+    generate_quadruple_with, move_pair_with, remove_quadruple_with, split_type_with, Direction,
+    Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
 };
-use zipmesh::{Compaction, Dart, Map, Mesh, Vert};
+use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
 use crate::qzip::InputError;
@@ -51,16 +53,64 @@ pub struct MoveArgs {
     steps: u32,
 }
 
-/// A configuration of 5-5-7-7 generation.
-#[derive(Clone, Copy, ValueEnum)]
+/// A configuration of generation (docs/tri-edit.md).
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Config {
-    /// Flip the edge V-W: v5 at V and W.
+    /// Regular V: flip V-W (v5 at V and W). v5 V: flip the link edge W-B. v7 V: flip V-W.
     Flip,
-    /// Split V along V->W and the opposite dart: v7 at W and the opposite neighbour.
+    /// Regular V: split V along V->W and the opposite dart. v5 V: split W along W->V and
+    /// the opposite dart. v7 V: split V along V->W and four darts clockwise.
     Split,
-    /// Collapse V into W, then flip a spoke of W: a 5-7-7-5 chain, not a quadruple in two
-    /// triangles (tri-cancel does not remove it).
+    /// v5 V only: collapse V into W.
+    Collapse,
+    /// Regular V only: collapse V into W, then flip a spoke of W: a 5-7-7-5 chain, not a
+    /// quadruple in two triangles (tri-cancel does not remove it).
     CollapseFlip,
+}
+
+impl Config {
+    fn name(self) -> &'static str {
+        match self {
+            Config::Flip => "flip",
+            Config::Split => "split",
+            Config::Collapse => "collapse",
+            Config::CollapseFlip => "collapse-flip",
+        }
+    }
+}
+
+/// What a generation makes at `--at`: read off its valence.
+#[derive(Clone, Copy)]
+enum Generation {
+    Quadruple(Quadruple),
+    Five(Via),
+    Seven(Via7),
+}
+
+impl Generation {
+    /// The generation `config` names at a vertex of valence `k`, if there is one.
+    fn of(k: usize, config: Config) -> Option<Generation> {
+        use Config as C;
+        Some(match (k, config) {
+            (6, C::Flip) => Generation::Quadruple(Quadruple::Flip),
+            (6, C::Split) => Generation::Quadruple(Quadruple::Split),
+            (6, C::CollapseFlip) => Generation::Quadruple(Quadruple::CollapseFlip),
+            (5, C::Flip) => Generation::Five(Via::Flip),
+            (5, C::Collapse) => Generation::Five(Via::Collapse),
+            (5, C::Split) => Generation::Five(Via::Split),
+            (7, C::Flip) => Generation::Seven(Via7::Flip),
+            (7, C::Split) => Generation::Seven(Via7::Split),
+            _ => return None,
+        })
+    }
+
+    fn can(self, map: &Map, d: Dart) -> Result<(), TriEditError> {
+        match self {
+            Generation::Quadruple(how) => can_generate_quadruple(map, d, how),
+            Generation::Five(via) => can_generate_pair(map, d, via),
+            Generation::Seven(via) => can_generate_pair_v7(map, d, via),
+        }
+    }
 }
 
 /// `zipmesh tri-generate`.
@@ -68,7 +118,8 @@ pub enum Config {
 pub struct GenerateArgs {
     #[command(flatten)]
     files: Files,
-    /// A regular interior vertex (valence 6).
+    /// An interior vertex: regular (a 5-5-7-7 quadruple), a v5 (a 5-5-7 triple: the v5
+    /// moves and generates a 5-7 pair) or a v7 (a 5-7-7 triple).
     #[arg(long)]
     at: u32,
     /// A neighbour of V that fixes the dart V->W (default: the first neighbour that works).
@@ -95,12 +146,18 @@ pub struct TypeArgs {
 
 /// `zipmesh tri-cancel`.
 #[derive(Args)]
+#[group(id = "what", required = true, multiple = false, args = ["quadruple", "triple"])]
 pub struct CancelArgs {
     #[command(flatten)]
     files: Files,
     /// A 5-5-7-7 quadruple inside two triangles: four vertex numbers.
-    #[arg(long, value_delimiter = ',', num_args = 1, required = true)]
-    quadruple: Vec<u32>,
+    #[arg(long, value_delimiter = ',', num_args = 1)]
+    quadruple: Option<Vec<u32>>,
+    /// An adjacent 5-5-7 triple (the v7 next to both v5; one v5 is left) or 5-7-7 triple
+    /// (the v5 next to both v7; one v7 is left): three vertex numbers. The first v5 (v7)
+    /// given is the one that moves.
+    #[arg(long, value_delimiter = ',', num_args = 1)]
+    triple: Option<Vec<u32>>,
 }
 
 fn err(msg: impl std::fmt::Display) -> InputError {
@@ -299,18 +356,30 @@ fn why(e: TriEditError) -> String {
     }
 }
 
-fn quadruple(c: Config) -> Quadruple {
-    match c {
-        Config::Flip => Quadruple::Flip,
-        Config::Split => Quadruple::Split,
-        Config::CollapseFlip => Quadruple::CollapseFlip,
-    }
-}
-
-/// The dart `at -> toward`, or the first dart of `at` whose generation applies.
-fn generation_dart(args: &GenerateArgs, map: &Map, how: Quadruple) -> Result<Dart, InputError> {
+/// The generation at `--at` and its dart: `at -> toward`, or the first dart of `at` whose
+/// generation applies.
+fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart), InputError> {
     let f = &args.files;
     let at = verts(f, map, "--at", &[args.at], None)?[0];
+    let k = if map.is_boundary_vertex(at) {
+        0
+    } else {
+        map.valence(at)
+    };
+    let how = Generation::of(k, args.config).ok_or_else(|| {
+        err(format_args!(
+            "{}: --at {} --config {}: no such generation at {}; a regular vertex takes flip, \
+             split or collapse-flip, a v5 flip, collapse or split, a v7 flip or split",
+            f.file.display(),
+            args.at,
+            args.config.name(),
+            if k == 0 {
+                "a boundary vertex".to_string()
+            } else {
+                format!("an interior v{k}")
+            }
+        ))
+    })?;
     let darts: Vec<Dart> = match args.toward {
         Some(w) => {
             let w = verts(f, map, "--toward", &[w], None)?[0];
@@ -328,46 +397,90 @@ fn generation_dart(args: &GenerateArgs, map: &Map, how: Quadruple) -> Result<Dar
     };
     let mut last = TriEditError::WrongValence;
     for &d in &darts {
-        match can_generate_quadruple(map, d, how) {
-            Ok(()) => return Ok(d),
+        match how.can(map, d) {
+            Ok(()) => return Ok((how, d)),
             Err(e) => last = e,
         }
     }
     Err(err(format_args!(
-        "{}: --at {}: no 5-5-7-7 generation there: {}",
+        "{}: --at {}: no {} generation there: {}",
         f.file.display(),
         args.at,
-        match last {
-            TriEditError::WrongValence => "not a regular interior vertex (valence 6)".to_string(),
-            e => why(e),
-        }
+        args.config.name(),
+        why(last)
     )))
 }
 
-/// Runs `zipmesh tri-generate`: a 5-5-7-7 quadruple from a regular vertex.
+/// Runs `zipmesh tri-generate`: a 5-5-7-7 quadruple from a regular vertex, or a 5-5-7 /
+/// 5-7-7 triple from a v5 / v7.
 pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
     let f = &args.files;
     let mut mesh = load(f)?;
-    let how = quadruple(args.config);
-    let d = generation_dart(&args, &mesh.map, how)?;
-    let e = generate_quadruple_with(&mut mesh.map, &mut mesh.positions, d, how).map_err(|e| {
+    let (how, d) = generation_dart(&args, &mesh.map)?;
+    let refused = |e: TriEditError| {
         err(format_args!(
             "{}: --at {}: {}",
             f.file.display(),
             args.at,
             why(e)
         ))
-    })?;
-    let g = e.into_parts().0;
-    let in_two = g.in_two_triangles(&mesh.map);
+    };
+    let (m, pos) = (&mut mesh.map, &mut mesh.positions);
+    let triple = |moved: Vert, pair: Option<(Vert, Vert)>| {
+        let (p, q) = pair.unwrap_or((moved, moved));
+        [moved, p, q]
+    };
+    let (made, steps): (Made, Vec<TriRecord>) = match how {
+        Generation::Quadruple(q) => {
+            let g = generate_quadruple_with(m, pos, d, q)
+                .map_err(refused)?
+                .into_parts()
+                .0;
+            let in_two = g.in_two_triangles(m);
+            (
+                Made::Four(g.vertices().to_vec(), in_two),
+                g.steps().to_vec(),
+            )
+        }
+        Generation::Five(via) => {
+            let g = generate_pair_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let r = g.record();
+            (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
+        }
+        Generation::Seven(via) => {
+            let g = generate_pair_v7_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let r = g.record();
+            (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
+        }
+    };
+    let ops = Ops::of(&steps);
+    match made {
+        Made::Four(four, in_two) => report_quadruple(f, mesh, &ops, four, in_two),
+        Made::Three(three) => report_triple(f, mesh, &ops, three),
+    }
+}
+
+enum Made {
+    Four(Vec<Vert>, bool),
+    Three([Vert; 3]),
+}
+
+fn report_quadruple(
+    f: &Files,
+    mesh: Mesh,
+    ops: &Ops,
+    four: Vec<Vert>,
+    in_two: bool,
+) -> Result<ExitCode, InputError> {
     let by = |k: usize| -> Vec<Vert> {
-        let vs = g.vertices().iter().copied();
-        vs.filter(|&v| mesh.map.valence(v) == k).collect()
+        four.iter()
+            .copied()
+            .filter(|&v| mesh.map.valence(v) == k)
+            .collect()
     };
     let (fives, sevens) = (by(5), by(7));
-    let ops = Ops::of(g.steps());
-    finish(f, mesh, &ops, |c| {
-        let four = renumber_all(c, g.vertices());
+    finish(f, mesh, ops, |c| {
+        let four = renumber_all(c, &four);
         let undo = in_two.then(|| json!({"quadruple": four}));
         let value = json!({
             "four": four,
@@ -389,6 +502,32 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
             "v5 at {}, v7 at {}\n{undo_text}",
             list(&renumber_all(c, &fives)),
             list(&renumber_all(c, &sevens))
+        );
+        (value, text)
+    })
+}
+
+fn report_triple(
+    f: &Files,
+    mesh: Mesh,
+    ops: &Ops,
+    three: [Vert; 3],
+) -> Result<ExitCode, InputError> {
+    finish(f, mesh, ops, |c| {
+        let t = renumber_all(c, &three);
+        let value = json!({
+            "three": t,
+            "moved": t[0],
+            "pair": [t[1], t[2]],
+            "undo": {"triple": t},
+        });
+        let text = format!(
+            "the moved vertex is at {}, the new 5-7 pair at {},{}\nundo: zipmesh tri-cancel {} --triple {} -o UNDONE",
+            list(&t[..1]),
+            list(&t[1..2]),
+            list(&t[2..]),
+            f.output.display(),
+            list(&t)
         );
         (value, text)
     })
@@ -487,11 +626,89 @@ fn type_why(e: TriEditError, map: &Map, v: Vert) -> String {
     }
 }
 
-/// Runs `zipmesh tri-cancel`: a 5-5-7-7 quadruple inside two triangles removed.
+/// Runs `zipmesh tri-cancel`: a 5-5-7-7 quadruple inside two triangles, or an adjacent
+/// 5-5-7 or 5-7-7 triple, removed.
 pub fn run_cancel(args: CancelArgs) -> Result<ExitCode, InputError> {
-    let f = &args.files;
+    match (&args.quadruple, &args.triple) {
+        (Some(q), _) => cancel_quadruple(&args.files, q),
+        (None, Some(t)) => cancel_triple_cli(&args.files, t),
+        (None, None) => Err(err(
+            "tri-cancel needs --quadruple A,B,C,D or --triple A,B,C",
+        )),
+    }
+}
+
+/// The generation at `at` (some dart, some configuration) that gives back a map isomorphic
+/// to `original`: the undo of a triple cancellation, found by trying each.
+fn find_generation(edited: &Map, original: &Map, at: Vert) -> Option<(Vert, Config)> {
+    let k = edited.valence(at);
+    let configs = [Config::Flip, Config::Split, Config::Collapse];
+    edited.vertex_darts(at).find_map(|d| {
+        configs.into_iter().find_map(|config| {
+            let mut m = edited.clone();
+            let ok = match Generation::of(k, config)? {
+                Generation::Five(via) => generate_pair(&mut m, d, via, Moved::First).is_ok(),
+                Generation::Seven(via) => generate_pair_v7(&mut m, d, via, Moved::First).is_ok(),
+                Generation::Quadruple(_) => false,
+            };
+            (ok && is_isomorphic(&m, original)).then(|| (edited.dest(d), config))
+        })
+    })
+}
+
+fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
     let mut mesh = load(f)?;
-    let four = verts(f, &mesh.map, "--quadruple", &args.quadruple, Some(4))?;
+    let original = mesh.map.clone();
+    let three = verts(f, &mesh.map, "--triple", given, Some(3))?;
+    let t = cancel_triple_with(&mut mesh.map, &mut mesh.positions, &three).map_err(|e| {
+        err(format_args!(
+            "{}: --triple {}: {}",
+            f.file.display(),
+            list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+            match e {
+                TriEditError::NotAPair => "not an adjacent 5-5-7 triple (the v7 a neighbour of \
+                     both v5) nor an adjacent 5-7-7 triple (the v5 a neighbour of both v7)"
+                    .to_string(),
+                e => why(e),
+            }
+        ))
+    })?;
+    let t = t.into_parts().0;
+    let left = t.remaining();
+    let undo = find_generation(&mesh.map, &original, left);
+    let ops = Ops::of(&[match t {
+        TripleEdit::Five(m) => *m.record(),
+        TripleEdit::Seven(m) => *m.record(),
+    }]);
+    let k = mesh.map.valence(left);
+    finish(f, mesh, &ops, |c| {
+        let at = renumber(c, left);
+        let undo = undo.map(
+            |(w, config)| json!({"at": at, "toward": renumber(c, w), "config": config.name()}),
+        );
+        let text = match &undo {
+            Some(u) => format!(
+                "one v{k} left at {}\nundo: zipmesh tri-generate {} --at {} --toward {} --config {} -o UNDONE",
+                list(&[at]),
+                f.output.display(),
+                u["at"],
+                u["toward"],
+                u["config"].as_str().unwrap_or("?")
+            ),
+            None => format!(
+                "one v{k} left at {}\nundo: no single generation restores the input here",
+                list(&[at])
+            ),
+        };
+        let value = json!({"triple": given, "remaining": at, "valence": k, "undo": undo});
+        (value, text)
+    })
+}
+
+/// `tri-cancel --quadruple`.
+fn cancel_quadruple(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
+    let mut mesh = load(f)?;
+    let four = verts(f, &mesh.map, "--quadruple", given, Some(4))?;
     let fives: Vec<Vert> = four
         .iter()
         .copied()
@@ -501,7 +718,7 @@ pub fn run_cancel(args: CancelArgs) -> Result<ExitCode, InputError> {
         err(format_args!(
             "{}: --quadruple {}: {}",
             f.file.display(),
-            list(&args.quadruple.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+            list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
             match e {
                 TriEditError::NotAPair => "not two v5 and two v7 forming two triangles that \
                      share the edge of the two v7 or of the two v5"
@@ -524,7 +741,7 @@ pub fn run_cancel(args: CancelArgs) -> Result<ExitCode, InputError> {
     finish(f, mesh, &ops, |c| {
         let (at, toward) = (renumber(c, at), toward.and_then(|t| renumber(c, t)));
         let value = json!({
-            "quadruple": args.quadruple,
+            "quadruple": given,
             "undo": {"at": at, "toward": toward, "config": config},
         });
         let text = format!(
