@@ -59,6 +59,7 @@ mod property;
 mod qzip;
 mod report;
 mod shrink;
+mod tri_edit;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
@@ -66,6 +67,7 @@ pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, 
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
+pub use tri_edit::tri_edit_properties;
 
 /// A deterministic slice of the cases: those whose position `p` has `p % count == index`.
 /// Written `index/count`; `0/1` is every case.
