@@ -497,3 +497,45 @@ fn tri_generate_triples_and_cancel_them() {
         }
     }
 }
+
+/// `tri-cancel --triple` on a triple that is not adjacent (Sec. 7.2): the pair walks back
+/// and the triple cancels into one v5; the report counts the pair moves and has no undo.
+#[test]
+fn tri_cancel_far_triple() {
+    use zipmesh::tri_edit::{generate_pair, Moved, Via};
+    let dir = temp_dir("tri-far");
+    let mut map = geodesic_sphere(3);
+    let d = map.vertex_dart(Vert::new(0));
+    let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
+    let (mut p, mut q) = g.pair().unwrap();
+    for _ in 0..2 {
+        let m = move_pair(&mut map, p, q, Direction::CollapseLeft).unwrap();
+        (p, q) = (m.p(), m.q());
+    }
+    assert!(map.dart_between(q, g.moved()).is_none());
+    let c = map.compact();
+    let at = |v: Vert| c.vertices[v.index()].unwrap().index() as u32;
+    let three = [at(g.moved()), at(p), at(q)];
+    let file = write(&dir, "far.obj", map);
+    let input = read(&file);
+    let out = dir.join("cancelled.obj");
+    let v = json(&zipmesh(&[
+        "tri-cancel",
+        s(&file),
+        "--triple",
+        &join(&three),
+        "-o",
+        s(&out),
+        "--json",
+    ]));
+    let done = read(&out);
+    done.map.check().unwrap();
+    let left = v["remaining"].as_u64().unwrap() as u32;
+    assert_eq!(done.map.valence(Vert::new(left)), 5);
+    let walked = v["pair_moves"].as_u64().unwrap();
+    assert!(walked >= 1);
+    assert!(v["undo"].is_null());
+    let fives = |m: &Mesh| m.map.vertices().filter(|&x| m.map.valence(x) == 5).count();
+    assert_eq!((fives(&input), fives(&done)), (13, 12));
+    assert!(positions_lost(&input, &done) <= 2 * (walked as usize + 1));
+}

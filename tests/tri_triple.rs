@@ -8,9 +8,9 @@ use proptest::prelude::*;
 use zipmesh::gen::{cone_disk, geodesic_sphere};
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::tri_edit::{
-    can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple, cancel_triple_with,
-    generate_pair, generate_pair_v7, generate_pair_v7_with, remove_pair_v7, Moved, TripleEdit, Via,
-    Via7,
+    can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
+    cancel_triple_along, cancel_triple_with, generate_pair, generate_pair_v7,
+    generate_pair_v7_with, remove_pair_v7, Moved, TripleEdit, Via, Via7,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -198,4 +198,73 @@ proptest! {
         check_random_triples(&map);
         check_v7_generations(&map);
     }
+}
+
+/// Sec. 7.2 for triples that are not adjacent: a triple is generated (a v5 of the sphere or
+/// the v7 of a cone moves and makes a pair), the pair walks `k` steps away in each
+/// direction, and `cancel_triple_along` brings it back and cancels: one vertex of the
+/// doubled type left, the start's irregular multiset, exact undo; or a refusal with the map
+/// unchanged. Returns (applied, tried).
+fn check_far_triples(start: &Map, v: Vert, seven: bool) -> (usize, usize) {
+    let (mut applied, mut tried) = (0, 0);
+    for k in 1..=3 {
+        for dir in zipmesh::tri_edit::Direction::ALL {
+            let mut m = start.clone();
+            let d = m.vertex_dart(v);
+            let (moved, mut pq) = if seven {
+                let g = generate_pair_v7(&mut m, d, Via7::Split, Moved::First).unwrap();
+                (g.moved(), g.pair().unwrap())
+            } else {
+                let g = generate_pair(&mut m, d, Via::Flip, Moved::First).unwrap();
+                (g.moved(), g.pair().unwrap())
+            };
+            let walked =
+                (0..k).all(
+                    |_| match zipmesh::tri_edit::move_pair(&mut m, pq.0, pq.1, dir) {
+                        Ok(s) => {
+                            pq = (s.p(), s.q());
+                            true
+                        }
+                        Err(_) => false,
+                    },
+                );
+            let lead = if seven { pq.0 } else { pq.1 };
+            if !walked || m.dart_between(lead, moved).is_some() {
+                continue; // still (or again) adjacent: not the case under test
+            }
+            tried += 1;
+            let before = m.clone();
+            match cancel_triple_along(&mut m, &[moved, pq.0, pq.1], 12) {
+                Err(_) => assert_eq!(m, before),
+                Ok(c) => {
+                    applied += 1;
+                    m.check().unwrap();
+                    assert!(!c.moves().is_empty());
+                    assert_eq!(m.valence(c.remaining()), if seven { 7 } else { 5 });
+                    assert_eq!(irregular(&m), irregular(start));
+                    c.undo(&mut m).unwrap();
+                    assert_eq!(m, before);
+                }
+            }
+        }
+    }
+    (applied, tried)
+}
+
+#[test]
+fn far_triples_cancel_after_moving_the_pair() {
+    let sphere = geodesic_sphere(3);
+    let (mut a5, mut t5) = (0, 0);
+    for v in (0..12).map(Vert::new) {
+        let (a, t) = check_far_triples(&sphere, v, false);
+        a5 += a;
+        t5 += t;
+    }
+    let (a7, t7) = check_far_triples(&cone_disk(7, 7), Vert::new(0), true);
+    println!("far 5-5-7: {a5} of {t5} cancelled; far 5-7-7: {a7} of {t7}");
+    assert!(t5 > 0 && t7 > 0);
+    assert!(
+        a5 * 2 >= t5 && a7 * 2 >= t7,
+        "5-5-7 {a5}/{t5}, 5-7-7 {a7}/{t7}"
+    );
 }

@@ -72,9 +72,10 @@ pub use quadruple::{
     remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
 pub use triple::{
-    can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple, cancel_triple_with,
-    generate_pair_v7, generate_pair_v7_with, remove_pair_v7, remove_pair_v7_with, TripleEdit,
-    V7Move, Via7,
+    can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
+    cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,
+    generate_pair_v7_with, remove_pair_v7, remove_pair_v7_with, TripleCancel, TripleEdit, V7Move,
+    Via7,
 };
 pub use types::{
     aggregate_type, aggregate_type_with, can_aggregate_type, can_split_type, split_type,

@@ -468,3 +468,227 @@ impl Undo for TripleEdit {
         TripleEdit::undo(self, map)
     }
 }
+
+/// The adjacent 5-7 pair of a triple that is not adjacent yet, and the vertex that its
+/// moves must bring next to the third: for 5-5-7 the v7 (to touch the other v5), for 5-7-7
+/// the v5 (to touch the other v7). `(p, q, third, v7_leads)`.
+fn far_plan(map: &Map, three: &[Vert]) -> Result<(Vert, Vert, Vert, bool), TriEditError> {
+    let &[a, b, c] = three else {
+        return Err(TriEditError::NotAPair);
+    };
+    if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let val = |v: Vert| {
+        if map.is_boundary_vertex(v) {
+            0
+        } else {
+            map.valence(v)
+        }
+    };
+    let of = |k| [a, b, c].into_iter().filter(move |&v| val(v) == k);
+    let (fives, sevens): (alloc::vec::Vec<Vert>, alloc::vec::Vec<Vert>) =
+        (of(5).collect(), of(7).collect());
+    let adjacent = |x: Vert, y: Vert| map.dart_between(x, y).is_some();
+    match (fives.as_slice(), sevens.as_slice()) {
+        (&[x, y], &[q]) => {
+            // The v5 given first that forms the pair stays with the v7; the other waits.
+            let (p, w) = if adjacent(x, q) { (x, y) } else { (y, x) };
+            adjacent(p, q)
+                .then_some((p, q, w, true))
+                .ok_or(TriEditError::NotAPair)
+        }
+        (&[p], &[x, y]) => {
+            let (q, w) = if adjacent(p, x) { (x, y) } else { (y, x) };
+            adjacent(p, q)
+                .then_some((p, q, w, false))
+                .ok_or(TriEditError::NotAPair)
+        }
+        _ => Err(TriEditError::NotAPair),
+    }
+}
+
+/// Graph distance from `from` to `to` (`usize::MAX` when apart), by breadth-first search.
+fn distance(map: &Map, from: Vert, to: Vert) -> usize {
+    let mut seen = alloc::collections::BTreeMap::new();
+    seen.insert(from, 0usize);
+    let mut queue = alloc::collections::VecDeque::from([from]);
+    while let Some(v) = queue.pop_front() {
+        let dv = seen[&v];
+        if v == to {
+            return dv;
+        }
+        for d in map.vertex_darts(v) {
+            let w = map.dest(d);
+            if let alloc::collections::btree_map::Entry::Vacant(e) = seen.entry(w) {
+                e.insert(dv + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    usize::MAX
+}
+
+/// Cancels a 5-5-7 or 5-7-7 triple whose third vertex is not next to the pair yet (Sec.
+/// 7.2): the adjacent 5-7 pair among the three moves by atomic 5-7 movements
+/// ([`super::move_pair`]) until its v7 (5-5-7) or its v5 (5-7-7) touches the third vertex,
+/// each step in the direction that brings it one edge closer, at most `max_steps` steps;
+/// then [`cancel_triple`] removes the triple. All or nothing: when no direction brings it
+/// closer, a move or the cancellation refuses, or the steps run out, every step is undone
+/// and the error returned (the map `==` to before). An adjacent triple takes no step.
+///
+/// ```
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{cancel_triple_along, generate_pair, move_pair, Direction, Moved, Via};
+/// use zipmesh::{is_isomorphic, Vert};
+/// let mut map = geodesic_sphere(3);
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
+/// let (p, q) = g.pair().unwrap();
+/// // Walk the pair two steps away from the moved v5: a triple that is not adjacent.
+/// let m1 = move_pair(&mut map, p, q, Direction::CollapseLeft).unwrap();
+/// let m2 = move_pair(&mut map, m1.p(), m1.q(), Direction::CollapseLeft).unwrap();
+/// let before = map.clone();
+/// let c = cancel_triple_along(&mut map, &[g.moved(), m2.p(), m2.q()], 10).unwrap();
+/// assert!(!c.moves().is_empty());
+/// assert_eq!(map.valence(c.remaining()), 5);
+/// c.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// ```
+pub fn cancel_triple_along(
+    map: &mut Map,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<TripleCancel, TriEditError> {
+    cancel_triple_along_with(map, &mut super::types::NoData, three, max_steps)
+        .map(|e| e.into_parts().0)
+}
+
+/// [`cancel_triple_along`] on a map and its per-vertex data (one journal for every step).
+///
+/// See [`cancel_triple_along`]; the undo of the result is `undo_with` (map and data `==`).
+pub fn cancel_triple_along_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<Edited<TripleCancel, A>, TriEditError> {
+    let mut journal = crate::mesh::Journal::start(attrs);
+    let mut moves: alloc::vec::Vec<super::PairMove> = alloc::vec::Vec::new();
+    let result = walk_and_cancel(map, attrs, &mut journal, &mut moves, three, max_steps);
+    match result {
+        Ok(last) => Ok(Edited::new(TripleCancel { moves, last }, journal)),
+        Err(e) => {
+            // Fresh records of this map: their undo does not refuse.
+            for m in moves.iter().rev() {
+                let _ = m.undo(map);
+            }
+            journal.rewind(attrs);
+            Err(e)
+        }
+    }
+}
+
+fn walk_and_cancel<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    journal: &mut crate::mesh::Journal<A>,
+    moves: &mut alloc::vec::Vec<super::PairMove>,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<TripleEdit, TriEditError> {
+    if triple_plan(map, three).is_err() {
+        let (mut p, mut q, w, v7_leads) = far_plan(map, three)?;
+        let lead = |p: Vert, q: Vert| if v7_leads { q } else { p };
+        let mut left = distance(map, lead(p, q), w);
+        while left > 1 {
+            if moves.len() >= max_steps {
+                return Err(TriEditError::Irregular);
+            }
+            // The direction whose lead vertex ends one edge closer to w.
+            let step = super::Direction::ALL.into_iter().find_map(|dir| {
+                let (np, nq) = next_pair(map, p, q, dir)?;
+                (distance(map, lead(np, nq), w) < left).then_some(dir)
+            });
+            let dir = step.ok_or(TriEditError::Irregular)?;
+            let e = super::move_pair_with(map, attrs, p, q, dir)?;
+            let (m, j) = e.into_parts();
+            journal.absorb(j);
+            (p, q) = (m.p(), m.q());
+            moves.push(m);
+            left = distance(map, lead(p, q), w);
+        }
+        let mut three = [p, q, w];
+        // The vertex of the doubled type that waited moves in the cancellation.
+        three.rotate_right(1);
+        return cancel_step(map, attrs, journal, &three);
+    }
+    cancel_step(map, attrs, journal, three)
+}
+
+fn cancel_step<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    journal: &mut crate::mesh::Journal<A>,
+    three: &[Vert],
+) -> Result<TripleEdit, TriEditError> {
+    let (t, j) = cancel_triple_with(map, attrs, three)?.into_parts();
+    journal.absorb(j);
+    Ok(t)
+}
+
+/// Where a 5-7 move in `dir` would leave the pair, if it applies (read without moving).
+fn next_pair(map: &Map, p: Vert, q: Vert, dir: super::Direction) -> Option<(Vert, Vert)> {
+    super::can_move_pair(map, p, q, dir).ok()?;
+    let mut probe = map.clone();
+    let m = super::move_pair(&mut probe, p, q, dir).ok()?;
+    // A split creates no vertex of the pair (q stays), so the handles are `map`'s.
+    Some((m.p(), m.q()))
+}
+
+/// Record of a [`cancel_triple_along`]: the pair's moves, then the cancellation.
+///
+/// See [`cancel_triple_along`] for an example.
+#[derive(Clone, Debug)]
+pub struct TripleCancel {
+    moves: alloc::vec::Vec<super::PairMove>,
+    last: TripleEdit,
+}
+
+impl TripleCancel {
+    /// The atomic 5-7 movements done before the cancellation, in order.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn moves(&self) -> &[super::PairMove] {
+        &self.moves
+    }
+
+    /// The cancellation of the (then adjacent) triple.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn cancellation(&self) -> &TripleEdit {
+        &self.last
+    }
+
+    /// The one irregular vertex left.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn remaining(&self) -> Vert {
+        self.last.remaining()
+    }
+
+    /// Undoes the cancellation and the moves in reverse (`==`), or refuses with
+    /// [`Refusal::StaleRecord`] (the steps already undone are not redone).
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.last.undo(map)?;
+        self.moves.iter().rev().try_for_each(|m| m.undo(map))
+    }
+}
+
+impl Undo for TripleCancel {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        TripleCancel::undo(self, map)
+    }
+}

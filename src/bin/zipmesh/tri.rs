@@ -14,14 +14,18 @@ use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
 use zipmesh::tri_edit::{
     aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
-    cancel_triple_with, generate_pair, generate_pair_v7, generate_pair_v7_with, generate_pair_with,
-    generate_quadruple_with, move_pair_with, remove_quadruple_with, split_type_with, Direction,
-    Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
+    cancel_triple_along_with, generate_pair, generate_pair_v7, generate_pair_v7_with,
+    generate_pair_with, generate_quadruple_with, move_pair_with, remove_quadruple_with,
+    split_type_with, Direction, Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
 };
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
 use crate::qzip::InputError;
+
+/// The most atomic 5-7 moves `tri-cancel --triple` makes to bring a pair next to the
+/// third vertex (Sec. 7.2).
+const MAX_WALK: usize = 64;
 
 /// Input and output shared by every triangle edit.
 #[derive(Args)]
@@ -153,9 +157,10 @@ pub struct CancelArgs {
     /// A 5-5-7-7 quadruple inside two triangles: four vertex numbers.
     #[arg(long, value_delimiter = ',', num_args = 1)]
     quadruple: Option<Vec<u32>>,
-    /// An adjacent 5-5-7 triple (the v7 next to both v5; one v5 is left) or 5-7-7 triple
-    /// (the v5 next to both v7; one v7 is left): three vertex numbers. The first v5 (v7)
-    /// given is the one that moves.
+    /// A 5-5-7 triple (one v5 is left) or 5-7-7 triple (one v7 is left): three vertex
+    /// numbers, an adjacent 5-7 pair among them. When the third is not next to the pair's
+    /// v7 (5-5-7) or v5 (5-7-7) the pair first moves toward it (Sec. 7.2). The first v5 (v7)
+    /// given is the one that moves in the cancellation.
     #[arg(long, value_delimiter = ',', num_args = 1)]
     triple: Option<Vec<u32>>,
 }
@@ -660,26 +665,39 @@ fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
     let mut mesh = load(f)?;
     let original = mesh.map.clone();
     let three = verts(f, &mesh.map, "--triple", given, Some(3))?;
-    let t = cancel_triple_with(&mut mesh.map, &mut mesh.positions, &three).map_err(|e| {
-        err(format_args!(
-            "{}: --triple {}: {}",
-            f.file.display(),
-            list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
-            match e {
-                TriEditError::NotAPair => "not an adjacent 5-5-7 triple (the v7 a neighbour of \
-                     both v5) nor an adjacent 5-7-7 triple (the v5 a neighbour of both v7)"
-                    .to_string(),
-                e => why(e),
-            }
-        ))
-    })?;
+    let t = cancel_triple_along_with(&mut mesh.map, &mut mesh.positions, &three, MAX_WALK)
+        .map_err(|e| {
+            err(format_args!(
+                "{}: --triple {}: {}",
+                f.file.display(),
+                list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+                match e {
+                    TriEditError::NotAPair =>
+                        "not a 5-5-7 triple (two v5 and a v7, the v7 next to \
+                     one of them) nor a 5-7-7 triple (a v5, two v7, the v5 next to one of them)"
+                            .to_string(),
+                    TriEditError::Irregular => format!(
+                        "the pair cannot be brought next to the third vertex through a regular \
+                     neighbourhood within {MAX_WALK} steps (or the cancellation needs a \
+                     vertex regular that is not)"
+                    ),
+                    e => why(e),
+                }
+            ))
+        })?;
     let t = t.into_parts().0;
     let left = t.remaining();
-    let undo = find_generation(&mesh.map, &original, left);
-    let ops = Ops::of(&[match t {
+    let walked = t.moves().len();
+    // An adjacent triple is undone by one generation at the vertex left, found by trying.
+    let undo = (walked == 0)
+        .then(|| find_generation(&mesh.map, &original, left))
+        .flatten();
+    let mut steps: Vec<TriRecord> = t.moves().iter().map(|m| *m.record()).collect();
+    steps.push(match t.cancellation() {
         TripleEdit::Five(m) => *m.record(),
         TripleEdit::Seven(m) => *m.record(),
-    }]);
+    });
+    let ops = Ops::of(&steps);
     let k = mesh.map.valence(left);
     finish(f, mesh, &ops, |c| {
         let at = renumber(c, left);
@@ -696,11 +714,18 @@ fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
                 u["config"].as_str().unwrap_or("?")
             ),
             None => format!(
-                "one v{k} left at {}\nundo: no single generation restores the input here",
+                "one v{k} left at {} after {walked} pair moves\nundo: no single generation \
+                 restores the input here (only the input file does)",
                 list(&[at])
             ),
         };
-        let value = json!({"triple": given, "remaining": at, "valence": k, "undo": undo});
+        let value = json!({
+            "triple": given,
+            "remaining": at,
+            "valence": k,
+            "pair_moves": walked,
+            "undo": undo,
+        });
         (value, text)
     })
 }
