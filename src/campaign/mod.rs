@@ -60,6 +60,7 @@ mod qzip;
 mod report;
 mod shard;
 mod shrink;
+mod tri_edit;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
@@ -69,6 +70,7 @@ pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shard::{Shard, ShardError};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
+pub use tri_edit::tri_edit_properties;
 
 /// A campaign's settings. `Config::default()` is the default campaign of `zipmesh check`.
 ///

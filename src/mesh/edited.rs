@@ -180,6 +180,17 @@ impl<A: VertexAttributes> Journal<A> {
         attrs.shrink_to(self.extent);
     }
 
+    /// Takes over the saves of a later journal on the same layer, so that an edit of
+    /// several steps keeps one journal: a vertex saved already keeps its older value, and
+    /// the extent stays this journal's (the layer's before the first step).
+    pub(crate) fn absorb(&mut self, later: Journal<A>) {
+        for (v, old) in later.saved {
+            if !self.saved.iter().any(|&(s, _)| s == v) {
+                self.saved.push((v, old));
+            }
+        }
+    }
+
     /// The number of values saved (vertices that existed and were overwritten).
     ///
     /// See [`Journal`] for an example.
