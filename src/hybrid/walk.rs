@@ -94,6 +94,9 @@ impl fmt::Display for UnknownMove {
     }
 }
 
+#[cfg(feature = "std")]
+impl std::error::Error for UnknownMove {}
+
 impl FromStr for Move {
     type Err = UnknownMove;
     fn from_str(s: &str) -> Result<Move, UnknownMove> {

@@ -7,6 +7,7 @@
 //! `SIGINT` and `SIGTERM` (temporary files removed). `check` adds its own (see `check.rs`).
 
 mod check;
+mod hybrid;
 mod out;
 mod qzip;
 mod signals;
@@ -82,6 +83,9 @@ enum Command {
     /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
     /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
     Zip(qzip::ZipArgs),
+    /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
+    /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
+    TriWalk(hybrid::TriWalkArgs),
 }
 
 fn main() -> ExitCode {
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
+        Command::TriWalk(args) => hybrid::run_tri_walk(args).map_err(|e| e.to_string()),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -121,7 +126,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
         Command::Check(args) => return Ok(check::run(args)),
         // Dispatched in `main`: their errors are not file errors.
-        Command::Moves(_) | Command::Zip(_) => {}
+        Command::Moves(_) | Command::Zip(_) | Command::TriWalk(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),
