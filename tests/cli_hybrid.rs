@@ -184,3 +184,79 @@ fn bad_input_exits_2_without_output() {
         assert!(!out.exists(), "{c:?} left an output file");
     }
 }
+
+/// `zip` and `moves` accept a quad-dominant mesh: the path winds around the triangles, the
+/// result keeps them, and the printed undo restores the input.
+#[test]
+fn zip_and_moves_on_a_quad_dominant_mesh() {
+    use zipmesh::invariants::{irregular_vertices, MeshKind};
+    use zipmesh::qzip::{sketch, SketchOptions};
+    let dir = temp_dir("zip-quad-dominant");
+    let (mesh, _) = gen::with_triangle_pairs(gen::subdivided_icosahedron(2), 2, 8, 1);
+    let inp = dir.join("in.obj");
+    io::write_mesh(&inp, &mesh).unwrap();
+    let (mesh, _) = io::read_mesh(&inp).unwrap();
+    let m = &mesh.map;
+    let opts = hybrid::avoid_triangles(m, SketchOptions::default());
+    let sing = irregular_vertices(m, MeshKind::Quad);
+    let (a, b) = sing
+        .iter()
+        .flat_map(|&a| sing.iter().map(move |&b| (a, b)))
+        .find(|&(a, b)| a != b && sketch(m, a, b, &opts).is_ok_and(|p| p.len() >= 4))
+        .unwrap();
+    let (fa, fb) = (a.index().to_string(), b.index().to_string());
+    let rows = json(&zipmesh(&[
+        "moves",
+        s(&inp),
+        "--from",
+        &fa,
+        "--to",
+        &fb,
+        "--json",
+    ]));
+    assert_eq!(rows.as_array().unwrap().len(), 4);
+    let out = dir.join("out.obj");
+    let r = json(&zipmesh(&[
+        "zip",
+        s(&inp),
+        "--from",
+        &fa,
+        "--to",
+        &fb,
+        "--move",
+        "LC",
+        "-o",
+        s(&out),
+        "--json",
+    ]));
+    let (edited, _) = io::read_mesh(&out).unwrap();
+    assert_eq!(
+        hybrid::triangles(&edited.map).len(),
+        hybrid::triangles(m).len()
+    );
+    let u = &r["undo"];
+    let path: Vec<String> = u["path"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+    let back = dir.join("back.obj");
+    let o = zipmesh(&[
+        "zip",
+        s(&out),
+        "--from",
+        &num(&u["from"]),
+        "--to",
+        &num(&u["to"]),
+        "--move",
+        u["move"].as_str().unwrap(),
+        "--path",
+        &path.join(","),
+        "-o",
+        s(&back),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (restored, _) = io::read_mesh(&back).unwrap();
+    assert!(is_isomorphic(&restored.map, m));
+}

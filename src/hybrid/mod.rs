@@ -108,3 +108,40 @@ pub fn irregular_effective(map: &Map, tips: &[Dart]) -> Vec<(i64, bool)> {
 pub fn triangles(map: &Map) -> Vec<Face> {
     map.faces().filter(|&f| map.degree(f) == 3).collect()
 }
+
+/// Sketch options for Q-zip on a quad-dominant map (Sec. 3.2, "wind the path around the
+/// triangle"): `opts` with every triangle forbidden and every edge at a triangle's corner or
+/// at a neighbour of one, so that a surgery path keeps two edges away from each triangle and
+/// no quad the chain collapses or splits has a triangle corner. A movement whose end is
+/// that close to a triangle finds no path (the triangle would have to move first).
+///
+/// ```
+/// use zipmesh::{gen, hybrid, qzip::{sketch, SketchOptions}};
+/// let (mesh, tips) = gen::quad_dominant(12, 12, 1, 3);
+/// let opts = hybrid::avoid_triangles(&mesh.map, SketchOptions::default());
+/// let tip = mesh.map.origin(tips[0]);
+/// let far = mesh.map.vertices().find(|&v| v != tip).unwrap();
+/// // A path may not reach the tip.
+/// assert!(sketch(&mesh.map, far, tip, &opts).is_err());
+/// ```
+pub fn avoid_triangles<'a>(
+    map: &Map,
+    opts: crate::qzip::SketchOptions<'a>,
+) -> crate::qzip::SketchOptions<'a> {
+    let tris = triangles(map);
+    let mut near: Vec<Vert> = Vec::new();
+    for &f in &tris {
+        for d in map.face_darts(f) {
+            let c = map.origin(d);
+            near.push(c);
+            near.extend(map.vertex_darts(c).map(|e| map.dest(e)));
+        }
+    }
+    near.sort_unstable();
+    near.dedup();
+    let edges: Vec<crate::map::Edge> = near
+        .iter()
+        .flat_map(|&v| map.vertex_darts(v).map(|d| d.edge()))
+        .collect();
+    opts.forbid_faces(tris).forbid_edges(edges)
+}
