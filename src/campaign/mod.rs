@@ -62,7 +62,7 @@ mod shrink;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
-pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
+pub use property::{builtin, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
