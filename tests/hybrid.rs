@@ -376,3 +376,24 @@ fn split_and_merge_are_inverse() {
         assert_eq!(m, grid);
     }
 }
+
+/// An undo out of order, or on another map, is refused with the map unchanged.
+#[test]
+fn stale_records_are_refused() {
+    let (mesh, tips) = gen::quad_dominant(10, 10, 1, 2);
+    for mv in Move::ALL {
+        let mut m = mesh.map.clone();
+        let first = hybrid::move_triangle(&mut m, tips[0], mv).unwrap();
+        let second = hybrid::move_triangle(&mut m, first.tip(), mv).unwrap();
+        let snapshot = m.clone();
+        assert_eq!(first.undo(&mut m), Err(Refusal::StaleRecord), "{mv}");
+        assert_eq!(m, snapshot);
+        // On the map before the move: refused too.
+        let mut fresh = mesh.map.clone();
+        assert_eq!(first.undo(&mut fresh), Err(Refusal::StaleRecord), "{mv}");
+        assert_eq!(fresh, mesh.map);
+        second.undo(&mut m).unwrap();
+        first.undo(&mut m).unwrap();
+        assert_eq!(m, mesh.map);
+    }
+}
