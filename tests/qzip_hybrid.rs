@@ -27,7 +27,7 @@ fn fixtures() -> Vec<Map> {
     out
 }
 
-fn opts(map: &Map) -> SketchOptions {
+fn opts(map: &Map) -> SketchOptions<'static> {
     hybrid::avoid_triangles(map, SketchOptions::default())
 }
 
