@@ -208,6 +208,7 @@ fn show_checks(
 fn properties(args: &CheckArgs) -> Vec<Property> {
     let mut all = campaign::kernel();
     all.extend(campaign::operators());
+    all.extend(campaign::hybrid());
     let per_case = if args.files.is_empty() { Some(4) } else { None };
     all.extend(campaign::qzip_properties(campaign::PairChoice {
         max_distance: args.max_distance,
