@@ -39,6 +39,7 @@ pub mod arbitrary;
 #[cfg(feature = "campaign")]
 pub mod campaign;
 pub mod gen;
+pub mod hybrid;
 pub mod invariants;
 #[cfg(feature = "std")]
 pub mod io;

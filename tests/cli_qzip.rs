@@ -195,7 +195,7 @@ fn bad_input_exits_2_without_output() {
         assert!(err.contains(msg), "{file}: {err}");
         assert!(!out.exists(), "{file}");
     };
-    refused(&torus, "0", "1", "not a quad mesh");
+    refused(&torus, "0", "1", "not a quad or quad-dominant mesh");
     // Helmet: vertex 0 is a boundary corner (valence 2); Sec. 2.6 does not cover it.
     refused(&helmet, "0", "54", "not realizable");
     let r = zip_spot("XX", o, &[]);

@@ -185,8 +185,27 @@ pub fn builtin() -> Vec<Property> {
     let mut all = kernel();
     all.extend(operators());
     all.extend(super::tri_edit_properties());
+    all.extend(hybrid());
     all.extend(super::qzip_properties(super::PairChoice::default()));
     all
+}
+
+/// The quad-dominant properties (Q-zip paper, Sec. 3.2): `tri-walk`, sixteen random
+/// triangle moves per case (on a mixed case its own triangles, on a quad case two inserted
+/// triangle pairs, [`crate::gen::with_triangle_pairs`]): `can_move_triangle` and the move
+/// agree, a refusal changes nothing, an application passes `check()` with its
+/// [`crate::hybrid::Move::effect`], and undoing every move, last first, restores the map
+/// exactly.
+///
+/// ```
+/// assert_eq!(zipmesh::campaign::hybrid()[0].name(), "tri-walk");
+/// ```
+pub fn hybrid() -> Vec<Property> {
+    alloc::vec![Property::new(
+        "tri-walk",
+        "triangle moves VE/EV/LE/RE: can_* agrees, documented effect, valid map; exact undo",
+        tri_walk
+    )]
 }
 
 /// The kernel's properties: `validity`, `euler`, `gauss-bonnet`, `canonical-relabel`.
@@ -716,4 +735,79 @@ fn tri_edge_split(case: &Case) -> Outcome {
     at_sites(case, 9, 3, |before, work, h, _| {
         tri_op(before, work, TriOp::SplitEdge(h))
     })
+}
+
+// ------------------------------------------------------------------------------------
+// Quad-dominant properties.
+
+fn tri_walk(case: &Case) -> Outcome {
+    use crate::hybrid::{self, Move};
+    let m0 = &case.mesh.map;
+    if !m0.faces().any(|f| m0.degree(f) == 4) {
+        return Outcome::Skip;
+    }
+    let mut rng = Rng::new(case.seed ^ case.index.rotate_left(17) ^ 0x7472_6977);
+    let mut map = if hybrid::triangles(m0).is_empty() {
+        crate::gen::with_triangle_pairs(case.mesh.clone(), 2, 4, rng.next_u64())
+            .0
+            .map
+    } else {
+        m0.clone()
+    };
+    let mut tips: Vec<Dart> = hybrid::triangles(&map)
+        .into_iter()
+        .map(|f| hybrid::default_tip(&map, f).unwrap_or(map.face_dart(f)))
+        .collect();
+    if tips.is_empty() {
+        return Outcome::Skip;
+    }
+    let start = map.clone();
+    let mut done = Vec::new();
+    let mut checks = 0;
+    for _ in 0..16 {
+        let (i, mv) = (rng.below(tips.len()), Move::ALL[rng.below(4)]);
+        let t = tips[i];
+        let before = map.clone();
+        let can = hybrid::can_move_triangle(&map, t, mv);
+        let effect = mv.effect(&map, t);
+        let focus = Some(map.origin(t));
+        match hybrid::move_triangle(&mut map, t, mv) {
+            Err(r) if can == Err(r) && map == before => {}
+            Err(r) => {
+                return Outcome::fail(
+                    format!("{mv} refused ({r}) against can {can:?}, or changed the map"),
+                    focus,
+                )
+            }
+            Ok(rec) => {
+                if let Err(v) = map.check() {
+                    return Outcome::fail(format!("{mv} left an invalid map: {v:?}"), focus);
+                }
+                match effect.map(|e| e.check(&before, &map, &rec)) {
+                    Ok(Ok(())) => {}
+                    other => {
+                        return Outcome::fail(
+                            format!("{mv}: not its documented effect: {other:?}"),
+                            focus,
+                        )
+                    }
+                }
+                for x in &mut tips {
+                    *x = rec.follow(*x);
+                }
+                tips[i] = rec.tip();
+                done.push(rec);
+                checks += 1;
+            }
+        }
+    }
+    for rec in done.iter().rev() {
+        if rec.undo(&mut map).is_err() {
+            return Outcome::fail("an undo in reverse order was refused", None);
+        }
+    }
+    if map != start {
+        return Outcome::fail("undoing every move did not restore the map exactly", None);
+    }
+    Outcome::Pass { checks }
 }

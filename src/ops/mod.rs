@@ -17,9 +17,9 @@ use core::fmt;
 pub use effect::{Effect, EffectMismatch, VertexChanges};
 
 mod effect;
-mod guard;
+pub(crate) mod guard;
 pub mod quad;
-mod slots;
+pub(crate) mod slots;
 pub mod tri;
 
 /// Why an operator refuses, or why an undo does not fit. Each variant's documentation says

@@ -272,6 +272,7 @@ fn properties(args: &CheckArgs) -> Vec<Property> {
     let mut all = campaign::kernel();
     all.extend(campaign::operators());
     all.extend(campaign::tri_edit_properties());
+    all.extend(campaign::hybrid());
     let per_case = if args.files.is_empty() { Some(4) } else { None };
     all.extend(campaign::qzip_properties(campaign::PairChoice {
         max_distance: args.max_distance,

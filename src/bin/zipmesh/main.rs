@@ -7,6 +7,7 @@
 //! `SIGINT` and `SIGTERM` (temporary files removed). `check` adds its own (see `check.rs`).
 
 mod check;
+mod hybrid;
 mod out;
 mod qzip;
 mod signals;
@@ -93,6 +94,9 @@ enum Command {
     TriType(tri::TypeArgs),
     /// Cancel a 5-5-7-7 quadruple inside two triangles of a triangle mesh.
     TriCancel(tri::CancelArgs),
+    /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
+    /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
+    TriWalk(hybrid::TriWalkArgs),
 }
 
 fn main() -> ExitCode {
@@ -108,6 +112,7 @@ fn main() -> ExitCode {
         Command::TriGenerate(args) => tri::run_generate(args).map_err(|e| e.to_string()),
         Command::TriType(args) => tri::run_type(args).map_err(|e| e.to_string()),
         Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
+        Command::TriWalk(args) => hybrid::run_tri_walk(args).map_err(|e| e.to_string()),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -141,7 +146,8 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriMove(_)
         | Command::TriGenerate(_)
         | Command::TriType(_)
-        | Command::TriCancel(_) => {}
+        | Command::TriCancel(_)
+        | Command::TriWalk(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

@@ -4,6 +4,7 @@ use clap::Args;
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use zipmesh::hybrid;
 use zipmesh::io::{self, MeshFileError};
 use zipmesh::qzip::{
     find_reverse, mesh_preprocess, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag,
@@ -86,11 +87,18 @@ fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
             .map_err(|e| InputError(format!("{name}: the preprocessing was refused: {e}")))?;
     }
     let map = &mesh.map;
-    if let Some(f) = map.faces().find(|&f| map.degree(f) != 4) {
+    // Quad and quad-dominant meshes: the paths wind around the triangles (Sec. 3.2).
+    if let Some(f) = map.faces().find(|&f| !(3..=4).contains(&map.degree(f))) {
         return Err(InputError(format!(
-            "{name}: not a quad mesh (face {} has {} corners); Q-zip edits quad meshes",
+            "{name}: not a quad or quad-dominant mesh (face {} has {} corners); Q-zip edits \
+             quads, with triangles among them",
             f.index(),
             map.degree(f)
+        )));
+    }
+    if !map.faces().any(|f| map.degree(f) == 4) {
+        return Err(InputError(format!(
+            "{name}: not a quad or quad-dominant mesh (no quad); Q-zip edits quads"
         )));
     }
     for (flag, v) in [("--from", a.from), ("--to", a.to)] {
@@ -116,7 +124,7 @@ fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
         }
     }
     let (from, to) = (Vert::new(a.from), Vert::new(a.to));
-    let opts = SketchOptions::default();
+    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
     let path = match &a.path {
         Some(vs) => {
             let vs: Vec<Vert> = vs.iter().map(|&v| Vert::new(v)).collect();

@@ -1,0 +1,215 @@
+//! `zipmesh tri-walk`: moving a triangle through a quad-dominant mesh (Q-zip paper, Sec. 3.2).
+
+use clap::{ArgGroup, Args};
+use serde_json::json;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use zipmesh::hybrid::{self, compass, Move};
+use zipmesh::io;
+use zipmesh::{is_isomorphic, Dart, Face, Map, Mesh, Vert};
+
+use crate::out::{self, outln};
+
+/// An input problem: printed as `zipmesh: <message>`, exit 2.
+pub struct InputError(String);
+
+impl std::fmt::Display for InputError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl From<out::OutputError> for InputError {
+    fn from(e: out::OutputError) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+impl From<io::MeshFileError> for InputError {
+    fn from(e: io::MeshFileError) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+/// `zipmesh tri-walk`.
+#[derive(Args)]
+#[command(group(ArgGroup::new("how").required(true).args(["moves", "to"])))]
+pub struct TriWalkArgs {
+    /// A quad-dominant mesh (.obj or .off).
+    file: PathBuf,
+    /// The triangle: a 0-based face number of the file.
+    #[arg(long)]
+    triangle: u32,
+    /// Its tip: a 0-based vertex number, a corner of the triangle (default: the corner of
+    /// highest valence, which must be the only one).
+    #[arg(long)]
+    tip: Option<u32>,
+    /// The moves, comma-separated, in order: VE (towards the tip), EV (towards the base),
+    /// LE, RE (onto the quad across the left, right side).
+    #[arg(long = "move", value_delimiter = ',')]
+    moves: Option<Vec<Move>>,
+    /// Make the moves this many times.
+    #[arg(long, default_value_t = 1, conflicts_with = "to")]
+    steps: usize,
+    /// Walk the triangle's tip to this vertex along shortest paths (the hybrid compass).
+    #[arg(long)]
+    to: Option<u32>,
+    /// Where to write the edited mesh (compacted: vertices and faces renumbered).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The tip dart of face `f`: the one leaving `tip`, or the default tip.
+fn tip_dart(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Dart, InputError> {
+    let bad = |m: String| InputError(format!("{name}: {m}"));
+    if !map.is_live_face(f) {
+        return Err(bad(format!(
+            "--triangle {}: no such face (the file has {} faces)",
+            f.index(),
+            map.face_slots()
+        )));
+    }
+    if map.degree(f) != 3 {
+        return Err(bad(format!(
+            "--triangle {}: not a triangle ({} corners)",
+            f.index(),
+            map.degree(f)
+        )));
+    }
+    match tip {
+        Some(v) => map
+            .face_darts(f)
+            .find(|&d| map.origin(d) == Vert::new(v))
+            .ok_or_else(|| {
+                bad(format!(
+                    "--tip {v} is not a corner of triangle {}",
+                    f.index()
+                ))
+            }),
+        None => hybrid::default_tip(map, f).ok_or_else(|| {
+            bad(format!(
+                "triangle {}: no corner has the highest valence alone; name the tip with --tip",
+                f.index()
+            ))
+        }),
+    }
+}
+
+/// Makes the moves (`--move`, `--steps`) or the compass walk (`--to`); the moves made.
+fn walk(
+    mesh: &mut Mesh,
+    t: Dart,
+    a: &TriWalkArgs,
+    name: &str,
+) -> Result<(Dart, Vec<Move>), InputError> {
+    if let Some(v) = a.to {
+        let target = Vert::new(v);
+        if !mesh.map.is_live_vertex(target) {
+            return Err(InputError(format!("{name}: --to {v}: no such vertex")));
+        }
+        let w = compass::walk_to(mesh, t, target)
+            .map_err(|e| InputError(format!("{name}: the walk to {v} failed: {e}")))?;
+        return Ok((w.tip(), w.moves()));
+    }
+    let seq = a.moves.as_deref().unwrap_or_default();
+    let mut done = Vec::new();
+    let mut tip = t;
+    for _ in 0..a.steps {
+        for &mv in seq {
+            let e = hybrid::mesh_move_triangle(mesh, tip, mv).map_err(|r| {
+                InputError(format!(
+                    "{name}: move {} ({mv}) was refused: {r}",
+                    done.len() + 1
+                ))
+            })?;
+            tip = e.record().tip();
+            done.push(mv);
+        }
+    }
+    Ok((tip, done))
+}
+
+/// The face, tip vertex and undo sequence after compaction, and whether the undo restores
+/// `original` (simulated on the compacted map).
+fn undo_of(
+    mesh: &Mesh,
+    tip: Dart,
+    done: &[Move],
+    original: &Map,
+) -> (Option<u32>, Option<u32>, Option<Vec<Move>>) {
+    let face = mesh.map.face(tip).map(|f| f.index() as u32);
+    let tip_v = Some(mesh.map.origin(tip).index() as u32);
+    let back: Vec<Move> = done.iter().rev().map(|m| m.reverse()).collect();
+    let mut m = mesh.map.clone();
+    let mut t = tip;
+    let restores = back
+        .iter()
+        .all(|&mv| match hybrid::move_triangle(&mut m, t, mv) {
+            Ok(r) => {
+                t = r.tip();
+                true
+            }
+            Err(_) => false,
+        })
+        && is_isomorphic(&m, original);
+    (face, tip_v, restores.then_some(back))
+}
+
+fn names(moves: &[Move]) -> String {
+    moves.iter().map(|m| m.name()).collect::<Vec<_>>().join(",")
+}
+
+/// Runs `zipmesh tri-walk`.
+pub fn run_tri_walk(args: TriWalkArgs) -> Result<ExitCode, InputError> {
+    let name = args.file.display().to_string();
+    let (original, _) = io::read_mesh(&args.file)?;
+    let t = tip_dart(&original.map, Face::new(args.triangle), args.tip, &name)?;
+    let mut mesh = original.clone();
+    let (tip, done) = walk(&mut mesh, t, &args, &name)?;
+    let c = mesh.compact();
+    let tip = c.darts.get(tip.index()).copied().flatten().unwrap_or(tip);
+    let (face, tip_v, undo) = undo_of(&mesh, tip, &done, &original.map);
+    let pending = io::prepare_mesh(&args.output, &mesh)?;
+    let undo_json = undo
+        .as_ref()
+        .map(|u| json!({"triangle": face, "tip": tip_v, "move": names(u)}));
+    if args.json {
+        outln!(
+            "{}",
+            json!({
+                "file": name,
+                "output": args.output.display().to_string(),
+                "moves": done.iter().map(|m| m.name()).collect::<Vec<_>>(),
+                "triangle": face,
+                "tip": tip_v,
+                "undo": undo_json,
+            })
+        );
+    } else {
+        outln!(
+            "{name} -> {}: {} move(s) {}; the triangle is face {} with tip {}",
+            args.output.display(),
+            done.len(),
+            names(&done),
+            face.map_or("?".into(), |f| f.to_string()),
+            tip_v.map_or("?".into(), |v| v.to_string())
+        );
+        match &undo {
+            Some(u) if !u.is_empty() => outln!(
+                "undo: zipmesh tri-walk {} --triangle {} --tip {} --move {} -o UNDONE",
+                args.output.display(),
+                face.unwrap_or(0),
+                tip_v.unwrap_or(0),
+                names(u)
+            ),
+            Some(_) => outln!("undo: nothing to undo"),
+            None => outln!("undo: the reverse moves do not restore the input here"),
+        }
+    }
+    out::flush()?;
+    pending.commit()?;
+    Ok(ExitCode::SUCCESS)
+}

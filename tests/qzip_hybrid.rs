@@ -1,0 +1,199 @@
+//! Q-zip on quad-dominant meshes (Sec. 3.2): with the paths winding around the triangles
+//! (`SketchOptions::forbid_faces`), every movement keeps the grid (valid map, topology,
+//! irregular valences, the triangles unchanged), has a reverse run restoring the input, and
+//! homotopic paths give isomorphic results. A plan that meets a triangle in a counted fan
+//! is refused and changes nothing: no collapse is ever attempted on a triangle.
+
+use zipmesh::hybrid;
+use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::invariants::{irregular_vertices, MeshKind};
+use zipmesh::qzip::{
+    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
+};
+use zipmesh::{gen, is_isomorphic, Face, Map, Vert};
+
+/// The twice-subdivided icosahedron (12 v5s, 20 v3s, isolated) or a cube (8 v3s) with
+/// triangle pairs walked apart among the singularities.
+fn fixtures() -> Vec<Map> {
+    let mut out = Vec::new();
+    for seed in 0..3 {
+        out.push(
+            gen::with_triangle_pairs(gen::subdivided_icosahedron(2), 3, 12, seed)
+                .0
+                .map,
+        );
+        out.push(gen::with_triangle_pairs(gen::cube(6), 2, 8, seed).0.map);
+    }
+    out
+}
+
+fn opts(map: &Map) -> SketchOptions<'static> {
+    hybrid::avoid_triangles(map, SketchOptions::default())
+}
+
+/// The triangles with their corners (vertex, valence).
+fn triangles(map: &Map) -> Vec<(Face, Vec<(Vert, usize)>)> {
+    hybrid::triangles(map)
+        .into_iter()
+        .map(|f| {
+            let c = map
+                .face_darts(f)
+                .map(|d| (map.origin(d), map.valence(map.origin(d))))
+                .collect();
+            (f, c)
+        })
+        .collect()
+}
+
+/// Each triangle is still a triangle (same face handle) with the same corner valences.
+fn triangles_kept(before: &Map, after: &Map) -> bool {
+    let (b, a) = (triangles(before), triangles(after));
+    b.len() == a.len()
+        && b.iter().zip(&a).all(|((f, cb), (g, ca))| {
+            let vals = |c: &Vec<(Vert, usize)>| {
+                let mut v: Vec<usize> = c.iter().map(|x| x.1).collect();
+                v.sort();
+                v
+            };
+            f == g && vals(cb) == vals(ca)
+        })
+}
+
+/// Every ordered pair of quad singularities (not triangle corners) within `max_len` edges.
+fn pairs(map: &Map, max_len: usize) -> Vec<Path> {
+    let corners: Vec<Vert> = triangles(map)
+        .iter()
+        .flat_map(|(_, c)| c.iter().map(|x| x.0).collect::<Vec<_>>())
+        .collect();
+    let sing: Vec<Vert> = irregular_vertices(map, MeshKind::Quad)
+        .into_iter()
+        .filter(|v| !corners.contains(v))
+        .collect();
+    let mut out = Vec::new();
+    for &a in &sing {
+        for &b in &sing {
+            if a != b {
+                if let Ok(p) = sketch(map, a, b, &opts(map)) {
+                    if p.len() <= max_len {
+                        out.push(p);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+#[derive(Debug, Default)]
+struct Tally {
+    ok: usize,
+    refused: usize,
+    reversed: usize,
+}
+
+#[test]
+fn grid_preservation_and_reversal() {
+    let mut t = Tally::default();
+    for map in fixtures() {
+        assert_eq!(hybrid::triangles(&map).len() % 2, 0);
+        assert!(!hybrid::triangles(&map).is_empty());
+        for path in pairs(&map, 6) {
+            for tag in Tag::CCW {
+                let mut m = map.clone();
+                match Qzip::new().zip_along(&mut m, &path, tag) {
+                    Err(_) => {
+                        assert_eq!(m, map, "a refusal changed the map");
+                        t.refused += 1;
+                    }
+                    Ok(r) => {
+                        verify_edit(&map, &m, &path, &r).unwrap();
+                        assert!(
+                            triangles_kept(&map, &m),
+                            "the triangles are unchanged: {:?} -> {:?}, path {:?}, {tag}",
+                            triangles(&map),
+                            triangles(&m),
+                            path.vertices()
+                        );
+                        t.ok += 1;
+                        if let Some(back) = find_reverse(&m, &r, &map) {
+                            let mut b = m.clone();
+                            Qzip::new().zip_along(&mut b, &back.path, back.tag).unwrap();
+                            assert!(is_isomorphic(&b, &map));
+                            t.reversed += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{t:?}");
+    assert!(t.ok >= 300, "{t:?}");
+    assert_eq!(t.reversed, t.ok, "{t:?}");
+}
+
+#[test]
+fn homotopic_paths_agree() {
+    let (mut compared, mut refused) = (0, 0);
+    for map in fixtures().into_iter().take(2) {
+        let outcomes = |p: &Path| {
+            Tag::CCW.map(|tag| {
+                let mut m = map.clone();
+                Qzip::new()
+                    .zip_along(&mut m, p, tag)
+                    .ok()
+                    .map(|_| canonical_hash(&m))
+            })
+        };
+        for p in pairs(&map, 5) {
+            let h0 = outcomes(&p);
+            for (_, q) in one_quad_sweeps(&map, &p) {
+                let k = start_turn(&map, &p, &q).expect("shared start");
+                let h1 = outcomes(&q);
+                for (j, tag) in Tag::CCW.into_iter().enumerate() {
+                    let jq = Tag::CCW.iter().position(|&u| u == tag.turned(k)).unwrap();
+                    match (h0[j], h1[jq]) {
+                        (Some(x), Some(y)) => {
+                            assert_eq!(x, y, "{tag} along {p:?} vs {q:?}");
+                            compared += 1;
+                        }
+                        _ => refused += 1,
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("compared {compared}, refused on a side {refused}");
+    assert!(compared >= 500, "compared {compared}");
+}
+
+/// Without `avoid_triangles` a path may run through a triangle's tip: where the triangle is
+/// in a counted fan the plan is refused (it is not a quad) and nothing changes, so no
+/// collapse is attempted on a triangle.
+#[test]
+fn a_plan_meeting_a_triangle_is_refused() {
+    let (mesh, tips) = gen::with_triangle_pairs(gen::subdivided_icosahedron(2), 1, 0, 1);
+    let map = mesh.map;
+    let mut refusals = 0;
+    let tip = map.origin(tips[0]);
+    for &a in &irregular_vertices(&map, MeshKind::Quad) {
+        for &b in &irregular_vertices(&map, MeshKind::Quad) {
+            let Ok(p) = sketch(&map, a, b, &SketchOptions::default()) else {
+                continue;
+            };
+            if a == b || !p.vertices()[1..p.len()].contains(&tip) {
+                continue;
+            }
+            for tag in Tag::CCW {
+                let mut m = map.clone();
+                match Qzip::new().zip_along(&mut m, &p, tag) {
+                    Err(e) => {
+                        assert_eq!(m, map);
+                        refusals += e.to_string().contains("not a quad") as usize;
+                    }
+                    Ok(_) => assert_eq!(m.check(), Ok(())),
+                }
+            }
+        }
+    }
+    assert!(refusals > 0);
+}
