@@ -65,9 +65,7 @@ mod tri_edit;
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
 pub use merge::{merge, Campaign, MergeError};
-pub use property::{
-    builtin, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property,
-};
+pub use property::{builtin, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shard::{Shard, ShardError};

@@ -145,8 +145,25 @@ impl Patch {
 
     /// Restores the map as it was before the move; [`Refusal::StaleRecord`] and no change
     /// if a check of [`Patch::guard`] fails.
+    ///
+    /// The guard shows the touched entries are as the move left them, not that the rest of
+    /// the map is the one the move ran on: on a foreign map that passes it, the old values
+    /// could leave an invalid map. So the undo is made on a copy that replaces the map only if
+    /// it passes [`Map::check`]: O(size of the map) per undo, the price of the kernel's
+    /// contract until a local check of the restored orbits replaces it.
     pub(crate) fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         self.guard(map).result()?;
+        let mut trial = map.clone();
+        self.restore(&mut trial)?;
+        if trial.check().is_err() {
+            return Err(Refusal::StaleRecord);
+        }
+        *map = trial;
+        Ok(())
+    }
+
+    /// Puts the slots back and the old values in place (the guard has passed).
+    fn restore(&self, map: &mut Map) -> Result<(), Refusal> {
         match self.slots {
             SlotChange::None => {}
             SlotChange::Allocated(s) => s.release(map),
