@@ -7,6 +7,7 @@
 //! `SIGINT` and `SIGTERM` (temporary files removed). `check` adds its own (see `check.rs`).
 
 mod check;
+mod optimize;
 mod out;
 mod qzip;
 mod signals;
@@ -82,6 +83,9 @@ enum Command {
     /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
     /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
     Zip(qzip::ZipArgs),
+    /// Reduce the singularities of a quad mesh by batches of Q-zips (Q-zip paper, Sec. 4.1)
+    /// and write the result; `--json` prints the counts before, after each batch and at the end.
+    Optimize(optimize::OptimizeArgs),
 }
 
 fn main() -> ExitCode {
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
+        Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -121,7 +126,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
         Command::Check(args) => return Ok(check::run(args)),
         // Dispatched in `main`: their errors are not file errors.
-        Command::Moves(_) | Command::Zip(_) => {}
+        Command::Moves(_) | Command::Zip(_) | Command::Optimize(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),
