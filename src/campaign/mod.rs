@@ -55,6 +55,7 @@ use std::{format, vec};
 
 mod budget;
 mod case;
+mod optimize;
 mod property;
 mod qzip;
 mod report;
@@ -62,6 +63,7 @@ mod shrink;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
+pub use optimize::{optimize_property, OPTIMIZE_MAX_FACES};
 pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};

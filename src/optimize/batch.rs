@@ -18,6 +18,9 @@ use crate::{Mesh, Vert};
 /// estimate for ranking; the executed Q-zips are re-scored on the whole mesh.
 const WINDOW: u32 = 6;
 
+/// Laplacian steps on a candidate's scar before it is scored.
+const RELAX_STEPS: usize = 2;
+
 /// The four initial operations, in compass order.
 const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
 
@@ -67,6 +70,26 @@ impl Batcher<'_> {
             }
         }
         self.qzip.options_mut().forbidden_edges = self.constraints.forbidden_edges(mesh);
+    }
+
+    /// Relaxes the scar's vertices (two Laplacian steps, no projection), so that the new
+    /// quads are scored with the shape smoothing will give them rather than the degenerate
+    /// one of a fresh split. Returns the previous positions.
+    fn relax(&self, mesh: &mut Mesh, r: &ZipReport) -> Vec<(Vert, DVec3)> {
+        let map = &mesh.map;
+        let mut vs: Vec<Vert> = r
+            .scar_faces()
+            .iter()
+            .flat_map(|&f| map.face_darts(f).map(|d| map.origin(d)))
+            .chain(
+                r.scar_edges()
+                    .iter()
+                    .flat_map(|e| [map.origin(e.dart(0)), map.dest(e.dart(0))]),
+            )
+            .collect();
+        vs.sort_unstable();
+        vs.dedup();
+        super::smooth::laplacian(mesh, None, &vs, &self.locked, RELAX_STEPS)
     }
 
     /// The vertices within [`WINDOW`] edges of `seeds`: where a candidate is scored.
@@ -137,6 +160,7 @@ impl Batcher<'_> {
                     continue;
                 };
                 *tried += 1;
+                let saved = self.relax(mesh, z.record());
                 let r = z.record();
                 let seeds = path
                     .vertices()
@@ -155,6 +179,9 @@ impl Batcher<'_> {
                         .collect::<Vec<_>>(),
                 );
                 let delta = self.scorer.local(mesh, &window) - before;
+                for (v, p) in saved.into_iter().rev() {
+                    mesh.positions[v.index()] = p;
+                }
                 let _ = z.undo(mesh);
                 if delta < -self.eps && best.is_none_or(|b| delta < b.delta) {
                     best = Some(Candidate {
@@ -242,8 +269,12 @@ impl Batcher<'_> {
         let Some(z) = self.apply(mesh, &path, c.tag) else {
             return;
         };
+        let saved = self.relax(mesh, z.record());
         let after = self.scorer.score(mesh).0;
-        if after >= *total - self.eps {
+        if after >= *total - self.eps || !self.constraints.holds(mesh) {
+            for (v, p) in saved.into_iter().rev() {
+                mesh.positions[v.index()] = p;
+            }
             let _ = z.undo(mesh);
             return;
         }

@@ -24,7 +24,7 @@ use glam::DVec3;
 
 pub use constraints::{ConstraintError, Constraints};
 pub use defect::{defect, ideal_boundary_valence, singularities, vertex_angle, Singularity};
-pub use score::{Context, Count, Electric, Isotropy, ScoreTerm, Separatrix, Sizing};
+pub use score::{Context, Count, Electric, FaceBudget, Isotropy, ScoreTerm, Separatrix, Sizing};
 pub use smooth::{smooth, spring_stiffness, Surface};
 
 use crate::invariants::{Counts, MeshKind};
@@ -35,8 +35,9 @@ use crate::{Mesh, Vert};
 /// How a run goes: the score's terms and weights, the number of batches, the seed, the
 /// smoothing. Start from [`OptimizeOptions::default`] and chain the setters.
 ///
-/// The default weights: count 1, electric 0.1, isotropy 0.05, sizing 0.05, separatrix 0.05
-/// (see `docs/optimize.md` for why the count dominates). A weight of 0 switches a term off.
+/// The default weights: count 1, electric 0.1, isotropy 0.002, sizing 0.002, separatrix
+/// 0.05, faces 0 (see `docs/optimize.md` for why the count dominates and how the weights
+/// were chosen). A weight of 0 switches a term off.
 ///
 /// ```
 /// use zipmesh::optimize::OptimizeOptions;
@@ -78,9 +79,10 @@ impl Default for OptimizeOptions {
             terms: alloc::vec![
                 (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
                 (0.1, Box::new(Electric::default())),
-                (0.05, Box::new(Isotropy)),
-                (0.05, Box::new(Sizing)),
+                (0.002, Box::new(Isotropy)),
+                (0.002, Box::new(Sizing)),
                 (0.05, Box::new(Separatrix::default())),
+                (0.0, Box::new(FaceBudget)),
             ],
         }
     }
@@ -331,6 +333,7 @@ pub fn optimize(
         terms: options.terms,
         features: Vec::new(),
         target_area: mean_face_area(mesh),
+        target_faces: mesh.map.num_faces(),
     };
     let before = Counts::of(&mesh.map);
     let mut b = batch::Batcher {

@@ -28,6 +28,8 @@ pub struct Context<'a> {
     pub features: &'a [bool],
     /// The mean face area of the input: the size the sizing term aims for.
     pub target_area: f64,
+    /// The input's face count (after preprocessing): what [`FaceBudget`] keeps.
+    pub target_faces: usize,
     /// When set, the faces whose terms are summed (a window around a candidate);
     /// `singularities` is then the window's too.
     pub faces: Option<&'a [crate::Face]>,
@@ -98,7 +100,7 @@ pub trait ScoreTerm: core::fmt::Debug {
 /// use zipmesh::{gen, optimize::{singularities, Context, Count, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
 /// assert_eq!(Count.score(&ctx), 32.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -113,6 +115,29 @@ impl ScoreTerm for Count {
             .iter()
             .map(|s| s.defect.unsigned_abs() as f64)
             .sum()
+    }
+}
+
+/// The face budget: `|F - F0|`, the change of the face count from the input's. Not a term of
+/// the paper (see `docs/optimize.md`): a Q-zip that cancels singularities by long strips of
+/// splits adds quads, and this keeps the overall density where the input had it. Whole-mesh
+/// and O(1), also in a window.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{Context, FaceBudget, ScoreTerm}};
+/// let m = gen::grid(3, 3);
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 5, faces: None };
+/// assert_eq!(FaceBudget.score(&ctx), 4.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FaceBudget;
+
+impl ScoreTerm for FaceBudget {
+    fn name(&self) -> &str {
+        "faces"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        ctx.mesh.map.num_faces().abs_diff(ctx.target_faces) as f64
     }
 }
 
@@ -196,7 +221,7 @@ impl Bfs {
 /// use zipmesh::{gen, optimize::{singularities, Context, Electric, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
 /// // Each v5 is one edge from a v3: attraction wins.
 /// assert!(Electric::default().score(&ctx) < 0.0);
 /// ```
@@ -261,7 +286,7 @@ impl ScoreTerm for Electric {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Isotropy, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None };
 /// assert_eq!(Isotropy.score(&ctx), 0.0); // unit squares
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -297,7 +322,7 @@ impl ScoreTerm for Isotropy {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Sizing, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, faces: None });
+/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None });
 /// assert_eq!(at(1.0), 0.0);
 /// assert!(at(2.0) > 0.0);
 /// ```
@@ -330,7 +355,7 @@ impl ScoreTerm for Sizing {
 /// use zipmesh::{gen, optimize::{singularities, Context, Separatrix, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(2);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
 /// assert!(Separatrix::default().score(&ctx) >= 0.0);
 /// ```
 #[derive(Clone, Debug)]
@@ -417,6 +442,7 @@ pub(crate) struct Scorer {
     pub(crate) terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
     pub(crate) features: Vec<bool>,
     pub(crate) target_area: f64,
+    pub(crate) target_faces: usize,
 }
 
 impl Scorer {
@@ -428,6 +454,7 @@ impl Scorer {
             singularities: &s,
             features: &self.features,
             target_area: self.target_area,
+            target_faces: self.target_faces,
             faces: None,
         };
         let mut parts = vec![0.0; self.terms.len()];
@@ -467,6 +494,7 @@ impl Scorer {
             singularities: &s,
             features: &self.features,
             target_area: self.target_area,
+            target_faces: self.target_faces,
             faces: Some(&faces),
         };
         self.terms

@@ -233,16 +233,32 @@ pub fn smooth(
     fixed: &[bool],
     iterations: usize,
 ) {
+    laplacian(mesh, Some(surface), vertices, fixed, iterations);
+}
+
+/// The valence-weighted Laplacian of [`smooth`] on `vertices`, projected onto `surface` if
+/// given; returns the moved vertices' previous positions (each vertex once, in order).
+pub(crate) fn laplacian(
+    mesh: &mut Mesh,
+    surface: Option<&Surface>,
+    vertices: &[Vert],
+    fixed: &[bool],
+    iterations: usize,
+) -> Vec<(Vert, DVec3)> {
     let map = &mesh.map;
     let movable: Vec<Vert> = vertices
         .iter()
         .copied()
         .filter(|&v| {
-            map.is_live_vertex(v)
+            v.index() < mesh.positions.len()
+                && map.is_live_vertex(v)
                 && !map.is_boundary_vertex(v)
                 && !fixed.get(v.index()).copied().unwrap_or(false)
-                && v.index() < mesh.positions.len()
         })
+        .collect();
+    let saved: Vec<(Vert, DVec3)> = movable
+        .iter()
+        .map(|&v| (v, mesh.positions[v.index()]))
         .collect();
     let mut next = vec![DVec3::ZERO; movable.len()];
     for _ in 0..iterations {
@@ -260,10 +276,10 @@ pub fn smooth(
                     * k;
                 w += k;
             }
-            next[i] = if w > 0.0 {
-                surface.closest(sum / w)
-            } else {
-                mesh.positions[v.index()]
+            next[i] = match (w > 0.0, surface) {
+                (false, _) => mesh.positions[v.index()],
+                (true, Some(s)) => s.closest(sum / w),
+                (true, None) => sum / w,
             };
         }
         for (i, &v) in movable.iter().enumerate() {
@@ -272,4 +288,5 @@ pub fn smooth(
             }
         }
     }
+    saved
 }

@@ -45,14 +45,21 @@ pub struct OptimizeArgs {
     /// With --json: each batch's executed surgery paths (vertex positions).
     #[arg(long)]
     paths: bool,
-    /// A score term's weight, `NAME=W` (count, electric, isotropy, sizing, separatrix); 0
+    /// A score term's weight, `NAME=W` (count, electric, isotropy, sizing, separatrix, faces); 0
     /// switches it off. Repeatable.
     #[arg(long = "weight", value_parser = parse_weight)]
     weights: Vec<(String, f64)>,
 }
 
 fn parse_weight(s: &str) -> Result<(String, f64), String> {
-    const NAMES: [&str; 5] = ["count", "electric", "isotropy", "sizing", "separatrix"];
+    const NAMES: [&str; 6] = [
+        "count",
+        "electric",
+        "isotropy",
+        "sizing",
+        "separatrix",
+        "faces",
+    ];
     let (name, w) = s.split_once('=').ok_or("expected NAME=W")?;
     if !NAMES.contains(&name) {
         return Err(format!(
