@@ -5,6 +5,7 @@
 use super::{Case, Outcome, Property};
 use crate::invariants::{Counts, MeshKind};
 use crate::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use std::format;
 
 /// The largest case (faces) the property runs on; larger ones are skipped (and counted):
 /// a batch costs about a millisecond per singularity.

@@ -165,7 +165,7 @@ pub struct SingularityCounts {
     pub v5: usize,
     /// Interior vertices of valence 6 or more.
     pub v6plus: usize,
-    /// The sum of |defect| over boundary vertices ([`defect`]).
+    /// The sum of |defect| over boundary vertices ([`defect()`]).
     pub boundary_defects: usize,
 }
 
