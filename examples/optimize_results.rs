@@ -17,10 +17,17 @@ fn options() -> OptimizeOptions {
     o
 }
 
-fn row(name: &str, mut mesh: Mesh) {
+fn row(name: &str, mesh: Mesh) {
+    row_with(name, mesh, |_| Constraints::default());
+}
+
+fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constraints) {
     let before = SingularityCounts::of(&mesh);
+    let c = constraints(&mesh);
+    let check = c.clone();
     let t = Instant::now();
-    let out = optimize(&mut mesh, Constraints::default(), options(), |_| {});
+    let out = optimize(&mut mesh, c, options(), |_| {});
+    assert!(check.holds(&mesh), "{name}: a constraint broke");
     let secs = t.elapsed().as_secs_f64();
     let Ok(out) = out else {
         println!("| {name} | refused | | | | | |");
@@ -45,6 +52,18 @@ fn main() {
             "genus 3",
             gen::catmull_clark(&gen::random_triangle(300, 3, 0, 1)),
         );
+        return;
+    }
+    if only == "disk" {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+        let m = io::read_mesh(format!("{dir}/tri/circle_disk.obj"))
+            .unwrap()
+            .0;
+        row("CC of tri/circle_disk.obj", gen::catmull_clark(&m));
+        return;
+    }
+    if only == "constraints" {
+        constraint_rows();
         return;
     }
     if only == "spot" {
@@ -89,4 +108,26 @@ fn main() {
             Err(e) => println!("| {f} | {e} |"),
         }
     }
+}
+
+/// Protected faces and sharp features: the constraints hold, singularities elsewhere go.
+fn constraint_rows() {
+    let genus2 = gen::catmull_clark(&gen::random_triangle(300, 2, 0, 1));
+    row_with("CC genus 2, faces 0..200 protected", genus2, |m| {
+        let mut c = Constraints::default();
+        for f in m.map.faces().take(200) {
+            c.protect_face(m, f).unwrap();
+        }
+        c
+    });
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    let spikes = io::read_mesh(format!("{dir}/quad/cubespikes.obj"))
+        .unwrap()
+        .0;
+    row_with("quad/cubespikes.obj, --sharp-angle 40", spikes, |m| {
+        let mut c = Constraints::default();
+        let n = c.add_sharp_edges(m, 40.0);
+        eprintln!("cubespikes: {n} sharp edges");
+        c
+    });
 }
