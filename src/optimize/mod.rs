@@ -259,6 +259,8 @@ pub enum OptimizeError {
     NotQuad,
     /// The constraints do not hold on the input (they were recorded on another mesh).
     ConstraintsBroken,
+    /// Fewer positions than vertex slots.
+    MissingPositions,
 }
 
 impl core::fmt::Display for OptimizeError {
@@ -266,6 +268,7 @@ impl core::fmt::Display for OptimizeError {
         match self {
             Self::NotQuad => f.write_str("not a pure quad mesh"),
             Self::ConstraintsBroken => f.write_str("the constraints do not hold on this mesh"),
+            Self::MissingPositions => f.write_str("fewer positions than vertices"),
         }
     }
 }
@@ -315,7 +318,10 @@ pub fn optimize(
     if MeshKind::of(&mesh.map) != MeshKind::Quad && mesh.map.num_faces() > 0 {
         return Err(OptimizeError::NotQuad);
     }
-    if mesh.positions.len() < mesh.map.vertex_slots() || !constraints.holds(mesh) {
+    if mesh.positions.len() < mesh.map.vertex_slots() {
+        return Err(OptimizeError::MissingPositions);
+    }
+    if !constraints.holds(mesh) {
         return Err(OptimizeError::ConstraintsBroken);
     }
     let input = SingularityCounts::of(mesh);

@@ -96,8 +96,17 @@ impl Surface {
                 * 2.0,
         )
         .max(extent.max_element() / 256.0);
-        let dim = |e: f64| ((e / cell) as usize + 1).min(256);
-        let dims = [dim(extent.x), dim(extent.y), dim(extent.z)];
+        let dim = |e: f64, cell: f64| ((e / cell) as usize + 1).min(256);
+        let dims_at = |cell: f64| [dim(extent.x, cell), dim(extent.y, cell), dim(extent.z, cell)];
+        // At most about two cells per triangle: a volume-filling box of a dense surface
+        // would otherwise ask for 256^3 cells.
+        let budget = 2 * triangles.len() + 64;
+        let mut cell = cell;
+        let mut dims = dims_at(cell);
+        while dims[0] * dims[1] * dims[2] > budget {
+            cell *= 1.25;
+            dims = dims_at(cell);
+        }
         let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
         let mut s = Surface {
             triangles: Vec::new(),
