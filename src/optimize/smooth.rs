@@ -97,7 +97,13 @@ impl Surface {
         )
         .max(extent.max_element() / 256.0);
         let dim = |e: f64, cell: f64| ((e / cell) as usize + 1).min(256);
-        let dims_at = |cell: f64| [dim(extent.x, cell), dim(extent.y, cell), dim(extent.z, cell)];
+        let dims_at = |cell: f64| {
+            [
+                dim(extent.x, cell),
+                dim(extent.y, cell),
+                dim(extent.z, cell),
+            ]
+        };
         // At most about two cells per triangle: a volume-filling box of a dense surface
         // would otherwise ask for 256^3 cells.
         let budget = 2 * triangles.len() + 64;
