@@ -140,3 +140,53 @@ fn a_regular_torus_is_unchanged() {
     assert_eq!(mesh, before);
     let _ = Vert::new(0);
 }
+
+/// With `allow_cancellation`, a Q-zip that the grid guard refuses is done: the map stays
+/// valid and pure quad, the singularity count changes, and the undo restores map and
+/// positions exactly.
+#[test]
+fn cancelling_qzips_are_valid_and_undo_exactly() {
+    use zipmesh::invariants::irregular_vertices;
+    use zipmesh::qzip::{Qzip, QzipError, Tag, ZipError};
+    let mut mesh = subdivided(200, 2, 0, 3);
+    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    let irr = irregular_vertices(&mesh.map, MeshKind::Quad);
+    let (mut guarded, mut free) = (Qzip::new(), Qzip::new().allow_cancellation(true));
+    let mut done = 0;
+    for &a in irr.iter().take(20) {
+        for &b in irr.iter().take(20) {
+            if a == b {
+                continue;
+            }
+            for tag in [Tag::LS, Tag::RC, Tag::LC, Tag::RS] {
+                let refused = match guarded.zip_mesh(&mut mesh, a, b, tag) {
+                    Ok(z) => {
+                        z.undo(&mut mesh).unwrap();
+                        false
+                    }
+                    Err(e) => matches!(e, QzipError::Execute(ZipError::NotGridPreserving { .. })),
+                };
+                if !refused {
+                    continue;
+                }
+                let before = mesh.clone();
+                let z = free
+                    .zip_mesh(&mut mesh, a, b, tag)
+                    .expect("no guard, no refusal");
+                mesh.map.check().unwrap();
+                assert!(mesh.map.faces().all(|f| mesh.map.degree(f) == 4));
+                assert_ne!(
+                    irregular_vertices(&mesh.map, MeshKind::Quad).len(),
+                    irr.len()
+                );
+                z.undo(&mut mesh).unwrap();
+                assert_eq!(mesh, before);
+                done += 1;
+            }
+        }
+    }
+    assert!(
+        done > 0,
+        "no cancelling movement among the first 20 singularities"
+    );
+}
