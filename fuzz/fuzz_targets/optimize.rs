@@ -14,7 +14,7 @@ use zipmesh::{gen, Face};
 fuzz_target!(|data: &[u8]| {
     let byte = |i: usize| data.get(i).copied().unwrap_or(0);
     let (faces, genus, holes) = (
-        20 + usize::from(byte(0) % 60),
+        20 + usize::from(byte(0) % 30),
         usize::from(byte(1) % 3),
         usize::from(byte(2) % 2),
     );
@@ -41,7 +41,7 @@ fuzz_target!(|data: &[u8]| {
     let before = Counts::of(&mesh.map);
     let check = c.clone();
     let options = OptimizeOptions::default()
-        .batches(1 + usize::from(byte(15) % 3))
+        .batches(1 + usize::from(byte(15) % 2))
         .seed(u64::from(byte(16)))
         .smoothing(byte(17) % 2 == 0);
     let out = optimize(&mut mesh, c, options, |_| {}).expect("a quad mesh is accepted");
