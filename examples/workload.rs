@@ -11,6 +11,7 @@
 //! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
 //! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
+//! (with `optimize`, only the optimizer rows: `optimize_rows`)
 //! are run.
 
 use std::time::Instant;
@@ -87,6 +88,47 @@ fn report(
         min * scale,
         max * scale
     );
+}
+
+/// Optimizer rows (issue 12): seconds for the first batch (the one with the most
+/// singularities) on one Catmull-Clark step of a random genus-3 triangle mesh of 250, 1,000
+/// and 4,000 triangles (750 to 12,000 quads), and on Spot; `count` is the number of
+/// singularities before the batch. With the third argument `optimize`.
+fn optimize_rows(reps: usize) {
+    use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+    let mut meshes: Vec<(String, zipmesh::Mesh)> = [250, 1000, 4000]
+        .iter()
+        .map(|&t| {
+            let m = zipmesh::gen::catmull_clark(&zipmesh::gen::random_triangle(t, 3, 0, 1));
+            (format!("cc-genus3-{}q", m.map.num_faces()), m)
+        })
+        .collect();
+    let spot = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/quad/spot_quadrangulated.obj"
+    );
+    if let Ok((m, _)) = zipmesh::io::read_mesh(spot) {
+        meshes.push(("spot".to_string(), m));
+    }
+    for (name, mesh) in meshes {
+        let count = SingularityCounts::of(&mesh).singularities();
+        let t = measure(
+            reps,
+            || mesh.clone(),
+            |mut m| {
+                let o = OptimizeOptions::default().batches(1);
+                optimize(&mut m, Constraints::default(), o, |_| {})
+            },
+        );
+        report(
+            "quad",
+            &format!("optimize-batch-{name}"),
+            t,
+            "s/batch",
+            count,
+            reps,
+        );
+    }
 }
 
 #[path = "../benches/support/qzip_torus.rs"]
@@ -310,6 +352,10 @@ fn main() {
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     if args.get(3).is_some_and(|s| s == "qzip") {
         qzip_rows(n, reps);
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "optimize") {
+        optimize_rows(reps);
         return;
     }
     let quads = zipmesh::gen::torus_quads(n, n);

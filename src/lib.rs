@@ -46,6 +46,7 @@ pub mod io;
 pub mod map;
 pub mod mesh;
 pub mod ops;
+pub mod optimize;
 pub mod qzip;
 pub mod rng;
 pub mod tri_edit;

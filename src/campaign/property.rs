@@ -173,8 +173,9 @@ impl Property {
     }
 }
 
-/// Every built-in property: [`kernel`], [`operators`], then the Q-zip properties
-/// ([`qzip_properties`](super::qzip_properties) with the default [`PairChoice`](super::PairChoice)).
+/// Every built-in property: [`kernel`], [`operators`], the Q-zip properties
+/// ([`qzip_properties`](super::qzip_properties) with the default [`PairChoice`](super::PairChoice)),
+/// then [`optimize_property`](super::optimize_property).
 ///
 /// ```
 /// let names: Vec<String> = zipmesh::campaign::builtin().iter().map(|p| p.name().to_string()).collect();
@@ -187,6 +188,7 @@ pub fn builtin() -> Vec<Property> {
     all.extend(super::tri_edit_properties());
     all.extend(hybrid());
     all.extend(super::qzip_properties(super::PairChoice::default()));
+    all.push(super::optimize_property());
     all
 }
 

@@ -496,13 +496,28 @@ fn v6_first_dart(map: &Map, v: Vert, order: &[Seen]) -> Dart {
 /// assert_eq!(map, before);
 /// ```
 pub fn execute(map: &mut Map, surgery: &Surgery) -> Result<ZipReport, ZipError> {
-    execute_owned(map, surgery.clone())
+    execute_owned(map, surgery.clone(), Guard::GridPreserving)
+}
+
+/// Whether execution refuses an edit that changes the irregular valences of the vertices it
+/// touched (the guard of [`ZipError::NotGridPreserving`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Guard {
+    /// Refuse: the Q-zip only moves singularities (the default, [`execute`]).
+    GridPreserving,
+    /// Accept: a moved singularity may cancel against, or merge with, another one (the
+    /// optimizer's use, [`crate::qzip::Qzip::allow_cancellation`]).
+    AllowCancellation,
 }
 
 /// [`execute`] taking the surgery by value (it goes into the report without a copy).
-pub(crate) fn execute_owned(map: &mut Map, surgery: Surgery) -> Result<ZipReport, ZipError> {
+pub(crate) fn execute_owned(
+    map: &mut Map,
+    surgery: Surgery,
+    guard: Guard,
+) -> Result<ZipReport, ZipError> {
     let mut records: Vec<QuadRecord> = Vec::with_capacity(surgery.steps().len() + 2);
-    match run(map, surgery, &mut records) {
+    match run(map, surgery, &mut records, guard) {
         Ok(r) => Ok(r),
         Err(e) => {
             undo_all(map, &records);
@@ -800,6 +815,16 @@ impl<'s> Chain<'s> {
         Ok((v2_removals, v6_splits))
     }
 
+    /// The last touched vertex still live (every edit leaves one: the map is not empty).
+    fn last_live_touched(&self, map: &Map) -> Option<Vert> {
+        self.touched
+            .list
+            .iter()
+            .rev()
+            .map(|s| s.v)
+            .find(|&v| map.is_live_vertex(v))
+    }
+
     /// Where the pair went: among the candidates, the first the edit left with the
     /// singularity's valence, else the first such touched vertex (in touch order for the
     /// initial singularity, in reverse for the terminal one).
@@ -836,14 +861,25 @@ fn run(
     map: &mut Map,
     surgery: Surgery,
     records: &mut Vec<QuadRecord>,
+    guard: Guard,
 ) -> Result<ZipReport, ZipError> {
     let mut chain = Chain::new(map, &surgery);
     chain.run(map, records)?;
     let (v2_removals, v6_splits) = chain.clean_up(map, records)?;
-    if let Err((before, after)) = chain.touched.irregulars_kept(map) {
-        return Err(ZipError::NotGridPreserving { before, after });
-    }
-    let (moved_from, moved_to) = chain.locate_moved_pair(map)?;
+    let kept = chain.touched.irregulars_kept(map);
+    let (moved_from, moved_to) = match (kept, guard) {
+        (Err((before, after)), Guard::GridPreserving) => {
+            return Err(ZipError::NotGridPreserving { before, after })
+        }
+        (Ok(()), _) => chain.locate_moved_pair(map)?,
+        // A cancelled singularity has no place to go: name the last live vertex touched.
+        (Err(_), Guard::AllowCancellation) => chain.locate_moved_pair(map).or_else(|_| {
+            chain
+                .last_live_touched(map)
+                .map(|v| (v, v))
+                .ok_or(ZipError::Untracked)
+        })?,
+    };
     let Chain {
         splits,
         collapses,

@@ -3,7 +3,7 @@
 use core::fmt;
 
 use super::compass::{plan, PlanError, Tag};
-use super::execute::{execute_owned, ZipError, ZipReport};
+use super::execute::{execute_owned, Guard, ZipError, ZipReport};
 use super::placement::place_created;
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{Path, SketchError, SketchOptions, SketchWorkspace};
@@ -50,9 +50,19 @@ impl std::error::Error for QzipError {}
 
 /// Stages 2 to 4 along `path`: all or nothing.
 pub(crate) fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {
+    zip_along_guarded(map, path, initial, Guard::GridPreserving)
+}
+
+/// [`zip_along`] with the given guard.
+fn zip_along_guarded(
+    map: &mut Map,
+    path: &Path,
+    initial: Tag,
+    guard: Guard,
+) -> Result<ZipReport, QzipError> {
     let p = plan(map, path, initial).map_err(QzipError::Plan)?;
     let s = prepare(map, &p).map_err(QzipError::Prepare)?;
-    execute_owned(map, s).map_err(QzipError::Execute)
+    execute_owned(map, s, guard).map_err(QzipError::Execute)
 }
 
 /// The Q-zip entry point: the sketch options and a reusable [`SketchWorkspace`], and the four
@@ -78,6 +88,7 @@ pub(crate) fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipR
 pub struct Qzip<'a> {
     options: SketchOptions<'a>,
     workspace: SketchWorkspace,
+    allow_cancellation: bool,
 }
 
 impl Qzip<'static> {
@@ -105,6 +116,40 @@ impl<'a> Qzip<'a> {
         Qzip {
             options,
             workspace: SketchWorkspace::new(),
+            allow_cancellation: false,
+        }
+    }
+
+    /// Lets the edits of this entry point cancel singularities: the guard that refuses an
+    /// edit changing the irregular valences of the vertices it touched
+    /// ([`super::ZipError::NotGridPreserving`]) is off. A moved singularity may then meet a
+    /// complementary one and both vanish (what the batch optimizer, [`crate::optimize`], needs
+    /// to reduce their number), or a crowded cluster may gain some. The map stays valid and
+    /// the undo exact; when a singularity cancelled, [`ZipReport::moved_from`] and
+    /// [`ZipReport::moved_to`] name a vertex the edit touched.
+    ///
+    /// ```
+    /// use zipmesh::qzip::Qzip;
+    /// let q = Qzip::new().allow_cancellation(true);
+    /// assert!(q.allows_cancellation());
+    /// ```
+    pub fn allow_cancellation(mut self, allow: bool) -> Self {
+        self.allow_cancellation = allow;
+        self
+    }
+
+    /// Whether [`Qzip::allow_cancellation`] is on.
+    ///
+    /// See [`Qzip::allow_cancellation`] for an example.
+    pub fn allows_cancellation(&self) -> bool {
+        self.allow_cancellation
+    }
+
+    fn guard(&self) -> Guard {
+        if self.allow_cancellation {
+            Guard::AllowCancellation
+        } else {
+            Guard::GridPreserving
         }
     }
 
@@ -173,7 +218,7 @@ impl<'a> Qzip<'a> {
         initial: Tag,
     ) -> Result<ZipReport, QzipError> {
         let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
-        zip_along(map, &path, initial)
+        zip_along_guarded(map, &path, initial, self.guard())
     }
 
     /// Stages 2 to 4 along a given path (from [`super::sketch()`], [`super::validate_path`] or
@@ -194,7 +239,7 @@ impl<'a> Qzip<'a> {
         path: &Path,
         initial: Tag,
     ) -> Result<ZipReport, QzipError> {
-        zip_along(map, path, initial)
+        zip_along_guarded(map, path, initial, self.guard())
     }
 
     /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed at
@@ -270,7 +315,7 @@ impl<'a> Qzip<'a> {
         initial: Tag,
     ) -> Result<Edited<ZipReport, A>, QzipError> {
         let mut journal = Journal::start(attrs);
-        let report = zip_along(map, path, initial)?;
+        let report = zip_along_guarded(map, path, initial, self.guard())?;
         place_created(map, attrs, &mut journal, report.records());
         Ok(Edited::new(report, journal))
     }

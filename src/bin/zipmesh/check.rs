@@ -278,6 +278,7 @@ fn properties(args: &CheckArgs) -> Vec<Property> {
         max_distance: args.max_distance,
         per_case,
     }));
+    all.push(campaign::optimize_property());
     all
 }
 

@@ -8,6 +8,7 @@
 
 mod check;
 mod hybrid;
+mod optimize;
 mod out;
 mod qzip;
 mod signals;
@@ -97,6 +98,9 @@ enum Command {
     /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
     /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
     TriWalk(hybrid::TriWalkArgs),
+    /// Reduce the singularities of a quad mesh by batches of Q-zips (Q-zip paper, Sec. 4.1)
+    /// and write the result; `--json` prints the counts before, after each batch and at the end.
+    Optimize(optimize::OptimizeArgs),
 }
 
 fn main() -> ExitCode {
@@ -113,6 +117,7 @@ fn main() -> ExitCode {
         Command::TriType(args) => tri::run_type(args).map_err(|e| e.to_string()),
         Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
         Command::TriWalk(args) => hybrid::run_tri_walk(args).map_err(|e| e.to_string()),
+        Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -147,7 +152,8 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriGenerate(_)
         | Command::TriType(_)
         | Command::TriCancel(_)
-        | Command::TriWalk(_) => {}
+        | Command::TriWalk(_)
+        | Command::Optimize(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

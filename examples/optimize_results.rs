@@ -1,0 +1,133 @@
+//! The runs of docs/results.md: `cargo run --release --example optimize_results`.
+//! Each row: mesh, counts before and after, batches, Q-zips, seconds, face count change.
+use std::time::Instant;
+use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::{gen, io, Mesh};
+
+/// The options: 40 batches, with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
+fn options() -> OptimizeOptions {
+    let mut o = OptimizeOptions::default().batches(40);
+    if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
+        for pair in w.split(',').filter(|p| !p.is_empty()) {
+            if let Some((n, x)) = pair.split_once('=') {
+                o = o.weight(n, x.parse().unwrap_or(0.0));
+            }
+        }
+    }
+    o
+}
+
+fn row(name: &str, mesh: Mesh) {
+    row_with(name, mesh, |_| Constraints::default());
+}
+
+fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constraints) {
+    let before = SingularityCounts::of(&mesh);
+    let c = constraints(&mesh);
+    let check = c.clone();
+    let t = Instant::now();
+    let out = optimize(&mut mesh, c, options(), |_| {});
+    assert!(check.holds(&mesh), "{name}: a constraint broke");
+    let secs = t.elapsed().as_secs_f64();
+    let Ok(out) = out else {
+        println!("| {name} | refused | | | | | |");
+        return;
+    };
+    let a = out.final_counts;
+    let q: usize = out.batches.iter().map(|b| b.qzips).sum();
+    let nb = out.batches.len().max(1);
+    println!(
+        "| {name} | {}/{}/{}/{} ({}) bd {} | {}/{}/{}/{} ({}) bd {} | {} | {q} | {secs:.1} ({:.2}/batch) | {} -> {} ({:+.1} %) |",
+        before.v2, before.v3, before.v5, before.v6plus, before.singularities(), before.boundary_defects,
+        a.v2, a.v3, a.v5, a.v6plus, a.singularities(), a.boundary_defects, out.batches.len(), secs / nb as f64,
+        before.faces, a.faces,
+        100.0 * (a.faces as f64 - before.faces as f64) / before.faces.max(1) as f64
+    );
+}
+
+fn main() {
+    let only = std::env::args().nth(1).unwrap_or_default();
+    if only == "genus3" {
+        row(
+            "genus 3",
+            gen::catmull_clark(&gen::random_triangle(300, 3, 0, 1)),
+        );
+        return;
+    }
+    if only == "disk" {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+        let m = io::read_mesh(format!("{dir}/tri/circle_disk.obj"))
+            .unwrap()
+            .0;
+        row("CC of tri/circle_disk.obj", gen::catmull_clark(&m));
+        return;
+    }
+    if only == "constraints" {
+        constraint_rows();
+        return;
+    }
+    if only == "spot" {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+        row(
+            "spot",
+            io::read_mesh(format!("{dir}/quad/spot_quadrangulated.obj"))
+                .unwrap()
+                .0,
+        );
+        return;
+    }
+    println!("| mesh | before v2/v3/v5/v6+ (total) boundary defects | after | batches | Q-zips | seconds (per batch) | faces |");
+    println!("|---|---|---|---|---|---|---|");
+    for g in [2, 3, 4] {
+        row(
+            &format!("CC of random triangle mesh, genus {g}, ~{} tris", 300),
+            gen::catmull_clark(&gen::random_triangle(300, g, 0, 1)),
+        );
+    }
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    for f in [
+        "quad/spot_quadrangulated.obj",
+        "quad/blub_quadrangulated.obj",
+        "quad/cubespikes.obj",
+        "quad/osd_catmark_torus.obj",
+        "quad/osd_catmark_toroidal_tet.obj",
+        "quad/osd_catmark_helmet.obj",
+    ] {
+        match io::read_mesh(format!("{dir}/{f}")) {
+            Ok((m, _)) => row(f, m),
+            Err(e) => println!("| {f} | {e} |"),
+        }
+    }
+    for f in [
+        "tri/torus.obj",
+        "tri/spot_triangulated.obj",
+        "tri/circle_disk.obj",
+    ] {
+        match io::read_mesh(format!("{dir}/{f}")) {
+            Ok((m, _)) => row(&format!("CC of {f}"), gen::catmull_clark(&m)),
+            Err(e) => println!("| {f} | {e} |"),
+        }
+    }
+}
+
+/// Protected faces and sharp features: the constraints hold, singularities elsewhere go.
+fn constraint_rows() {
+    let genus2 = gen::catmull_clark(&gen::random_triangle(300, 2, 0, 1));
+    row_with("CC genus 2, faces 0..200 protected", genus2, |m| {
+        let mut c = Constraints::default();
+        for f in m.map.faces().take(200) {
+            c.protect_face(m, f).unwrap();
+        }
+        c
+    });
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    let spikes = io::read_mesh(format!("{dir}/quad/cubespikes.obj"))
+        .unwrap()
+        .0;
+    row_with("quad/cubespikes.obj, --sharp-angle 40", spikes, |m| {
+        let mut c = Constraints::default();
+        let n = c.add_sharp_edges(m, 40.0);
+        eprintln!("cubespikes: {n} sharp edges");
+        c
+    });
+}

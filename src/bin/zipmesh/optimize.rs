@@ -1,0 +1,239 @@
+//! `zipmesh optimize`: batches of Q-zips that reduce the singularities of a quad mesh.
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{json, Value};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+use zipmesh::io;
+use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::{Face, Mesh, Vert};
+
+use crate::out::{self, outln};
+use crate::qzip::InputError;
+
+#[derive(Args)]
+pub struct OptimizeArgs {
+    /// The input quad mesh (.obj or .off).
+    file: PathBuf,
+    /// Where to write the result.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// The most batches to run.
+    #[arg(long, default_value_t = 100)]
+    batches: usize,
+    /// The seed of the sampling (the same seed gives the same OUT).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+    /// A file of 0-based face indices, one per line: faces kept bit for bit.
+    #[arg(long)]
+    protect: Option<PathBuf>,
+    /// A file of `a b` 0-based vertex-index lines: feature edges kept.
+    #[arg(long)]
+    features: Option<PathBuf>,
+    /// Edges whose faces meet at this dihedral angle (degrees) or more are features.
+    #[arg(long)]
+    sharp_angle: Option<f64>,
+    /// No smoothing after the batches.
+    #[arg(long)]
+    no_smooth: bool,
+    /// With --json: each batch's executed surgery paths (vertex positions).
+    #[arg(long)]
+    paths: bool,
+    /// A score term's weight, `NAME=W` (count, electric, isotropy, sizing, separatrix, faces); 0
+    /// switches it off. Repeatable.
+    #[arg(long = "weight", value_parser = parse_weight)]
+    weights: Vec<(String, f64)>,
+}
+
+fn parse_weight(s: &str) -> Result<(String, f64), String> {
+    const NAMES: [&str; 6] = [
+        "count",
+        "electric",
+        "isotropy",
+        "sizing",
+        "separatrix",
+        "faces",
+    ];
+    let (name, w) = s.split_once('=').ok_or("expected NAME=W")?;
+    if !NAMES.contains(&name) {
+        return Err(format!(
+            "unknown term {name} (expected one of {})",
+            NAMES.join(", ")
+        ));
+    }
+    match w.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok((name.to_string(), x)),
+        _ => Err(format!("{w}: expected a finite non-negative weight")),
+    }
+}
+
+fn counts(c: &SingularityCounts) -> serde_json::Map<String, Value> {
+    let v = json!({
+        "faces": c.faces, "vertices": c.vertices, "v2": c.v2, "v3": c.v3, "v5": c.v5,
+        "v6plus": c.v6plus, "boundary_defects": c.boundary_defects,
+    });
+    match v {
+        Value::Object(m) => m,
+        _ => serde_json::Map::new(),
+    }
+}
+
+fn bad(file: &Path, line: usize, what: &str) -> InputError {
+    InputError(format!(
+        "{}: line {line}: {what}",
+        out::escape(&file.display().to_string())
+    ))
+}
+
+fn read_lines(file: &Path) -> Result<Vec<(usize, Vec<u32>)>, InputError> {
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| InputError(format!("{}: {e}", out::escape(&file.display().to_string()))))?;
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let nums: Result<Vec<u32>, _> = line.split_whitespace().map(str::parse).collect();
+        rows.push((
+            i + 1,
+            nums.map_err(|_| bad(file, i + 1, "not a 0-based index"))?,
+        ));
+    }
+    Ok(rows)
+}
+
+fn constraints(args: &OptimizeArgs, mesh: &Mesh) -> Result<Constraints, InputError> {
+    let mut c = Constraints::default();
+    if let Some(file) = &args.protect {
+        for (line, nums) in read_lines(file)? {
+            let [f] = nums[..] else {
+                return Err(bad(file, line, "expected one face index"));
+            };
+            c.protect_face(mesh, Face::new(f))
+                .map_err(|e| bad(file, line, &e.to_string()))?;
+        }
+    }
+    if let Some(file) = &args.features {
+        for (line, nums) in read_lines(file)? {
+            let [a, b] = nums[..] else {
+                return Err(bad(file, line, "expected two vertex indices `a b`"));
+            };
+            c.add_feature(mesh, Vert::new(a), Vert::new(b))
+                .map_err(|e| bad(file, line, &e.to_string()))?;
+        }
+    }
+    if let Some(deg) = args.sharp_angle {
+        if !(0.0..=180.0).contains(&deg) {
+            return Err(InputError(format!(
+                "--sharp-angle {deg}: expected 0 to 180 degrees"
+            )));
+        }
+        c.add_sharp_edges(mesh, deg);
+    }
+    Ok(c)
+}
+
+fn progress(planned: usize) -> Option<ProgressBar> {
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::new(planned as u64);
+    if let Ok(style) =
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] batch {pos}/{len} {msg}")
+    {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
+fn summary(c: &SingularityCounts) -> String {
+    format!(
+        "v2 {} v3 {} v5 {} v6+ {} boundary defects {} ({} faces)",
+        c.v2, c.v3, c.v5, c.v6plus, c.boundary_defects, c.faces
+    )
+}
+
+pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
+    let (mut mesh, _) = io::read_mesh(&args.file)?;
+    let name = out::escape(&args.file.display().to_string());
+    let map = &mesh.map;
+    if let Some(f) = map.faces().find(|&f| map.degree(f) != 4) {
+        return Err(InputError(format!(
+            "{name}: not a quad mesh (face {} has {} corners); optimize edits quad meshes",
+            f.index(),
+            map.degree(f)
+        )));
+    }
+    let c = constraints(&args, &mesh)?;
+    let mut options = OptimizeOptions::default()
+        .batches(args.batches)
+        .seed(args.seed)
+        .smoothing(!args.no_smooth);
+    for (name, w) in &args.weights {
+        options = options.weight(name, *w);
+    }
+    let bar = progress(args.batches);
+    let start = Instant::now();
+    let mut last = Instant::now();
+    let mut rows = Vec::new();
+    let outcome = optimize(&mut mesh, c, options, |b| {
+        let mut row = counts(&b.counts);
+        row.insert("batch".into(), json!(b.batch));
+        row.insert("qzips".into(), json!(b.qzips));
+        row.insert("candidates".into(), json!(b.candidates));
+        row.insert("score".into(), json!(b.score));
+        row.insert("smoothed".into(), json!(b.smoothed));
+        row.insert("seconds".into(), json!(last.elapsed().as_secs_f64()));
+        if args.paths {
+            let paths: Vec<Vec<[f64; 3]>> = b
+                .paths
+                .iter()
+                .map(|p| p.iter().map(|x| x.to_array()).collect())
+                .collect();
+            row.insert("paths".into(), json!(paths));
+        }
+        last = Instant::now();
+        rows.push(Value::Object(row));
+        if let Some(bar) = &bar {
+            bar.set_position(b.batch as u64);
+            bar.set_message(summary(&b.counts));
+        }
+    })
+    .map_err(|e| InputError(format!("{name}: {e}")))?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    mesh.compact();
+    let pending = io::prepare_mesh(&args.output, &mesh)?;
+    if args.json {
+        let report = json!({
+            "input": counts(&outcome.input),
+            "preprocessed": outcome.preprocessed,
+            "initial_score": outcome.initial_score,
+            "batches": rows,
+            "final": counts(&outcome.final_counts),
+            "seconds": seconds,
+        });
+        outln!("{report}");
+    } else {
+        let qzips: usize = outcome.batches.iter().map(|b| b.qzips).sum();
+        outln!("{name}: {}", summary(&outcome.input));
+        outln!(
+            "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s",
+            out::escape(&args.output.display().to_string()),
+            summary(&outcome.final_counts),
+            outcome.batches.len()
+        );
+    }
+    out::flush()?;
+    pending.commit()?;
+    Ok(ExitCode::SUCCESS)
+}

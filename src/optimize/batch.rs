@@ -1,0 +1,319 @@
+//! One batch (Q-zip paper, Sec. 4.1, "Batch of best Q-zips"): sample half of the
+//! singularities, find each one's best of 24 candidate surgeries, execute the best half
+//! serially, skipping any that would touch a region already operated on in this batch.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use super::constraints::Constraints;
+use super::defect::{singularities, Singularity};
+use super::score::{Bfs, Scorer};
+use crate::qzip::{Path, Qzip, Tag, ZipReport};
+use crate::rng::Rng;
+use crate::{Mesh, Vert};
+
+/// How far (edges) from a candidate's path its score change is read. The change is an
+/// estimate for ranking; the executed Q-zips are re-scored on the whole mesh.
+const WINDOW: u32 = 6;
+
+/// Laplacian steps on a candidate's scar before it is scored.
+const RELAX_STEPS: usize = 2;
+
+/// The four initial operations, in compass order.
+const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
+
+/// A candidate surgery: from a sampled singularity to a target, with an initial operation,
+/// and the score change it made when tried.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Candidate {
+    pub(crate) from: Vert,
+    pub(crate) to: Vert,
+    pub(crate) tag: Tag,
+    pub(crate) delta: f64,
+}
+
+/// What one executed batch did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct BatchRun {
+    pub(crate) qzips: usize,
+    pub(crate) candidates_tried: usize,
+    pub(crate) paths: Vec<Vec<DVec3>>,
+    /// Vertices near what the batch's Q-zips changed (for smoothing).
+    pub(crate) scar: Vec<Vert>,
+}
+
+/// The state a batch works with.
+pub(crate) struct Batcher<'q> {
+    pub(crate) qzip: Qzip<'q>,
+    pub(crate) scorer: Scorer,
+    pub(crate) constraints: Constraints,
+    pub(crate) locked: Vec<bool>,
+    pub(crate) bfs: Bfs,
+    pub(crate) search_radius: u32,
+    pub(crate) eps: f64,
+}
+
+impl Batcher<'_> {
+    fn is_locked(&self, v: Vert) -> bool {
+        self.locked.get(v.index()).copied().unwrap_or(false)
+    }
+
+    /// The locked-vertex marks and the sketch's forbidden edges for the current mesh.
+    pub(crate) fn refresh_constraints(&mut self, mesh: &Mesh) {
+        self.locked.clear();
+        self.locked.resize(mesh.map.vertex_slots(), false);
+        for v in self.constraints.locked_vertices() {
+            if let Some(l) = self.locked.get_mut(v.index()) {
+                *l = true;
+            }
+        }
+        self.qzip.options_mut().forbidden_edges = self.constraints.forbidden_edges(mesh);
+    }
+
+    /// Relaxes the scar's vertices (two Laplacian steps, no projection), so that the new
+    /// quads are scored with the shape smoothing will give them rather than the degenerate
+    /// one of a fresh split. Returns the previous positions.
+    fn relax(&self, mesh: &mut Mesh, r: &ZipReport) -> Vec<(Vert, DVec3)> {
+        let map = &mesh.map;
+        let mut vs: Vec<Vert> = r
+            .scar_faces()
+            .iter()
+            .flat_map(|&f| map.face_darts(f).map(|d| map.origin(d)))
+            .chain(
+                r.scar_edges()
+                    .iter()
+                    .flat_map(|e| [map.origin(e.dart(0)), map.dest(e.dart(0))]),
+            )
+            .collect();
+        vs.sort_unstable();
+        vs.dedup();
+        super::smooth::laplacian(mesh, None, &vs, &self.locked, RELAX_STEPS)
+    }
+
+    /// The vertices within [`WINDOW`] edges of `seeds`: where a candidate is scored.
+    fn window(&mut self, mesh: &Mesh, seeds: impl IntoIterator<Item = Vert>) -> Vec<Vert> {
+        let mut out = Vec::new();
+        self.bfs.run_from(mesh, seeds, WINDOW, |v, _| {
+            out.push(v);
+            true
+        });
+        out
+    }
+
+    /// The three closest v3-like and the three closest v5-like singularities of `s`.
+    fn targets(&mut self, mesh: &Mesh, s: Vert, defects: &[i64]) -> Vec<Vert> {
+        let (mut minus, mut plus) = (Vec::new(), Vec::new());
+        let locked = &self.locked;
+        self.bfs.run(mesh, s, self.search_radius, |v, d| {
+            if d > 0 && !locked.get(v.index()).copied().unwrap_or(false) {
+                match defects.get(v.index()).copied().unwrap_or(0) {
+                    x if x < 0 && minus.len() < 3 => minus.push(v),
+                    x if x > 0 && plus.len() < 3 => plus.push(v),
+                    _ => {}
+                }
+            }
+            minus.len() < 3 || plus.len() < 3
+        });
+        minus.extend(plus);
+        minus
+    }
+
+    /// Applies the movement, keeping it only if the constraints hold.
+    fn apply(
+        &self,
+        mesh: &mut Mesh,
+        path: &Path,
+        tag: Tag,
+    ) -> Option<crate::mesh::Edited<ZipReport>> {
+        let z = self.qzip.zip_mesh_along(mesh, path, tag).ok()?;
+        if self.constraints.holds(mesh) {
+            Some(z)
+        } else {
+            // An exact undo of an edit just made cannot be refused.
+            let _ = z.undo(mesh);
+            None
+        }
+    }
+
+    /// The best of the 24 candidates of `s` (score change, most negative first), if any
+    /// lowers the score.
+    fn best_candidate(
+        &mut self,
+        mesh: &mut Mesh,
+        s: Vert,
+        defects: &[i64],
+        total: f64,
+        tried: &mut usize,
+    ) -> Option<Candidate> {
+        let mut best: Option<Candidate> = None;
+        let _ = total;
+        for t in self.targets(mesh, s, defects) {
+            let Ok(path) = self.qzip.sketch(&mesh.map, s, t) else {
+                continue;
+            };
+            let window = self.window(mesh, path.vertices().iter().copied());
+            let before = self.scorer.local(mesh, &window);
+            for tag in TAGS {
+                let Some(z) = self.apply(mesh, &path, tag) else {
+                    continue;
+                };
+                *tried += 1;
+                let saved = self.relax(mesh, z.record());
+                let r = z.record();
+                let seeds = path
+                    .vertices()
+                    .iter()
+                    .copied()
+                    .chain([r.moved_from(), r.moved_to()]);
+                let scar = r
+                    .scar_faces()
+                    .iter()
+                    .map(|&f| mesh.map.origin(mesh.map.face_dart(f)));
+                let window = self.window(
+                    mesh,
+                    seeds
+                        .chain(scar)
+                        .filter(|&v| mesh.map.is_live_vertex(v))
+                        .collect::<Vec<_>>(),
+                );
+                let delta = self.scorer.local(mesh, &window) - before;
+                for (v, p) in saved.into_iter().rev() {
+                    mesh.positions[v.index()] = p;
+                }
+                let _ = z.undo(mesh);
+                if delta < -self.eps && best.is_none_or(|b| delta < b.delta) {
+                    best = Some(Candidate {
+                        from: s,
+                        to: t,
+                        tag,
+                        delta,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// One batch: returns what it executed; the score never rises (each executed Q-zip is
+    /// re-scored on the current mesh and kept only if it lowers the score).
+    pub(crate) fn run(&mut self, mesh: &mut Mesh, rng: &mut Rng, total: &mut f64) -> BatchRun {
+        self.refresh_constraints(mesh);
+        let mut out = BatchRun::default();
+        let sing: Vec<Singularity> = singularities(mesh)
+            .into_iter()
+            .filter(|s| !self.is_locked(s.vertex))
+            .collect();
+        let mut defects = vec![0i64; mesh.map.vertex_slots()];
+        for s in &sing {
+            defects[s.vertex.index()] = s.defect;
+        }
+        let mut order: Vec<Vert> = sing.iter().map(|s| s.vertex).collect();
+        let sample = order.len().div_ceil(2);
+        for i in 0..sample {
+            let j = i + rng.below(order.len() - i);
+            order.swap(i, j);
+        }
+        let mut candidates: Vec<Candidate> = Vec::new();
+        for &s in &order[..sample] {
+            let found = self.best_candidate(mesh, s, &defects, *total, &mut out.candidates_tried);
+            candidates.extend(found);
+        }
+        // Most negative first; ties keep sampling order (a stable sort).
+        candidates.sort_by(|a, b| a.delta.total_cmp(&b.delta));
+        candidates.truncate(candidates.len().div_ceil(2));
+        let mut operated = vec![false; mesh.map.vertex_slots()];
+        for c in candidates {
+            self.execute(mesh, c, total, &mut operated, &mut out);
+        }
+        out
+    }
+
+    /// Executes one chosen candidate on the current mesh if it still applies, touches no
+    /// region already operated on, and still lowers the score.
+    fn execute(
+        &mut self,
+        mesh: &mut Mesh,
+        c: Candidate,
+        total: &mut f64,
+        operated: &mut Vec<bool>,
+        out: &mut BatchRun,
+    ) {
+        let map = &mesh.map;
+        let marked = |v: Vert, op: &[bool]| op.get(v.index()).copied().unwrap_or(false);
+        if !map.is_live_vertex(c.from) || !map.is_live_vertex(c.to) {
+            return;
+        }
+        let Ok(path) = self.qzip.sketch(map, c.from, c.to) else {
+            return;
+        };
+        let near = |v: Vert| core::iter::once(v).chain(map.vertex_darts(v).map(|d| map.dest(d)));
+        if path
+            .vertices()
+            .iter()
+            .any(|&v| near(v).any(|u| marked(u, operated)))
+        {
+            return;
+        }
+        let points: Vec<DVec3> = path
+            .vertices()
+            .iter()
+            .map(|v| {
+                mesh.positions
+                    .get(v.index())
+                    .copied()
+                    .unwrap_or(DVec3::ZERO)
+            })
+            .collect();
+        let Some(z) = self.apply(mesh, &path, c.tag) else {
+            return;
+        };
+        let saved = self.relax(mesh, z.record());
+        let after = self.scorer.score(mesh).0;
+        if after >= *total - self.eps || !self.constraints.holds(mesh) {
+            for (v, p) in saved.into_iter().rev() {
+                mesh.positions[v.index()] = p;
+            }
+            let _ = z.undo(mesh);
+            return;
+        }
+        *total = after;
+        out.qzips += 1;
+        out.paths.push(points);
+        let region = touched_region(mesh, &path, z.record());
+        operated.resize(mesh.map.vertex_slots(), false);
+        for &v in &region {
+            operated[v.index()] = true;
+        }
+        out.scar.extend(region);
+        self.refresh_constraints(mesh);
+    }
+}
+
+/// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved
+/// singularities, the corners of the scar faces and the ends of the scar edges, and their
+/// one-rings.
+fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Vert> {
+    let map = &mesh.map;
+    let mut core: Vec<Vert> = path
+        .vertices()
+        .iter()
+        .copied()
+        .chain([r.moved_from(), r.moved_to()])
+        .filter(|&v| map.is_live_vertex(v))
+        .collect();
+    for &f in r.scar_faces() {
+        core.extend(map.face_darts(f).map(|d| map.origin(d)));
+    }
+    for &e in r.scar_edges() {
+        core.extend([map.origin(e.dart(0)), map.dest(e.dart(0))]);
+    }
+    let mut out = core.clone();
+    for v in core {
+        out.extend(map.vertex_darts(v).map(|d| map.dest(d)));
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}

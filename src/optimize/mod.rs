@@ -1,0 +1,451 @@
+//! Automatic singularity reduction of quad meshes by batches of Q-zips (Q-zip paper,
+//! Sec. 4.1): scores ([`score`](mod@score)), batches (`batch`), boundary defects
+//! ([`defect`](mod@defect)), features and protected regions ([`Constraints`]) and smoothing
+//! near the scars ([`smooth`](mod@smooth)). `docs/optimize.md` gives our reading of the paper.
+//!
+//! ```
+//! use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+//! let mut mesh = gen::catmull_clark(&gen::random_triangle(60, 1, 0, 3));
+//! let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().batches(3), |_| {}).unwrap();
+//! assert!(out.final_counts.singularities() <= out.input.singularities());
+//! assert!(out.batches.windows(2).all(|w| w[1].score <= w[0].score));
+//! ```
+
+mod batch;
+pub mod constraints;
+pub mod defect;
+pub mod score;
+pub mod smooth;
+
+use alloc::boxed::Box;
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+pub use constraints::{ConstraintError, Constraints};
+pub use defect::{defect, ideal_boundary_valence, singularities, vertex_angle, Singularity};
+pub use score::{Context, Count, Electric, FaceBudget, Isotropy, ScoreTerm, Separatrix, Sizing};
+pub use smooth::{smooth, spring_stiffness, Surface};
+
+use crate::invariants::{Counts, MeshKind};
+use crate::qzip::{mesh_preprocess, Qzip, SketchOptions};
+use crate::rng::Rng;
+use crate::{Mesh, Vert};
+
+/// How a run goes: the score's terms and weights, the number of batches, the seed, the
+/// smoothing. Start from [`OptimizeOptions::default`] and chain the setters.
+///
+/// The default weights: count 1, electric 0.1, isotropy 0.002, sizing 0.002, separatrix
+/// 0.05, faces 0 (see `docs/optimize.md` for why the count dominates and how the weights
+/// were chosen). A weight of 0 switches a term off.
+///
+/// ```
+/// use zipmesh::optimize::OptimizeOptions;
+/// let o = OptimizeOptions::default().batches(5).seed(7).smoothing(false).weight("isotropy", 0.0);
+/// assert_eq!((o.max_batches, o.seed, o.smooth), (5, 7, false));
+/// assert_eq!(o.terms().iter().find(|(_, t)| t.name() == "isotropy").unwrap().0, 0.0);
+/// ```
+#[derive(Debug)]
+#[non_exhaustive]
+pub struct OptimizeOptions {
+    /// The most batches to run.
+    pub max_batches: usize,
+    /// Stop after this many batches in a row that executed no Q-zip (each samples another
+    /// half of the singularities).
+    pub patience: usize,
+    /// The seed of the sampling.
+    pub seed: u64,
+    /// Smooth near the scars after each batch.
+    pub smooth: bool,
+    /// Laplacian steps per batch.
+    pub smooth_iterations: usize,
+    /// Run the valence-2 / valence-6+ preprocessing first.
+    pub preprocess: bool,
+    /// How far (edges) a singularity looks for its six targets.
+    pub search_radius: u32,
+    terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
+}
+
+impl Default for OptimizeOptions {
+    fn default() -> Self {
+        OptimizeOptions {
+            max_batches: 100,
+            patience: 2,
+            seed: 0,
+            smooth: true,
+            smooth_iterations: 3,
+            preprocess: true,
+            search_radius: 64,
+            terms: alloc::vec![
+                (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
+                (0.1, Box::new(Electric::default())),
+                (0.002, Box::new(Isotropy)),
+                (0.002, Box::new(Sizing)),
+                (0.05, Box::new(Separatrix::default())),
+                (0.0, Box::new(FaceBudget)),
+            ],
+        }
+    }
+}
+
+impl OptimizeOptions {
+    /// Sets [`OptimizeOptions::max_batches`].
+    ///
+    /// See [`OptimizeOptions`] for an example.
+    pub fn batches(mut self, n: usize) -> Self {
+        self.max_batches = n;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::seed`].
+    ///
+    /// See [`OptimizeOptions`] for an example.
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::smooth`].
+    ///
+    /// See [`OptimizeOptions`] for an example.
+    pub fn smoothing(mut self, on: bool) -> Self {
+        self.smooth = on;
+        self
+    }
+
+    /// Sets the weight of every term named `name` (non-finite weights read as 0).
+    ///
+    /// See [`OptimizeOptions`] for an example.
+    pub fn weight(mut self, name: &str, weight: f64) -> Self {
+        let w = if weight.is_finite() { weight } else { 0.0 };
+        for (x, t) in &mut self.terms {
+            if t.name() == name {
+                *x = w;
+            }
+        }
+        self
+    }
+
+    /// Adds a term with its weight.
+    ///
+    /// See [`ScoreTerm`] for an example.
+    pub fn term(mut self, weight: f64, term: Box<dyn ScoreTerm + Send>) -> Self {
+        self.terms
+            .push((if weight.is_finite() { weight } else { 0.0 }, term));
+        self
+    }
+
+    /// The terms and their weights.
+    ///
+    /// See [`OptimizeOptions`] for an example.
+    pub fn terms(&self) -> &[(f64, Box<dyn ScoreTerm + Send>)] {
+        &self.terms
+    }
+}
+
+/// The counts a run reports: faces, vertices, interior vertices by valence (2, 3, 5, 6 and
+/// more) and the sum of |defect| over boundary vertices.
+///
+/// ```
+/// use zipmesh::{gen, optimize::SingularityCounts};
+/// let c = SingularityCounts::of(&gen::subdivided_icosahedron(1));
+/// assert_eq!((c.v3, c.v5, c.singularities()), (20, 12, 32));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SingularityCounts {
+    /// Faces.
+    pub faces: usize,
+    /// Vertices.
+    pub vertices: usize,
+    /// Interior vertices of valence 2.
+    pub v2: usize,
+    /// Interior vertices of valence 3.
+    pub v3: usize,
+    /// Interior vertices of valence 5.
+    pub v5: usize,
+    /// Interior vertices of valence 6 or more.
+    pub v6plus: usize,
+    /// The sum of |defect| over boundary vertices ([`defect()`]).
+    pub boundary_defects: usize,
+}
+
+impl SingularityCounts {
+    /// Counts `mesh`.
+    ///
+    /// See [`SingularityCounts`] for an example.
+    pub fn of(mesh: &Mesh) -> Self {
+        let map = &mesh.map;
+        let mut c = SingularityCounts {
+            faces: map.num_faces(),
+            vertices: map.num_vertices(),
+            ..Default::default()
+        };
+        for v in map.vertices() {
+            if map.is_boundary_vertex(v) {
+                c.boundary_defects += defect(mesh, v).unsigned_abs() as usize;
+                continue;
+            }
+            match map.valence(v) {
+                2 => c.v2 += 1,
+                3 => c.v3 += 1,
+                5 => c.v5 += 1,
+                k if k >= 6 => c.v6plus += 1,
+                _ => {}
+            }
+        }
+        c
+    }
+
+    /// Interior irregular vertices (valences 0 and 1 are not counted: a quad mesh has none).
+    ///
+    /// See [`SingularityCounts`] for an example.
+    pub fn singularities(&self) -> usize {
+        self.v2 + self.v3 + self.v5 + self.v6plus
+    }
+}
+
+/// What one batch did.
+///
+/// See [`optimize`] for an example.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct BatchReport {
+    /// The batch number, from 1.
+    pub batch: usize,
+    /// Q-zips executed.
+    pub qzips: usize,
+    /// Candidate surgeries applied, scored and undone.
+    pub candidates: usize,
+    /// The counts after the batch (and its smoothing).
+    pub counts: SingularityCounts,
+    /// The total score after the batch.
+    pub score: f64,
+    /// Whether the smoothing was kept (it is undone when it would raise the score).
+    pub smoothed: bool,
+    /// The executed surgery paths, as the positions of their vertices before each Q-zip.
+    pub paths: Vec<Vec<DVec3>>,
+}
+
+/// The result of [`optimize`].
+///
+/// See [`optimize`] for an example.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Outcome {
+    /// The counts of the input.
+    pub input: SingularityCounts,
+    /// The total score before the first batch (after preprocessing).
+    pub initial_score: f64,
+    /// Whether the preprocessing ran and was kept.
+    pub preprocessed: bool,
+    /// One report per batch run (the last may have executed nothing).
+    pub batches: Vec<BatchReport>,
+    /// The counts of the result.
+    pub final_counts: SingularityCounts,
+}
+
+/// Why [`optimize`] refused; the mesh is unchanged.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeError, OptimizeOptions}};
+/// let mut tri = gen::random_triangle(40, 0, 0, 1);
+/// let e = optimize(&mut tri, Constraints::default(), OptimizeOptions::default(), |_| {});
+/// assert_eq!(e.unwrap_err(), OptimizeError::NotQuad);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum OptimizeError {
+    /// A face is not a quad.
+    NotQuad,
+    /// The constraints do not hold on the input (they were recorded on another mesh).
+    ConstraintsBroken,
+    /// Fewer positions than vertex slots.
+    MissingPositions,
+}
+
+impl core::fmt::Display for OptimizeError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::NotQuad => f.write_str("not a pure quad mesh"),
+            Self::ConstraintsBroken => f.write_str("the constraints do not hold on this mesh"),
+            Self::MissingPositions => f.write_str("fewer positions than vertices"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for OptimizeError {}
+
+fn mean_face_area(mesh: &Mesh) -> f64 {
+    let at = |v: Vert| {
+        mesh.positions
+            .get(v.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    };
+    let (mut sum, mut n) = (0.0, 0usize);
+    for f in mesh.map.faces() {
+        let c: Vec<DVec3> = mesh
+            .map
+            .face_darts(f)
+            .map(|d| at(mesh.map.origin(d)))
+            .collect();
+        if let [p0, p1, p2, p3] = c[..] {
+            sum += 0.5 * (p2 - p0).cross(p3 - p1).length();
+            n += 1;
+        }
+    }
+    if n > 0 && sum > 0.0 && sum.is_finite() {
+        sum / n as f64
+    } else {
+        1.0
+    }
+}
+
+/// Runs batches of Q-zips on `mesh` until a batch improves nothing
+/// ([`OptimizeOptions::patience`] times in a row) or [`OptimizeOptions::max_batches`] ran,
+/// calling `progress` after each batch. The score never rises from one batch to the next;
+/// the mesh stays a valid pure-quad map with the same Euler characteristic, boundary loops
+/// and components, and `constraints` hold throughout. Deterministic for a given seed.
+///
+/// See the module example.
+pub fn optimize(
+    mesh: &mut Mesh,
+    constraints: Constraints,
+    options: OptimizeOptions,
+    mut progress: impl FnMut(&BatchReport),
+) -> Result<Outcome, OptimizeError> {
+    if MeshKind::of(&mesh.map) != MeshKind::Quad && mesh.map.num_faces() > 0 {
+        return Err(OptimizeError::NotQuad);
+    }
+    if mesh.positions.len() < mesh.map.vertex_slots() {
+        return Err(OptimizeError::MissingPositions);
+    }
+    if !constraints.holds(mesh) {
+        return Err(OptimizeError::ConstraintsBroken);
+    }
+    let input = SingularityCounts::of(mesh);
+    let surface = Surface::new(mesh);
+    let mut preprocessed = false;
+    if options.preprocess {
+        if let Ok(p) = mesh_preprocess(mesh) {
+            preprocessed = constraints.holds(mesh);
+            if !preprocessed {
+                let _ = p.undo(mesh);
+            }
+        }
+    }
+    let mut scorer = score::Scorer {
+        terms: options.terms,
+        features: Vec::new(),
+        target_area: mean_face_area(mesh),
+        target_faces: mesh.map.num_faces(),
+    };
+    let before = Counts::of(&mesh.map);
+    let mut b = batch::Batcher {
+        qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
+        scorer,
+        constraints,
+        locked: Vec::new(),
+        bfs: Default::default(),
+        search_radius: options.search_radius,
+        eps: 1e-9,
+    };
+    mark_features(&mut b, mesh);
+    let mut total = b.scorer.score(mesh).0;
+    let initial_score = total;
+    let mut rng = Rng::new(options.seed);
+    let mut batches = Vec::new();
+    let mut idle = 0;
+    for i in 1..=options.max_batches {
+        let run = b.run(mesh, &mut rng, &mut total);
+        let smoothed = options.smooth
+            && run.qzips > 0
+            && smooth_scars(
+                &mut b,
+                mesh,
+                &surface,
+                &run.scar,
+                options.smooth_iterations,
+                &mut total,
+            );
+        let report = BatchReport {
+            batch: i,
+            qzips: run.qzips,
+            candidates: run.candidates_tried,
+            counts: SingularityCounts::of(mesh),
+            score: total,
+            smoothed,
+            paths: run.paths,
+        };
+        progress(&report);
+        batches.push(report);
+        idle = if run.qzips == 0 { idle + 1 } else { 0 };
+        if idle >= options.patience.max(1) {
+            break;
+        }
+    }
+    debug_assert_eq!(
+        Counts::of(&mesh.map).euler_characteristic,
+        before.euler_characteristic
+    );
+    scorer = b.scorer;
+    let _ = scorer;
+    Ok(Outcome {
+        input,
+        initial_score,
+        preprocessed,
+        batches,
+        final_counts: SingularityCounts::of(mesh),
+    })
+}
+
+fn mark_features(b: &mut batch::Batcher<'_>, mesh: &Mesh) {
+    let f = &mut b.scorer.features;
+    f.clear();
+    f.resize(mesh.map.vertex_slots(), false);
+    for v in b.constraints.feature_vertices() {
+        if let Some(x) = f.get_mut(v.index()) {
+            *x = true;
+        }
+    }
+}
+
+/// Smooths the scars' vertices and one more ring; keeps the result only if the score does
+/// not rise (so the batch-to-batch score stays monotone). Returns whether it was kept.
+fn smooth_scars(
+    b: &mut batch::Batcher<'_>,
+    mesh: &mut Mesh,
+    surface: &Surface,
+    scar: &[Vert],
+    iterations: usize,
+    total: &mut f64,
+) -> bool {
+    let map = &mesh.map;
+    let mut region: Vec<Vert> = scar
+        .iter()
+        .copied()
+        .filter(|&v| map.is_live_vertex(v))
+        .collect();
+    let ring: Vec<Vert> = region
+        .iter()
+        .flat_map(|&v| map.vertex_darts(v).map(|d| map.dest(d)))
+        .collect();
+    region.extend(ring);
+    region.sort_unstable();
+    region.dedup();
+    let saved: Vec<DVec3> = region.iter().map(|v| mesh.positions[v.index()]).collect();
+    b.refresh_constraints(mesh);
+    mark_features(b, mesh);
+    smooth(mesh, surface, &region, &b.locked, iterations);
+    let after = b.scorer.score(mesh).0;
+    if after <= *total && b.constraints.holds(mesh) {
+        *total = after;
+        true
+    } else {
+        for (v, p) in region.iter().zip(saved) {
+            mesh.positions[v.index()] = p;
+        }
+        false
+    }
+}

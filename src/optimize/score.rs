@@ -1,0 +1,506 @@
+//! The score a batch decreases (Q-zip paper, Sec. 4.1, "Scoring strategy"): a weighted sum of
+//! terms, each a [`ScoreTerm`], so that library users can add their own.
+//!
+//! Every term is a function of the whole mesh; a candidate Q-zip is scored by applying it,
+//! scoring, and undoing it exactly. `docs/optimize.md` gives each formula.
+
+use alloc::boxed::Box;
+use alloc::collections::VecDeque;
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use super::defect::{singularities, Singularity};
+use crate::{Mesh, Vert};
+
+/// What a term may read: the mesh, its singularities, and what the run fixed at the start.
+///
+/// See [`ScoreTerm`] for an example.
+#[derive(Debug)]
+pub struct Context<'a> {
+    /// The mesh being scored.
+    pub mesh: &'a Mesh,
+    /// Its vertices with a non-zero defect ([`super::singularities`]).
+    pub singularities: &'a [Singularity],
+    /// Whether a vertex (by index) lies on a sharp feature; shorter than the vertex slots
+    /// means "no" for the rest.
+    pub features: &'a [bool],
+    /// The mean face area of the input: the size the sizing term aims for.
+    pub target_area: f64,
+    /// The input's face count (after preprocessing): what [`FaceBudget`] keeps.
+    pub target_faces: usize,
+    /// When set, the faces whose terms are summed (a window around a candidate);
+    /// `singularities` is then the window's too.
+    pub faces: Option<&'a [crate::Face]>,
+}
+
+impl Context<'_> {
+    fn position(&self, v: Vert) -> DVec3 {
+        self.mesh
+            .positions
+            .get(v.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    }
+
+    fn is_feature(&self, v: Vert) -> bool {
+        self.features.get(v.index()).copied().unwrap_or(false)
+    }
+
+    /// The faces a face term sums over: the window's, or every face.
+    pub fn scored_faces(&self) -> alloc::boxed::Box<dyn Iterator<Item = crate::Face> + '_> {
+        match self.faces {
+            Some(f) => alloc::boxed::Box::new(f.iter().copied()),
+            None => alloc::boxed::Box::new(self.mesh.map.faces()),
+        }
+    }
+
+    fn corners(&self, f: crate::Face) -> Option<[DVec3; 4]> {
+        let map = &self.mesh.map;
+        let d = map.face_dart(f);
+        let mut c = [DVec3::ZERO; 4];
+        let mut n = 0;
+        for x in map.face_cycle(d) {
+            *c.get_mut(n)? = self.position(map.origin(x));
+            n += 1;
+        }
+        (n == 4).then_some(c)
+    }
+}
+
+/// One term of the score: a number for the whole mesh, smaller is better.
+///
+/// A user term is added with [`super::OptimizeOptions::term`]:
+///
+/// ```
+/// use zipmesh::optimize::{Context, ScoreTerm};
+/// /// The number of faces: prefer coarser meshes.
+/// #[derive(Debug)]
+/// struct Faces;
+/// impl ScoreTerm for Faces {
+///     fn name(&self) -> &str { "faces" }
+///     fn score(&mut self, ctx: &Context<'_>) -> f64 { ctx.mesh.map.num_faces() as f64 }
+/// }
+/// let options = zipmesh::optimize::OptimizeOptions::default().term(0.001, Box::new(Faces));
+/// assert!(options.terms().iter().any(|(_, t)| t.name() == "faces"));
+/// ```
+pub trait ScoreTerm: core::fmt::Debug {
+    /// A short name (used in reports).
+    fn name(&self) -> &str;
+    /// The term's value on `ctx.mesh`.
+    fn score(&mut self, ctx: &Context<'_>) -> f64;
+}
+
+/// The singularity count: the sum of |defect| over every vertex (interior valence against 4,
+/// boundary valence against its ideal). Not a term of the paper, whose goal it is: the other
+/// terms only rank moves that keep or lower it (see `docs/optimize.md`).
+///
+/// ```
+/// use zipmesh::{gen, optimize::{singularities, Context, Count, ScoreTerm}};
+/// let m = gen::subdivided_icosahedron(1);
+/// let s = singularities(&m);
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// assert_eq!(Count.score(&ctx), 32.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Count;
+
+impl ScoreTerm for Count {
+    fn name(&self) -> &str {
+        "count"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        ctx.singularities
+            .iter()
+            .map(|s| s.defect.unsigned_abs() as f64)
+            .sum()
+    }
+}
+
+/// The face budget: `|F - F0|`, the change of the face count from the input's. Not a term of
+/// the paper (see `docs/optimize.md`): a Q-zip that cancels singularities by long strips of
+/// splits adds quads, and this keeps the overall density where the input had it. Whole-mesh
+/// and O(1), also in a window.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{Context, FaceBudget, ScoreTerm}};
+/// let m = gen::grid(3, 3);
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 5, faces: None };
+/// assert_eq!(FaceBudget.score(&ctx), 4.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FaceBudget;
+
+impl ScoreTerm for FaceBudget {
+    fn name(&self) -> &str {
+        "faces"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        ctx.mesh.map.num_faces().abs_diff(ctx.target_faces) as f64
+    }
+}
+
+/// Epoch-stamped breadth-first search scratch, reused between calls.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Bfs {
+    seen: Vec<u32>,
+    dist: Vec<u32>,
+    epoch: u32,
+    queue: VecDeque<Vert>,
+}
+
+impl Bfs {
+    /// Visits vertices from `from` in order of graph distance up to `radius`, calling
+    /// `visit(v, d)`; stops early when `visit` returns `false`.
+    pub(crate) fn run(
+        &mut self,
+        mesh: &Mesh,
+        from: Vert,
+        radius: u32,
+        visit: impl FnMut(Vert, u32) -> bool,
+    ) {
+        self.run_from(mesh, [from], radius, visit);
+    }
+
+    /// [`Bfs::run`] from several sources at distance 0.
+    pub(crate) fn run_from(
+        &mut self,
+        mesh: &Mesh,
+        from: impl IntoIterator<Item = Vert>,
+        radius: u32,
+        mut visit: impl FnMut(Vert, u32) -> bool,
+    ) {
+        let map = &mesh.map;
+        let n = map.vertex_slots();
+        if self.seen.len() < n {
+            self.seen.resize(n, 0);
+            self.dist.resize(n, 0);
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+        self.queue.clear();
+        for v in from {
+            if map.is_live_vertex(v) && self.seen[v.index()] != self.epoch {
+                self.seen[v.index()] = self.epoch;
+                self.dist[v.index()] = 0;
+                self.queue.push_back(v);
+            }
+        }
+        while let Some(v) = self.queue.pop_front() {
+            let d = self.dist[v.index()];
+            if !visit(v, d) {
+                return;
+            }
+            if d >= radius {
+                continue;
+            }
+            for x in map.vertex_darts(v) {
+                let u = map.dest(x);
+                if let Some(s) = self.seen.get_mut(u.index()) {
+                    if *s != self.epoch {
+                        *s = self.epoch;
+                        self.dist[u.index()] = d + 1;
+                        self.queue.push_back(u);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Electric push and pull: each singularity `s` with charge `q_s = -defect` (v3 +1, v5 -1)
+/// and its three closest singularities `t` (graph distance `d`, at most `radius`) give
+/// `q_s q_t / d` (like charges repel, unlike attract), and the closest boundary or feature
+/// vertex `b` gives `boundary_weight |q_s| / d_b` (a weak push). Summed over singularities.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{singularities, Context, Electric, ScoreTerm}};
+/// let m = gen::subdivided_icosahedron(1);
+/// let s = singularities(&m);
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// // Each v5 is one edge from a v3: attraction wins.
+/// assert!(Electric::default().score(&ctx) < 0.0);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Electric {
+    /// How far (edges) a singularity looks for others.
+    pub radius: u32,
+    /// The weight of the boundary and feature push.
+    pub boundary_weight: f64,
+    /// How far (edges) a singularity looks for the boundary or a feature.
+    pub boundary_radius: u32,
+    bfs: Bfs,
+}
+
+impl Default for Electric {
+    fn default() -> Self {
+        Electric {
+            radius: 16,
+            boundary_weight: 0.5,
+            boundary_radius: 4,
+            bfs: Bfs::default(),
+        }
+    }
+}
+
+impl ScoreTerm for Electric {
+    fn name(&self) -> &str {
+        "electric"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        let map = &ctx.mesh.map;
+        let mut total = 0.0;
+        for s in ctx.singularities {
+            let q = s.charge();
+            let (mut found, mut wall) = (0, s.boundary);
+            let (bw, br) = (self.boundary_weight, self.boundary_radius);
+            self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
+                if d == 0 {
+                    return true;
+                }
+                let dv = super::defect::defect(ctx.mesh, v);
+                if dv != 0 && found < 3 {
+                    found += 1;
+                    total += q * (-(dv as f64)) / d as f64;
+                }
+                if !wall && d <= br && (map.is_boundary_vertex(v) || ctx.is_feature(v)) {
+                    wall = true;
+                    total += bw * q.abs() / d as f64;
+                }
+                found < 3 || (!wall && d < br)
+            });
+        }
+        total
+    }
+}
+
+/// Isotropy: each quad's stretch along four directions, the two pairs of opposite sides and
+/// the two diagonals: `ln(a / b)^2 + ln(c / e)^2` with `a`, `b` the summed lengths of the
+/// opposite side pairs and `c`, `e` the diagonals (each log ratio capped at 2). Summed over
+/// quads; the anticipated effect of a Q-zip is read on the mesh it leaves.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{Context, Isotropy, ScoreTerm}};
+/// let m = gen::grid(3, 3);
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// assert_eq!(Isotropy.score(&ctx), 0.0); // unit squares
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Isotropy;
+
+fn log_ratio_sq(a: f64, b: f64) -> f64 {
+    let r = libm::log(a / b);
+    let r = if r.is_finite() { r.abs().min(2.0) } else { 2.0 };
+    r * r
+}
+
+impl ScoreTerm for Isotropy {
+    fn name(&self) -> &str {
+        "isotropy"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        let mut total = 0.0;
+        for f in ctx.scored_faces() {
+            if let Some([p0, p1, p2, p3]) = ctx.corners(f) {
+                let a = p0.distance(p1) + p2.distance(p3);
+                let b = p1.distance(p2) + p3.distance(p0);
+                total += log_ratio_sq(a, b) + log_ratio_sq(p0.distance(p2), p1.distance(p3));
+            }
+        }
+        total
+    }
+}
+
+/// Uniform sizing: each quad's `ln(area / target)^2` (the log capped at 2), with the target
+/// the input's mean face area: collapses where quads are already large and splits where they
+/// are already small raise it.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{Context, Sizing, ScoreTerm}};
+/// let m = gen::grid(3, 3);
+/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None });
+/// assert_eq!(at(1.0), 0.0);
+/// assert!(at(2.0) > 0.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Sizing;
+
+impl ScoreTerm for Sizing {
+    fn name(&self) -> &str {
+        "sizing"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        let mut total = 0.0;
+        for f in ctx.scored_faces() {
+            if let Some([p0, p1, p2, p3]) = ctx.corners(f) {
+                let area = 0.5 * (p2 - p0).cross(p3 - p1).length();
+                total += log_ratio_sq(area, ctx.target_area);
+            }
+        }
+        total
+    }
+}
+
+/// Separatrix alignment: each interior singularity at graph distance `d` (1 to `radius`)
+/// from the closest separatrix of another singularity adds `1 / d^2`; one on such a
+/// separatrix (aligned) or farther adds nothing. Separatrices are traced straight through
+/// regular interior vertices from every edge of an interior singularity, at most `length`
+/// edges.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{singularities, Context, Separatrix, ScoreTerm}};
+/// let m = gen::subdivided_icosahedron(2);
+/// let s = singularities(&m);
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// assert!(Separatrix::default().score(&ctx) >= 0.0);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Separatrix {
+    /// How far (edges) a singularity looks for a separatrix.
+    pub radius: u32,
+    /// The longest traced separatrix (edges).
+    pub length: usize,
+    owner: Vec<u32>,
+    bfs: Bfs,
+}
+
+impl Default for Separatrix {
+    fn default() -> Self {
+        Separatrix {
+            radius: 3,
+            length: 32,
+            owner: Vec::new(),
+            bfs: Bfs::default(),
+        }
+    }
+}
+
+const NO_OWNER: u32 = u32::MAX;
+const MANY_OWNERS: u32 = u32::MAX - 1;
+
+impl Separatrix {
+    fn trace(&mut self, ctx: &Context<'_>, id: u32, s: Vert) {
+        let map = &ctx.mesh.map;
+        for start in map.vertex_darts(s) {
+            let mut d = start;
+            for _ in 0..self.length {
+                let v = map.dest(d);
+                let o = &mut self.owner[v.index()];
+                *o = if *o == NO_OWNER || *o == id {
+                    id
+                } else {
+                    MANY_OWNERS
+                };
+                if map.valence(v) != 4 || map.is_boundary_vertex(v) {
+                    break;
+                }
+                d = map.rotate_cw(map.rotate_cw(d.twin()));
+            }
+        }
+    }
+}
+
+impl ScoreTerm for Separatrix {
+    fn name(&self) -> &str {
+        "separatrix"
+    }
+    fn score(&mut self, ctx: &Context<'_>) -> f64 {
+        self.owner.clear();
+        self.owner.resize(ctx.mesh.map.vertex_slots(), NO_OWNER);
+        let interior: Vec<&Singularity> =
+            ctx.singularities.iter().filter(|s| !s.boundary).collect();
+        for (i, s) in interior.iter().enumerate() {
+            self.trace(ctx, i as u32, s.vertex);
+        }
+        let mut total = 0.0;
+        for (i, s) in interior.iter().enumerate() {
+            let owner = &self.owner;
+            let mut best = None;
+            self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
+                let o = owner[v.index()];
+                if o != NO_OWNER && (o != i as u32 || o == MANY_OWNERS) {
+                    best = Some(d);
+                    return false;
+                }
+                true
+            });
+            if let Some(d) = best.filter(|&d| d > 0) {
+                total += 1.0 / (d * d) as f64;
+            }
+        }
+        total
+    }
+}
+
+/// The weighted terms and the singularity list they share: scores a mesh.
+#[derive(Debug)]
+pub(crate) struct Scorer {
+    pub(crate) terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
+    pub(crate) features: Vec<bool>,
+    pub(crate) target_area: f64,
+    pub(crate) target_faces: usize,
+}
+
+impl Scorer {
+    /// The weighted total, and each term's unweighted value.
+    pub(crate) fn score(&mut self, mesh: &Mesh) -> (f64, Vec<f64>) {
+        let s = singularities(mesh);
+        let ctx = Context {
+            mesh,
+            singularities: &s,
+            features: &self.features,
+            target_area: self.target_area,
+            target_faces: self.target_faces,
+            faces: None,
+        };
+        let mut parts = vec![0.0; self.terms.len()];
+        let mut total = 0.0;
+        for ((w, t), p) in self.terms.iter_mut().zip(&mut parts) {
+            if *w != 0.0 {
+                *p = t.score(&ctx);
+                total += *w * *p;
+            }
+        }
+        (total, parts)
+    }
+
+    /// The weighted sum of the terms over a window: its singularities and the faces at its
+    /// vertices.
+    pub(crate) fn local(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
+        let map = &mesh.map;
+        let s: Vec<Singularity> = window
+            .iter()
+            .filter_map(|&v| {
+                let d = super::defect::defect(mesh, v);
+                (d != 0).then(|| Singularity {
+                    vertex: v,
+                    defect: d,
+                    boundary: map.is_boundary_vertex(v),
+                })
+            })
+            .collect();
+        let mut faces: Vec<crate::Face> = window
+            .iter()
+            .flat_map(|&v| map.vertex_darts(v).filter_map(|d| map.face(d)))
+            .collect();
+        faces.sort_unstable();
+        faces.dedup();
+        let ctx = Context {
+            mesh,
+            singularities: &s,
+            features: &self.features,
+            target_area: self.target_area,
+            target_faces: self.target_faces,
+            faces: Some(&faces),
+        };
+        self.terms
+            .iter_mut()
+            .filter(|(w, _)| *w != 0.0)
+            .map(|(w, t)| *w * t.score(&ctx))
+            .sum()
+    }
+}

@@ -1,0 +1,307 @@
+//! Smoothing after each batch near the scars (Q-zip paper, Sec. 4.1, "Smoothing"): a
+//! valence-weighted Laplacian, each vertex then put back on the input surface.
+//!
+//! The paper smooths "in the polar geodesic parameterization of the one-ring of each vertex".
+//! Our reading (docs/optimize.md): lay the one-ring flat by its polar map (each neighbour at
+//! its edge length, at its cumulative tip angle scaled to sum to 2 pi), take the weighted
+//! mean there, and map it back. To first order that mean is the weighted mean of the
+//! neighbours in space followed by a projection onto the surface, which is what is done:
+//! the weighted mean, then the closest point of the input surface.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use crate::{Mesh, Vert};
+
+/// The spring stiffness of an edge whose ends have valences summing to `sum`: 1 for 8 (two
+/// regular vertices), 0.5 below, 2 above.
+///
+/// ```
+/// use zipmesh::optimize::spring_stiffness;
+/// assert_eq!((spring_stiffness(8), spring_stiffness(7), spring_stiffness(9)), (1.0, 0.5, 2.0));
+/// ```
+pub fn spring_stiffness(sum: usize) -> f64 {
+    match sum {
+        8 => 1.0,
+        s if s < 8 => 0.5,
+        _ => 2.0,
+    }
+}
+
+/// The input surface as triangles (each face fanned from its first corner) in a uniform
+/// grid, for closest-point queries. Written by hand: a grid of a few hundred thousand
+/// triangles is all a projection after a small move needs.
+///
+/// ```
+/// use zipmesh::{gen, optimize::Surface};
+/// use glam::DVec3;
+/// let s = Surface::new(&gen::grid(4, 4));
+/// let p = s.closest(DVec3::new(1.5, 2.5, 3.0));
+/// assert!((p - DVec3::new(1.5, 2.5, 0.0)).length() < 1e-12);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Surface {
+    triangles: Vec<[DVec3; 3]>,
+    min: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    cells: Vec<Vec<u32>>,
+}
+
+impl Surface {
+    /// The surface of `mesh`'s faces.
+    ///
+    /// See [`Surface`] for an example.
+    pub fn new(mesh: &Mesh) -> Self {
+        let at = |v: Vert| {
+            mesh.positions
+                .get(v.index())
+                .copied()
+                .unwrap_or(DVec3::ZERO)
+        };
+        let mut triangles = Vec::new();
+        for f in mesh.map.faces() {
+            let c: Vec<DVec3> = mesh
+                .map
+                .face_darts(f)
+                .map(|d| at(mesh.map.origin(d)))
+                .collect();
+            for i in 1..c.len().saturating_sub(1) {
+                triangles.push([c[0], c[i], c[i + 1]]);
+            }
+        }
+        let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for t in &triangles {
+            for p in t {
+                min = min.min(*p);
+                max = max.max(*p);
+            }
+        }
+        if triangles.is_empty() || !min.is_finite() || !max.is_finite() {
+            return Surface {
+                triangles: Vec::new(),
+                min: DVec3::ZERO,
+                cell: 1.0,
+                dims: [1; 3],
+                cells: vec![Vec::new()],
+            };
+        }
+        let extent = (max - min).max(DVec3::splat(1e-9));
+        // About two triangles per cell along the surface.
+        let cell = libm::sqrt(
+            (extent.x * extent.y + extent.y * extent.z + extent.z * extent.x)
+                / triangles.len() as f64
+                * 2.0,
+        )
+        .max(extent.max_element() / 256.0);
+        let dim = |e: f64, cell: f64| ((e / cell) as usize + 1).min(256);
+        let dims_at = |cell: f64| {
+            [
+                dim(extent.x, cell),
+                dim(extent.y, cell),
+                dim(extent.z, cell),
+            ]
+        };
+        // At most about two cells per triangle: a volume-filling box of a dense surface
+        // would otherwise ask for 256^3 cells.
+        let budget = 2 * triangles.len() + 64;
+        let mut cell = cell;
+        let mut dims = dims_at(cell);
+        while dims[0] * dims[1] * dims[2] > budget {
+            cell *= 1.25;
+            dims = dims_at(cell);
+        }
+        let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        let mut s = Surface {
+            triangles: Vec::new(),
+            min,
+            cell,
+            dims,
+            cells: Vec::new(),
+        };
+        for (i, t) in triangles.iter().enumerate() {
+            let lo = s.cell_of(t[0].min(t[1]).min(t[2]));
+            let hi = s.cell_of(t[0].max(t[1]).max(t[2]));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        cells[(x * dims[1] + y) * dims[2] + z].push(i as u32);
+                    }
+                }
+            }
+        }
+        s.triangles = triangles;
+        s.cells = cells;
+        s
+    }
+
+    fn cell_of(&self, p: DVec3) -> [usize; 3] {
+        let q = (p - self.min) / self.cell;
+        let c = |x: f64, n: usize| {
+            if x.is_finite() && x > 0.0 {
+                (x as usize).min(n - 1)
+            } else {
+                0
+            }
+        };
+        [
+            c(q.x, self.dims[0]),
+            c(q.y, self.dims[1]),
+            c(q.z, self.dims[2]),
+        ]
+    }
+
+    /// The closest point of the surface to `p` (`p` itself for an empty surface). Searches
+    /// shells of cells around `p` until the best distance is inside the searched box.
+    ///
+    /// See [`Surface`] for an example.
+    pub fn closest(&self, p: DVec3) -> DVec3 {
+        if self.triangles.is_empty() || !p.is_finite() {
+            return p;
+        }
+        let c = self.cell_of(p);
+        let (mut best, mut best_d) = (p, f64::INFINITY);
+        let max_r = self.dims.iter().copied().max().unwrap_or(1);
+        for r in 0..=max_r {
+            let range = |i: usize, n: usize| i.saturating_sub(r)..=(i + r).min(n - 1);
+            for x in range(c[0], self.dims[0]) {
+                for y in range(c[1], self.dims[1]) {
+                    for z in range(c[2], self.dims[2]) {
+                        let on_shell = [x, y, z].iter().zip(&c).any(|(&a, &b)| a.abs_diff(b) == r);
+                        if !on_shell {
+                            continue;
+                        }
+                        for &t in &self.cells[(x * self.dims[1] + y) * self.dims[2] + z] {
+                            let q = closest_on_triangle(p, &self.triangles[t as usize]);
+                            let d = q.distance_squared(p);
+                            if d < best_d {
+                                (best, best_d) = (q, d);
+                            }
+                        }
+                    }
+                }
+            }
+            // Everything within r cells of p's cell has been seen.
+            if best_d.is_finite() && libm::sqrt(best_d) <= r as f64 * self.cell {
+                break;
+            }
+        }
+        best
+    }
+}
+
+/// The closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: DVec3, t: &[DVec3; 3]) -> DVec3 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = va + vb + vc;
+    if denom == 0.0 || !denom.is_finite() {
+        return a;
+    }
+    a + ab * (vb / denom) + ac * (vc / denom)
+}
+
+/// `iterations` Jacobi steps of the valence-weighted Laplacian on `vertices` (interior ones
+/// whose `fixed` mark is off), each step's new position projected onto `surface`.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{smooth, Surface}, Vert};
+/// use glam::DVec3;
+/// let mut m = gen::grid(2, 2);
+/// let s = Surface::new(&m);
+/// m.positions[4] = DVec3::new(1.3, 0.8, 0.0); // the centre, off its place
+/// smooth(&mut m, &s, &[Vert::new(4)], &[], 1);
+/// assert!((m.positions[4] - DVec3::new(1.0, 1.0, 0.0)).length() < 1e-12);
+/// ```
+pub fn smooth(
+    mesh: &mut Mesh,
+    surface: &Surface,
+    vertices: &[Vert],
+    fixed: &[bool],
+    iterations: usize,
+) {
+    laplacian(mesh, Some(surface), vertices, fixed, iterations);
+}
+
+/// The valence-weighted Laplacian of [`smooth`] on `vertices`, projected onto `surface` if
+/// given; returns the moved vertices' previous positions (each vertex once, in order).
+pub(crate) fn laplacian(
+    mesh: &mut Mesh,
+    surface: Option<&Surface>,
+    vertices: &[Vert],
+    fixed: &[bool],
+    iterations: usize,
+) -> Vec<(Vert, DVec3)> {
+    let map = &mesh.map;
+    let movable: Vec<Vert> = vertices
+        .iter()
+        .copied()
+        .filter(|&v| {
+            v.index() < mesh.positions.len()
+                && map.is_live_vertex(v)
+                && !map.is_boundary_vertex(v)
+                && !fixed.get(v.index()).copied().unwrap_or(false)
+        })
+        .collect();
+    let saved: Vec<(Vert, DVec3)> = movable
+        .iter()
+        .map(|&v| (v, mesh.positions[v.index()]))
+        .collect();
+    let mut next = vec![DVec3::ZERO; movable.len()];
+    for _ in 0..iterations {
+        for (i, &v) in movable.iter().enumerate() {
+            let kv = map.valence(v);
+            let (mut sum, mut w) = (DVec3::ZERO, 0.0);
+            for d in map.vertex_darts(v) {
+                let u = map.dest(d);
+                let k = spring_stiffness(kv + map.valence(u));
+                sum += mesh
+                    .positions
+                    .get(u.index())
+                    .copied()
+                    .unwrap_or(DVec3::ZERO)
+                    * k;
+                w += k;
+            }
+            next[i] = match (w > 0.0, surface) {
+                (false, _) => mesh.positions[v.index()],
+                (true, Some(s)) => s.closest(sum / w),
+                (true, None) => sum / w,
+            };
+        }
+        for (i, &v) in movable.iter().enumerate() {
+            if next[i].is_finite() {
+                mesh.positions[v.index()] = next[i];
+            }
+        }
+    }
+    saved
+}

@@ -1,0 +1,154 @@
+//! `zipmesh optimize`: the JSON counts equal a recount of OUT, the same seed writes the same
+//! file, and bad input exits 2 without OUT.
+#![cfg(feature = "cli")]
+
+mod common;
+
+use common::cli::{s, stderr, temp_dir, zipmesh};
+use serde_json::Value;
+use std::fs;
+use zipmesh::optimize::SingularityCounts;
+use zipmesh::{gen, io};
+
+fn counts_json(c: &SingularityCounts) -> Value {
+    serde_json::json!({
+        "faces": c.faces, "vertices": c.vertices, "v2": c.v2, "v3": c.v3, "v5": c.v5,
+        "v6plus": c.v6plus, "boundary_defects": c.boundary_defects,
+    })
+}
+
+fn input(dir: &std::path::Path) -> std::path::PathBuf {
+    let mesh = gen::catmull_clark(&gen::random_triangle(120, 2, 1, 5));
+    let path = dir.join("in.obj");
+    io::write_mesh(&path, &mesh).unwrap();
+    path
+}
+
+#[test]
+fn json_counts_match_a_recount_of_out() {
+    let dir = temp_dir("optimize-json");
+    let (inp, out) = (input(&dir), dir.join("out.obj"));
+    let o = zipmesh(&[
+        "optimize",
+        s(&inp),
+        "-o",
+        s(&out),
+        "--json",
+        "--batches",
+        "4",
+        "--paths",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (before, _) = io::read_mesh(&inp).unwrap();
+    let (after, _) = io::read_mesh(&out).unwrap();
+    assert_eq!(v["input"], counts_json(&SingularityCounts::of(&before)));
+    assert_eq!(v["final"], counts_json(&SingularityCounts::of(&after)));
+    let batches = v["batches"].as_array().unwrap();
+    assert!(!batches.is_empty() && batches.len() <= 4);
+    let last = batches.last().unwrap();
+    for k in [
+        "faces",
+        "vertices",
+        "v2",
+        "v3",
+        "v5",
+        "v6plus",
+        "boundary_defects",
+    ] {
+        assert_eq!(last[k], v["final"][k], "{k}");
+    }
+    for (i, b) in batches.iter().enumerate() {
+        assert_eq!(b["batch"], i + 1);
+        let paths = b["paths"].as_array().unwrap();
+        assert_eq!(paths.len() as u64, b["qzips"].as_u64().unwrap());
+    }
+    assert!(v["seconds"].as_f64().unwrap() >= 0.0);
+}
+
+#[test]
+fn same_seed_same_file() {
+    let dir = temp_dir("optimize-seed");
+    let inp = input(&dir);
+    let (a, b) = (dir.join("a.obj"), dir.join("b.obj"));
+    for out in [&a, &b] {
+        let o = zipmesh(&[
+            "optimize",
+            s(&inp),
+            "-o",
+            s(out),
+            "--batches",
+            "3",
+            "--seed",
+            "9",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(fs::read(&a).unwrap(), fs::read(&b).unwrap());
+}
+
+#[test]
+fn bad_input_exits_2_without_out() {
+    let dir = temp_dir("optimize-bad");
+    let inp = input(&dir);
+    let tri = dir.join("tri.obj");
+    io::write_mesh(&tri, &gen::random_triangle(40, 0, 0, 1)).unwrap();
+    let bad_faces = dir.join("faces.txt");
+    fs::write(&bad_faces, "0\n99999\n").unwrap();
+    let bad_edges = dir.join("edges.txt");
+    fs::write(&bad_edges, "0 1 2\n").unwrap();
+    let cases: Vec<Vec<String>> = vec![
+        vec![s(&tri).into()],
+        vec![s(&inp).into(), "--protect".into(), s(&bad_faces).into()],
+        vec![s(&inp).into(), "--features".into(), s(&bad_edges).into()],
+        vec![s(&inp).into(), "--sharp-angle".into(), "400".into()],
+        vec![s(&inp).into(), "--weight".into(), "nope=1".into()],
+        vec![s(&dir.join("missing.obj")).into()],
+    ];
+    for (i, c) in cases.iter().enumerate() {
+        let out = dir.join(format!("out{i}.obj"));
+        let mut args = vec!["optimize"];
+        args.extend(c.iter().map(String::as_str));
+        args.extend(["-o", s(&out)]);
+        let o = zipmesh(&args);
+        assert_eq!(o.status.code(), Some(2), "{c:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{c:?} left OUT");
+        assert!(!stderr(&o).is_empty());
+    }
+}
+
+#[test]
+fn protected_faces_from_a_file_hold() {
+    let dir = temp_dir("optimize-protect");
+    let inp = input(&dir);
+    let (mesh, _) = io::read_mesh(&inp).unwrap();
+    let faces = dir.join("faces.txt");
+    fs::write(&faces, "0\n5\n17\n").unwrap();
+    let out = dir.join("out.obj");
+    let o = zipmesh(&[
+        "optimize",
+        s(&inp),
+        "-o",
+        s(&out),
+        "--protect",
+        s(&faces),
+        "--batches",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (after, _) = io::read_mesh(&out).unwrap();
+    let key = |m: &zipmesh::Mesh, f: &[u32]| -> Vec<[u64; 3]> {
+        f.iter()
+            .map(|&v| m.positions[v as usize].to_array().map(f64::to_bits))
+            .collect()
+    };
+    let polys = mesh.polygons();
+    let out_faces: Vec<Vec<[u64; 3]>> = after.polygons().iter().map(|f| key(&after, f)).collect();
+    for i in [0usize, 5, 17] {
+        let want = key(&mesh, &polys[i]);
+        let found = out_faces
+            .iter()
+            .any(|f| (0..4).any(|k| f.iter().cycle().skip(k).take(4).eq(want.iter())));
+        assert!(found, "protected face {i} changed");
+    }
+}

@@ -1,0 +1,192 @@
+//! `zipmesh::optimize` (Q-zip paper, Sec. 4.1) over generated meshes: the output keeps
+//! validity, Euler characteristic, boundary loops and components and stays pure quad; the
+//! score never rises from batch to batch; the same seed gives the same mesh; protected
+//! faces and feature edges are untouched (checked on positions, independently of
+//! `Constraints`); and the singularity count goes down on meshes full of them.
+
+use glam::DVec3;
+use proptest::prelude::*;
+use zipmesh::invariants::{gauss_bonnet, Counts, MeshKind};
+use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::{gen, Face, Mesh, Vert};
+
+/// A quad mesh with many singularities: one Catmull-Clark step of a random triangle mesh.
+fn subdivided(faces: usize, genus: usize, holes: usize, seed: u64) -> Mesh {
+    gen::catmull_clark(&gen::random_triangle(faces, genus, holes, seed))
+}
+
+fn bits(p: DVec3) -> [u64; 3] {
+    p.to_array().map(f64::to_bits)
+}
+
+/// Every face as its corner positions (bit patterns), in cyclic order.
+fn face_positions(mesh: &Mesh) -> Vec<Vec<[u64; 3]>> {
+    mesh.polygons()
+        .iter()
+        .map(|f| {
+            f.iter()
+                .map(|&v| bits(mesh.positions[v as usize]))
+                .collect()
+        })
+        .collect()
+}
+
+fn is_rotation(a: &[[u64; 3]], b: &[[u64; 3]]) -> bool {
+    a.len() == b.len() && (0..a.len()).any(|k| a.iter().cycle().skip(k).take(a.len()).eq(b.iter()))
+}
+
+fn run(mesh: &mut Mesh, c: Constraints, batches: usize, seed: u64) -> zipmesh::optimize::Outcome {
+    let o = OptimizeOptions::default().batches(batches).seed(seed);
+    optimize(mesh, c, o, |_| {}).unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// Validity, chi, loops, components, pure quad, a monotone score, counts that match.
+    #[test]
+    fn keeps_topology_and_lowers_the_score(
+        faces in 40usize..160, genus in 0usize..3, holes in 0usize..2, seed in any::<u64>(),
+    ) {
+        let mut mesh = subdivided(faces, genus, holes, seed);
+        let before = Counts::of(&mesh.map);
+        let out = run(&mut mesh, Constraints::default(), 4, seed);
+        mesh.map.check().unwrap();
+        let after = Counts::of(&mesh.map);
+        prop_assert_eq!(after.euler_characteristic, before.euler_characteristic);
+        prop_assert_eq!(after.boundary_loops, before.boundary_loops);
+        prop_assert_eq!(after.components, before.components);
+        prop_assert!(mesh.map.faces().all(|f| mesh.map.degree(f) == 4));
+        prop_assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+        let mut last = out.initial_score;
+        for b in &out.batches {
+            prop_assert!(b.score <= last, "batch {} raised the score {} -> {}", b.batch, last, b.score);
+            last = b.score;
+        }
+        prop_assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
+    }
+
+    /// The same seed gives the same mesh, positions included.
+    #[test]
+    fn same_seed_same_mesh(faces in 40usize..120, seed in any::<u64>()) {
+        let input = subdivided(faces, 1, 0, seed);
+        let (mut a, mut b) = (input.clone(), input);
+        run(&mut a, Constraints::default(), 3, seed);
+        run(&mut b, Constraints::default(), 3, seed);
+        prop_assert_eq!(a, b);
+    }
+
+    /// Protected faces keep their corner positions bit for bit in the same cyclic order;
+    /// feature edges stay edges with both ends where they were.
+    #[test]
+    fn protected_faces_and_features_hold(
+        faces in 60usize..160, seed in any::<u64>(), pick in 0usize..1000,
+    ) {
+        let mut mesh = subdivided(faces, 1, 1, seed);
+        let mut c = Constraints::default();
+        let live: Vec<Face> = mesh.map.faces().collect();
+        let protected: Vec<Face> = (0..4).map(|i| live[(pick + 37 * i) % live.len()]).collect();
+        let expected: Vec<Vec<[u64; 3]>> = protected
+            .iter()
+            .map(|&f| mesh.map.face_darts(f).map(|d| bits(mesh.positions[mesh.map.origin(d).index()])).collect())
+            .collect();
+        for &f in &protected {
+            c.protect_face(&mesh, f).unwrap();
+        }
+        let edges: Vec<(DVec3, DVec3)> = mesh.map.edges().skip(pick % 50).step_by(41).take(3)
+            .map(|e| {
+                let (a, b) = (mesh.map.origin(e.dart(0)), mesh.map.dest(e.dart(0)));
+                c.add_feature(&mesh, a, b).unwrap();
+                (mesh.positions[a.index()], mesh.positions[b.index()])
+            })
+            .collect();
+        run(&mut mesh, c, 4, seed);
+        let faces = face_positions(&mesh);
+        for e in &expected {
+            prop_assert!(faces.iter().any(|f| is_rotation(f, e)), "a protected face changed");
+        }
+        let find = |p: DVec3| mesh.map.vertices().find(|v| bits(mesh.positions[v.index()]) == bits(p));
+        for (a, b) in edges {
+            let (Some(x), Some(y)) = (find(a), find(b)) else {
+                return Err(TestCaseError::fail("a feature end moved or vanished"));
+            };
+            prop_assert!(mesh.map.dart_between(x, y).is_some(), "a feature edge is gone");
+        }
+    }
+}
+
+/// On a genus-3 mesh after one Catmull-Clark step (the paper's robustness test, Fig. 17, at
+/// a small size) the batches remove most singularities.
+#[test]
+fn removes_most_singularities_of_a_subdivided_genus_3_mesh() {
+    let mut mesh = subdivided(300, 3, 0, 1);
+    let before = SingularityCounts::of(&mesh);
+    let out = run(&mut mesh, Constraints::default(), 40, 0);
+    let after = out.final_counts;
+    assert!(
+        after.singularities() * 2 < before.singularities(),
+        "{before:?} -> {after:?}"
+    );
+    assert!(gauss_bonnet(&mesh.map, MeshKind::Quad).holds());
+}
+
+/// A mesh without singularities is left as it is (no batch finds a candidate).
+#[test]
+fn a_regular_torus_is_unchanged() {
+    let mut mesh = gen::torus_grid(8, 8);
+    let before = mesh.clone();
+    let out = run(&mut mesh, Constraints::default(), 5, 0);
+    assert_eq!(out.batches.iter().map(|b| b.qzips).sum::<usize>(), 0);
+    assert_eq!(mesh, before);
+    let _ = Vert::new(0);
+}
+
+/// With `allow_cancellation`, a Q-zip that the grid guard refuses is done: the map stays
+/// valid and pure quad, the singularity count changes, and the undo restores map and
+/// positions exactly.
+#[test]
+fn cancelling_qzips_are_valid_and_undo_exactly() {
+    use zipmesh::invariants::irregular_vertices;
+    use zipmesh::qzip::{Qzip, QzipError, Tag, ZipError};
+    let mut mesh = subdivided(200, 2, 0, 3);
+    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    let irr = irregular_vertices(&mesh.map, MeshKind::Quad);
+    let (mut guarded, mut free) = (Qzip::new(), Qzip::new().allow_cancellation(true));
+    let mut done = 0;
+    for &a in irr.iter().take(20) {
+        for &b in irr.iter().take(20) {
+            if a == b {
+                continue;
+            }
+            for tag in [Tag::LS, Tag::RC, Tag::LC, Tag::RS] {
+                let refused = match guarded.zip_mesh(&mut mesh, a, b, tag) {
+                    Ok(z) => {
+                        z.undo(&mut mesh).unwrap();
+                        false
+                    }
+                    Err(e) => matches!(e, QzipError::Execute(ZipError::NotGridPreserving { .. })),
+                };
+                if !refused {
+                    continue;
+                }
+                let before = mesh.clone();
+                let z = free
+                    .zip_mesh(&mut mesh, a, b, tag)
+                    .expect("no guard, no refusal");
+                mesh.map.check().unwrap();
+                assert!(mesh.map.faces().all(|f| mesh.map.degree(f) == 4));
+                assert_ne!(
+                    irregular_vertices(&mesh.map, MeshKind::Quad).len(),
+                    irr.len()
+                );
+                z.undo(&mut mesh).unwrap();
+                assert_eq!(mesh, before);
+                done += 1;
+            }
+        }
+    }
+    assert!(
+        done > 0,
+        "no cancelling movement among the first 20 singularities"
+    );
+}
