@@ -9,6 +9,7 @@
 mod check;
 mod out;
 mod qzip;
+mod render;
 mod signals;
 
 use out::outln;
@@ -82,6 +83,9 @@ enum Command {
     /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
     /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
     Zip(qzip::ZipArgs),
+    /// Draw the mesh (SVG or PNG): shaded faces and edges, hidden surfaces removed, the seen
+    /// interior singularities as balls, optionally surgery paths from a JSON report.
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
+        Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -121,7 +126,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
         Command::Check(args) => return Ok(check::run(args)),
         // Dispatched in `main`: their errors are not file errors.
-        Command::Moves(_) | Command::Zip(_) => {}
+        Command::Moves(_) | Command::Zip(_) | Command::Render(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),
