@@ -197,6 +197,10 @@ pub struct DrawnFace {
     pub fill: [u8; 3],
     /// The mean depth of its corners (drawing order: far first).
     pub depth: f64,
+    /// Whether its outline on the picture is not convex (a folded or concave face): then
+    /// the picture fills the triangles the depth buffer used, so that what is drawn is what
+    /// decided visibility.
+    pub folded: bool,
 }
 
 /// Everything a picture shows, decided once; [`Scene::svg`] and [`Scene::png`] write it.
@@ -243,7 +247,7 @@ impl Scene {
         let projected: Vec<DVec3> = positions.iter().map(|&p| camera.project(p)).collect();
         let edge = median_edge(map, &projected);
         let short = f64::from(width.min(height));
-        let radius = (0.5 * edge).clamp(2.0, (0.02 * short).max(2.0));
+        let radius = (0.4 * edge).clamp(2.0, (0.016 * short).max(2.0));
         let stroke = (0.06 * edge).clamp(0.2, 1.0);
         let resolution = (f64::from(MAX_DEPTH_SIDE) / f64::from(width.max(height))).min(1.0);
         let mut buffer = DepthBuffer::new(width, height, resolution);
@@ -347,7 +351,7 @@ impl Scene {
 }
 
 /// The positions of the vertex slots, checked finite for every live vertex (dead slots
-/// are set to the origin: nothing draws them).
+/// are set to the origin: nothing draws them), scaled by one common factor.
 fn live_positions(mesh: &Mesh) -> Result<Vec<DVec3>, RenderError> {
     let map = &mesh.map;
     let mut p = vec![DVec3::ZERO; map.vertex_slots()];
@@ -357,6 +361,12 @@ fn live_positions(mesh: &Mesh) -> Result<Vec<DVec3>, RenderError> {
             Some(q) if q.is_finite() => p[i] = *q,
             _ => return Err(RenderError::Position { vertex: i }),
         }
+    }
+    // Scaled into [-1, 1]^3 (the picture is fitted anyway), so that no difference or sum
+    // of coordinates overflows, whatever finite positions the mesh has.
+    let largest = p.iter().map(|q| q.abs().max_element()).fold(0.0, f64::max);
+    if largest > 0.0 {
+        p.iter_mut().for_each(|q| *q /= largest);
     }
     Ok(p)
 }
@@ -431,11 +441,28 @@ fn seen_faces(
                     .collect(),
                 fill: shade(&c, positions, camera.toward_eye(), light),
                 depth: centre.z,
+                folded: !convex(c.iter().map(|v| projected[v.index()])),
             })
         })
         .collect();
     faces.sort_by(|a, b| b.depth.total_cmp(&a.depth));
     faces
+}
+
+/// Whether the polygon turns the same way at every corner on the picture (a triangle always
+/// does, unless degenerate, which is drawn as it is anyway).
+fn convex(corners: impl Iterator<Item = DVec3>) -> bool {
+    let p: Vec<DVec3> = corners.collect();
+    let n = p.len();
+    if n <= 3 {
+        return true;
+    }
+    let turn = |i: usize| {
+        let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
+        (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x)
+    };
+    let turns: Vec<f64> = (0..n).map(turn).collect();
+    turns.iter().all(|&t| t >= 0.0) || turns.iter().all(|&t| t <= 0.0)
 }
 
 /// Flat Lambert shading, two-sided: front faces light grey, back faces (seen through a

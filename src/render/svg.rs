@@ -65,13 +65,32 @@ fn write_faces(s: &mut String, scene: &Scene) -> core::fmt::Result {
         scene.stroke
     )?;
     for f in scene.faces() {
-        s.push_str("<path d=\"");
-        for (i, [x, y]) in f.corners.iter().enumerate() {
-            write!(s, "{}{:.1} {:.1}", if i == 0 { "M" } else { "L" }, x, y)?;
+        if f.folded {
+            // The depth buffer's fan triangles, filled without edges, under the outline.
+            s.push_str("<path stroke=\"none\" d=\"");
+            for i in 1..f.corners.len() - 1 {
+                polygon(s, &[f.corners[0], f.corners[i], f.corners[i + 1]])?;
+            }
+            writeln!(s, "\" fill=\"{}\"/>", hex(f.fill))?;
+            s.push_str("<path fill=\"none\" d=\"");
+            polygon(s, &f.corners)?;
+            writeln!(s, "\"/>")?;
+        } else {
+            s.push_str("<path d=\"");
+            polygon(s, &f.corners)?;
+            writeln!(s, "\" fill=\"{}\"/>", hex(f.fill))?;
         }
-        writeln!(s, "Z\" fill=\"{}\"/>", hex(f.fill))?;
     }
     writeln!(s, "</g>")
+}
+
+/// One closed sub-path `M x y L x y ... Z`.
+fn polygon(s: &mut String, corners: &[[f64; 2]]) -> core::fmt::Result {
+    for (i, [x, y]) in corners.iter().enumerate() {
+        write!(s, "{}{:.1} {:.1}", if i == 0 { "M" } else { "L" }, x, y)?;
+    }
+    s.push('Z');
+    Ok(())
 }
 
 fn write_paths(s: &mut String, scene: &Scene) -> core::fmt::Result {
