@@ -12,7 +12,7 @@ use proptest::prelude::*;
 use std::collections::BTreeSet;
 use std::path::Path;
 use zipmesh::invariants::{is_irregular, MeshKind};
-use zipmesh::render::{ball_colour, Options, RenderError, Scene, View};
+use zipmesh::render::{Options, RenderError, Scene, View};
 use zipmesh::{gen, io, Map, Mesh, Vert};
 
 fn shared(rel: &str) -> Mesh {
@@ -44,6 +44,19 @@ fn interior_irregular(map: &Map) -> BTreeSet<usize> {
         .collect()
 }
 
+/// The colour table, written out again (quad-dominant meshes use the quad colours).
+fn colour(kind: MeshKind, valence: usize) -> &'static str {
+    match (kind, valence) {
+        (MeshKind::Triangle, 5) => "blue",
+        (MeshKind::Triangle, 7) => "orange",
+        (MeshKind::Triangle, _) => "red",
+        (_, 3) => "blue",
+        (_, 5) => "orange",
+        (_, 2) => "green",
+        _ => "red",
+    }
+}
+
 /// Every circle is a seen interior singularity, once, with its recounted valence as class
 /// and its kind's colour; every seen one has a circle; unseen ones have none.
 fn check_circles(mesh: &Mesh, options: &Options) -> Scene {
@@ -63,8 +76,10 @@ fn check_circles(mesh: &Mesh, options: &Options) -> Scene {
             "circle on a regular vertex {v}"
         );
         assert_eq!(c.class, format!("v{}", map.valence(v)));
-        let colour = ball_colour(kind, map.valence(v)).unwrap();
-        assert_eq!(c.fill, format!("url(#ball-{})", colour.name()));
+        assert_eq!(
+            c.fill,
+            format!("url(#ball-{})", colour(kind, map.valence(v)))
+        );
     }
     let all: BTreeSet<usize> = scene.balls().iter().map(|b| b.vertex.index()).collect();
     assert_eq!(
@@ -447,4 +462,23 @@ proptest! {
             prop_assert!(is_irregular(&mesh.map, MeshKind::of(&mesh.map), b.vertex));
         }
     }
+}
+
+/// A pillow: two quads glued along all four edges, a sphere whose four vertices have
+/// valence 2 (green balls); flat, so both quads lie on every ball.
+#[test]
+fn valence_two_vertices_are_green() {
+    let p = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+    let (mesh, _) = Mesh::from_polygons(p, &[[0u32, 1, 2, 3], [0, 3, 2, 1]]).unwrap();
+    let scene = check_circles(&mesh, &at(Some((10.0, 10.0)), 300, 300));
+    let cs = circles(&scene.svg());
+    assert_eq!(cs.len(), 4);
+    assert!(cs
+        .iter()
+        .all(|c| c.class == "v2" && c.fill == "url(#ball-green)"));
 }

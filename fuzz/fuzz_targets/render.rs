@@ -11,9 +11,24 @@ use zipmesh::invariants::{is_irregular, MeshKind};
 use zipmesh::render::{Options, Scene, View};
 use zipmesh::{gen, Vert};
 
-#[path = "common/qzip_case.rs"]
-mod qzip_case;
-use qzip_case::Bytes;
+/// Reads the input a byte at a time; zeros once it runs out, so every input is usable.
+struct Bytes<'a>(&'a [u8]);
+
+impl Bytes<'_> {
+    fn u8(&mut self) -> u8 {
+        match self.0.split_first() {
+            Some((&b, rest)) => {
+                self.0 = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+
+    fn u16(&mut self) -> u16 {
+        u16::from_le_bytes([self.u8(), self.u8()])
+    }
+}
 
 fn coordinate(bytes: &mut Bytes) -> f64 {
     let (k, e) = (bytes.u8(), bytes.u8());
@@ -40,13 +55,22 @@ fuzz_target!(|data: &[u8]| {
     let slots = mesh.positions.len().max(1);
     for _ in 0..bytes.u8() % 16 {
         let v = usize::from(bytes.u16()) % slots;
-        let p = [coordinate(&mut bytes), coordinate(&mut bytes), coordinate(&mut bytes)];
+        let p = [
+            coordinate(&mut bytes),
+            coordinate(&mut bytes),
+            coordinate(&mut bytes),
+        ];
         if let Some(q) = mesh.positions.get_mut(v) {
             *q = glam::DVec3::from_array(p);
         }
     }
-    let view = View::new(f64::from(bytes.u16()) - 32768.0, f64::from(bytes.u8() % 181) - 90.0);
-    let path: Vec<u64> = (0..bytes.u8() % 8).map(|_| u64::from(bytes.u16()) % slots as u64).collect();
+    let view = View::new(
+        f64::from(bytes.u16()) - 32768.0,
+        f64::from(bytes.u8() % 181) - 90.0,
+    );
+    let path: Vec<u64> = (0..bytes.u8() % 8)
+        .map(|_| u64::from(bytes.u16()) % slots as u64)
+        .collect();
     let options = Options {
         view: view.ok(),
         width: 1 + u32::from(bytes.u16() % 600),
