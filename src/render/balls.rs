@@ -35,6 +35,11 @@ impl BallColour {
     }
 
     /// A lighter tint of the same hue, for the ball's highlight.
+    ///
+    /// ```
+    /// use zipmesh::render::BallColour;
+    /// assert_eq!(BallColour::Blue.highlight(), [147, 177, 235]);
+    /// ```
     pub fn highlight(self) -> [u8; 3] {
         self.rgb().map(|c| c + (255 - c) / 2)
     }
@@ -54,6 +59,10 @@ impl BallColour {
     }
 
     /// Every colour, in a fixed order.
+    ///
+    /// ```
+    /// assert_eq!(zipmesh::render::BallColour::ALL.len(), 4);
+    /// ```
     pub const ALL: [BallColour; 4] = [
         BallColour::Blue,
         BallColour::Orange,

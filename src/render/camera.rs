@@ -114,6 +114,15 @@ impl Camera {
     /// The camera of `view` that fits `points` into a `width` x `height` picture, leaving
     /// `margin` pixels on every side. No points, or points all in one spot, give scale 1
     /// about that spot.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use zipmesh::render::{Camera, View};
+    /// let v = View::new(0.0, 0.0).unwrap();
+    /// let cam = Camera::fit(v, [DVec3::ZERO, DVec3::ONE].into_iter(), 100, 100, 10.0);
+    /// assert_eq!(cam.scale(), 80.0);
+    /// assert_eq!(Camera::fit(v, [DVec3::ONE].into_iter(), 100, 100, 10.0).scale(), 1.0);
+    /// ```
     pub fn fit(
         view: View,
         points: impl Iterator<Item = DVec3>,
@@ -206,6 +215,14 @@ impl Camera {
 
     /// A model point in picture coordinates: `x` and `y` in pixels (y down), `z` the depth
     /// in pixels, growing away from the eye.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use zipmesh::render::{Camera, View};
+    /// let cam = Camera::fit(View::new(0.0, 0.0).unwrap(), std::iter::empty(), 100, 50, 0.0);
+    /// assert_eq!(cam.project(DVec3::ZERO), DVec3::new(50.0, 25.0, 0.0)); // the centre
+    /// assert!(cam.project(DVec3::Y).y < 25.0); // up is toward the top
+    /// ```
     pub fn project(&self, p: DVec3) -> DVec3 {
         let q = p - self.centre;
         DVec3::new(

@@ -45,6 +45,12 @@ pub struct DepthBuffer {
 impl DepthBuffer {
     /// An empty buffer for a picture of `width` x `height` pixels, with `resolution` buffer
     /// pixels per picture pixel (1 for full resolution; at most 1).
+    ///
+    /// ```
+    /// use zipmesh::render::DepthBuffer;
+    /// let buf = DepthBuffer::new(4000, 10, 0.5); // a 2000 x 5 buffer
+    /// assert_eq!(buf.nearest_face(3000.0, 5.0), None);
+    /// ```
     pub fn new(width: u32, height: u32, resolution: f64) -> DepthBuffer {
         let resolution = if resolution > 0.0 && resolution <= 1.0 {
             resolution
@@ -66,6 +72,16 @@ impl DepthBuffer {
     /// Draws one triangle of face `face` (any number the caller chooses): at every pixel
     /// centre it covers where it is nearer than what is there, it becomes the owner.
     /// Degenerate triangles (no area on the picture) cover nothing.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use zipmesh::render::DepthBuffer;
+    /// let mut buf = DepthBuffer::new(8, 8, 1.0);
+    /// let t = [DVec3::new(0.0, 0.0, 1.0), DVec3::new(8.0, 0.0, 1.0), DVec3::new(0.0, 8.0, 1.0)];
+    /// buf.add_triangle(t, 7);
+    /// assert_eq!(buf.nearest_face(1.0, 1.0), Some(7));
+    /// assert_eq!(buf.nearest_face(7.0, 7.0), None); // outside the triangle
+    /// ```
     pub fn add_triangle(&mut self, tri: [DVec3; 3], face: u32) {
         let id = self.triangles.len() as u32;
         let k = self.resolution;
@@ -119,6 +135,11 @@ impl DepthBuffer {
     }
 
     /// The face of the nearest triangle at the pixel under picture point `(x, y)`.
+    ///
+    /// ```
+    /// let buf = zipmesh::render::DepthBuffer::new(8, 8, 1.0);
+    /// assert_eq!(buf.nearest_face(-1.0, 2.0), None); // outside the picture
+    /// ```
     pub fn nearest_face(&self, x: f64, y: f64) -> Option<u32> {
         let owner = *self.owner.get(self.pixel(x, y)?)?;
         self.triangles.get(owner as usize).map(|t| t.1)
@@ -128,6 +149,16 @@ impl DepthBuffer {
     /// its pixel, or the nearest triangle there belongs to a face for which `on(face)` holds
     /// (a face `p` lies on), or that triangle's plane, taken at `p`'s exact position, is not
     /// nearer than `p` by more than `tolerance` pixels.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use zipmesh::render::DepthBuffer;
+    /// let mut buf = DepthBuffer::new(8, 8, 1.0);
+    /// let t = [DVec3::new(0.0, 0.0, 1.0), DVec3::new(8.0, 0.0, 1.0), DVec3::new(0.0, 8.0, 1.0)];
+    /// buf.add_triangle(t, 0);
+    /// assert!(buf.sees(DVec3::new(2.0, 2.0, 1.5), 1.0, |_| false)); // within the tolerance
+    /// assert!(!buf.sees(DVec3::new(2.0, 2.0, 3.0), 1.0, |_| false));
+    /// ```
     pub fn sees(&self, p: DVec3, tolerance: f64, on: impl Fn(u32) -> bool) -> bool {
         let Some(i) = self.pixel(p.x, p.y) else {
             return true;
@@ -145,6 +176,17 @@ impl DepthBuffer {
     }
 
     /// For each face number below `faces`, how many buffer pixels it owns.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use zipmesh::render::DepthBuffer;
+    /// let mut buf = DepthBuffer::new(8, 8, 1.0);
+    /// let t = [DVec3::new(0.0, 0.0, 1.0), DVec3::new(8.0, 0.0, 1.0), DVec3::new(0.0, 8.0, 1.0)];
+    /// buf.add_triangle(t, 1);
+    /// let owned = buf.pixels_per_face(2);
+    /// assert_eq!(owned[0], 0);
+    /// assert!(owned[1] >= 28 && owned[1] <= 36); // about half of the 64 pixels
+    /// ```
     pub fn pixels_per_face(&self, faces: usize) -> Vec<usize> {
         let mut count = vec![0; faces];
         for &o in &self.owner {

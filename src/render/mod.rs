@@ -296,43 +296,95 @@ impl Scene {
     }
 
     /// The picture's size in pixels.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let o = Options { width: 300, height: 200, ..Options::default() };
+    /// assert_eq!(Scene::new(&gen::cube(1), &o).unwrap().size(), (300, 200));
+    /// ```
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
 
     /// The camera (its view, scale and projection).
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let scene = Scene::new(&gen::cube(1), &Options::default()).unwrap();
+    /// assert_eq!(scene.camera().view().azimuth, 30.0); // the default view of a cube
+    /// ```
     pub fn camera(&self) -> &Camera {
         &self.camera
     }
 
     /// The faces drawn (those seen somewhere), far to near.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let scene = Scene::new(&gen::cube(1), &Options::default()).unwrap();
+    /// assert!(scene.faces().len() >= 3); // three sides of a cube face a generic eye
+    /// assert!(scene.faces().windows(2).all(|w| w[0].depth >= w[1].depth));
+    /// ```
     pub fn faces(&self) -> &[DrawnFace] {
         &self.faces
     }
 
     /// The number of faces of the mesh, drawn or not.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let scene = Scene::new(&gen::cube(2), &Options::default()).unwrap();
+    /// assert_eq!(scene.total_faces(), 24);
+    /// ```
     pub fn total_faces(&self) -> usize {
         self.total_faces
     }
 
     /// Every interior singularity, far to near; those with `visible` are drawn.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let scene = Scene::new(&gen::icosahedron(), &Options::default()).unwrap();
+    /// assert_eq!(scene.balls().len(), 12); // triangle mesh: twelve v5s
+    /// assert!(scene.balls().iter().all(|b| b.valence == 5));
+    /// ```
     pub fn balls(&self) -> &[Ball] {
         &self.balls
     }
 
     /// The seen stretches of the paths (runs of consecutive seen vertices, at least two),
     /// in picture coordinates.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// // Vertex 0, the corner (0, 0, 0), is hidden from the default view: no seen stretch.
+    /// let o = Options { paths: vec![vec![0, 1]], ..Options::default() };
+    /// assert!(Scene::new(&gen::cube(1), &o).unwrap().polylines().is_empty());
+    /// ```
     pub fn polylines(&self) -> &[Vec<[f64; 2]>] {
         &self.polylines
     }
 
     /// The balls' radius in pixels (from the median edge length on the picture).
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let r = Scene::new(&gen::cube(8), &Options::default()).unwrap().radius();
+    /// assert!((2.0..=9.6).contains(&r));
+    /// ```
     pub fn radius(&self) -> f64 {
         self.radius
     }
 
     /// The picture as SVG text: one `<circle class="vK" data-vertex="N">` per seen ball,
     /// one `<polyline class="path">` per seen path stretch.
+    ///
+    /// ```
+    /// use zipmesh::{gen, render::{Options, Scene}};
+    /// let svg = Scene::new(&gen::cube(1), &Options::default()).unwrap().svg();
+    /// assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
+    /// assert_eq!(svg.matches("<circle ").count(), 7);
+    /// ```
     pub fn svg(&self) -> String {
         svg::write(self)
     }
