@@ -1,6 +1,6 @@
 //! Criterion benches of `render` (issue 12): a scene (camera, depth buffer, visibility of
 //! faces, balls and paths), its SVG text, and its PNG (resvg), on the shared Spot quad mesh
-//! (2,928 quads) and a Catmull-Clark sphere of 30,720 quads, at the default 800 x 600.
+//! (2,928 quads) and a Catmull-Clark sphere of 3,840 quads (the icosahedron, four steps), at the default 800 x 600.
 
 use std::path::Path;
 use std::time::Duration;
@@ -12,7 +12,7 @@ use zipmesh::{gen, io, Mesh};
 fn meshes() -> Vec<(&'static str, Mesh)> {
     let spot =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/spot_quadrangulated.obj");
-    let mut out = vec![("sphere 30720 quads", gen::subdivided_icosahedron(4))];
+    let mut out = vec![("sphere 3840 quads", gen::subdivided_icosahedron(4))];
     if let Ok((mesh, _)) = io::read_mesh(spot) {
         out.insert(0, ("spot 2928 quads", mesh));
     }
