@@ -12,3 +12,4 @@ mod ops_tri;
 mod oracle;
 mod polygons;
 mod raw;
+mod retriangulate;

@@ -222,6 +222,24 @@ fn a_journal_saves_each_vertex_once_and_rewinds_in_order() {
     assert_eq!(marks, vec![false, true, false]);
 }
 
+/// Past the short scan (many overwritten vertices in one edit) repeats are still saved once,
+/// and the rewind still restores every first value.
+#[test]
+fn a_long_journal_saves_each_vertex_once() {
+    let before: Vec<f64> = (0..200).map(f64::from).collect();
+    let mut layer = before.clone();
+    let mut j = Journal::start(&layer);
+    for round in 1..=3 {
+        for v in (0..200).rev() {
+            j.set(&mut layer, Vert::new(v), f64::from(1000 * round + v));
+        }
+    }
+    assert_eq!(j.overwritten(), 200);
+    assert_eq!(layer[7], 3007.0);
+    j.rewind(&mut layer);
+    assert_eq!(layer, before);
+}
+
 /// Vertices that a Q-zip's splits created (their slots may be reused ones).
 fn created_by(records: &[QuadRecord]) -> Vec<Vert> {
     records

@@ -23,6 +23,27 @@ fn json(o: &Output) -> Value {
 }
 
 /// Spot's v5 15 and v3 2, 16 edges apart (see `moves` below).
+/// The library's default sketch between two vertices, as `moves` and `zip` find it.
+fn default_path(map: &zipmesh::Map, from: u32, to: u32) -> zipmesh::qzip::Path {
+    sketch(
+        map,
+        Vert::new(from),
+        Vert::new(to),
+        &SketchOptions::default(),
+    )
+    .unwrap()
+}
+
+/// `zip` on Spot from FROM to TO with the given move and output, then `extra`.
+fn zip_spot(tag: &str, out: &str, extra: &[&str]) -> Output {
+    let spot = spot();
+    let mut args = vec![
+        "zip", &spot, "--from", FROM, "--to", TO, "--move", tag, "-o", out,
+    ];
+    args.extend_from_slice(extra);
+    zipmesh(&args)
+}
+
 const FROM: &str = "15";
 const TO: &str = "2";
 
@@ -39,13 +60,7 @@ fn moves_json_matches_the_library() {
     ]));
     let rows = v.as_array().expect("a list");
     let (mesh, _) = io::read_mesh(spot()).unwrap();
-    let path = sketch(
-        &mesh.map,
-        Vert::new(15),
-        Vert::new(2),
-        &SketchOptions::default(),
-    )
-    .unwrap();
+    let path = default_path(&mesh.map, 15, 2);
     let lib = moves(&mesh.map, &path);
     assert_eq!(rows.len(), 4);
     for (row, m) in rows.iter().zip(lib.iter()) {
@@ -71,19 +86,7 @@ fn zip_then_its_undo_restores_the_input() {
     let mut done = 0;
     for tag in Tag::CCW {
         let out = dir.join(format!("{tag}.obj"));
-        let o = zipmesh(&[
-            "zip",
-            &spot(),
-            "--from",
-            FROM,
-            "--to",
-            TO,
-            "--move",
-            &tag.to_string(),
-            "-o",
-            out.to_str().unwrap(),
-            "--json",
-        ]);
+        let o = zip_spot(&tag.to_string(), out.to_str().unwrap(), &["--json"]);
         if !o.status.success() {
             assert_eq!(o.status.code(), Some(2));
             assert!(!out.exists());
@@ -195,18 +198,7 @@ fn bad_input_exits_2_without_output() {
     refused(&torus, "0", "1", "not a quad mesh");
     // Helmet: vertex 0 is a boundary corner (valence 2); Sec. 2.6 does not cover it.
     refused(&helmet, "0", "54", "not realizable");
-    let r = zipmesh(&[
-        "zip",
-        &spot(),
-        "--from",
-        FROM,
-        "--to",
-        TO,
-        "--move",
-        "XX",
-        "-o",
-        o,
-    ]);
+    let r = zip_spot("XX", o, &[]);
     assert_eq!(r.status.code(), Some(2));
     assert!(!out.exists());
 }
@@ -225,13 +217,7 @@ fn zip_without_a_reverse_run_gives_undo_null() {
     // The premise, from the library: the movement is done and find_reverse finds nothing.
     let (mut mesh, _) = io::read_mesh(&file).unwrap();
     zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
-    let path = sketch(
-        &mesh.map,
-        Vert::new(0),
-        Vert::new(1),
-        &SketchOptions::default(),
-    )
-    .unwrap();
+    let path = default_path(&mesh.map, 0, 1);
     let mut edited = mesh.map.clone();
     let r = zipmesh::qzip::Qzip::new()
         .zip_along(&mut edited, &path, Tag::LS)

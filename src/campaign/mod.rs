@@ -40,10 +40,9 @@
 //! assert_eq!(report.rows.len(), 5);
 //! ```
 
-use core::fmt;
-use core::str::FromStr;
 use core::time::Duration;
 use std::borrow::Cow;
+use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::string::{String, ToString};
@@ -55,108 +54,23 @@ use std::{format, vec};
 
 mod budget;
 mod case;
+mod merge;
 mod property;
 mod qzip;
 mod report;
+mod shard;
 mod shrink;
+mod tri_edit;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
+pub use merge::{merge, Campaign, MergeError};
 pub use property::{builtin, kernel, operators, undo_property, CheckFn, Outcome, Property};
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
+pub use shard::{Shard, ShardError};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
-
-/// A deterministic slice of the cases: those whose position `p` has `p % count == index`.
-/// Written `index/count`; `0/1` is every case.
-///
-/// ```
-/// use zipmesh::campaign::Shard;
-/// let s: Shard = "1/3".parse().unwrap();
-/// assert!(s.contains(4) && !s.contains(5));
-/// assert_eq!(s.to_string(), "1/3");
-/// assert!("3/3".parse::<Shard>().is_err() && "x".parse::<Shard>().is_err());
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Shard {
-    /// Which slice, `0..count`.
-    pub index: u64,
-    /// How many slices.
-    pub count: u64,
-}
-
-impl Shard {
-    /// Every case: `0/1`.
-    ///
-    /// ```
-    /// assert!(zipmesh::campaign::Shard::ALL.contains(17));
-    /// ```
-    pub const ALL: Shard = Shard { index: 0, count: 1 };
-
-    /// Whether the case at `position` is in this shard.
-    ///
-    /// ```
-    /// let s = zipmesh::campaign::Shard { index: 0, count: 2 };
-    /// assert!(s.contains(0) && !s.contains(1));
-    /// ```
-    pub fn contains(&self, position: u64) -> bool {
-        self.count > 0 && position % self.count == self.index
-    }
-
-    /// How many of the positions `0..n` are in this shard (computed, not counted, so a
-    /// campaign of 10^18 cases plans in no time).
-    ///
-    /// ```
-    /// let s = zipmesh::campaign::Shard { index: 1, count: 3 };
-    /// assert_eq!((s.size_of(0), s.size_of(1), s.size_of(2), s.size_of(7)), (0, 0, 1, 2));
-    /// assert_eq!(zipmesh::campaign::Shard::ALL.size_of(u64::MAX), u64::MAX);
-    /// ```
-    pub fn size_of(&self, n: u64) -> u64 {
-        if self.count == 0 || self.index >= n {
-            0
-        } else {
-            (n - 1 - self.index) / self.count + 1
-        }
-    }
-}
-
-impl fmt::Display for Shard {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
-}
-
-/// Why a shard could not be parsed.
-///
-/// ```
-/// let e = "2/2".parse::<zipmesh::campaign::Shard>().unwrap_err();
-/// assert!(e.to_string().contains("below"));
-/// ```
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ShardError(String);
-
-impl fmt::Display for ShardError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ShardError {}
-
-impl FromStr for Shard {
-    type Err = ShardError;
-
-    fn from_str(s: &str) -> Result<Shard, ShardError> {
-        let bad = || ShardError(format!("expected i/n with i below n, got {s:?}"));
-        let (i, n) = s.split_once('/').ok_or_else(bad)?;
-        let index: u64 = i.trim().parse().map_err(|_| bad())?;
-        let count: u64 = n.trim().parse().map_err(|_| bad())?;
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Shard { index, count })
-    }
-}
+pub use tri_edit::tri_edit_properties;
 
 /// A campaign's settings. `Config::default()` is the default campaign of `zipmesh check`.
 ///
@@ -186,6 +100,11 @@ pub struct Config {
     pub shrink: bool,
     /// Where to write shrunk counterexamples as OBJ files (`None`: not written).
     pub out_dir: Option<PathBuf>,
+    /// Settings your properties depend on beyond the seed and the cases (for example a
+    /// search radius), named by the `zipmesh check` flag that sets them (without `--`):
+    /// recorded in the report ([`Campaign::settings`]) so that shards run with different
+    /// settings are never merged, and passed on in every replay line as `--name value`.
+    pub settings: BTreeMap<String, String>,
 }
 
 impl Default for Config {
@@ -200,6 +119,7 @@ impl Default for Config {
             checks: CheckCounter::default(),
             shrink: true,
             out_dir: None,
+            settings: BTreeMap::new(),
         }
     }
 }
@@ -261,7 +181,7 @@ pub fn run_with_progress(
     let (seed, max) = (config.seed, config.max_faces);
     execute(
         config,
-        config.cases,
+        campaign_of(config, config.cases, Vec::new()),
         &|i| Some(Cow::Owned(Case::generate(seed, i, max))),
         properties,
         progress,
@@ -293,9 +213,16 @@ pub fn run_cases(
     properties: &[Property],
     progress: &(dyn Fn() + Sync),
 ) -> Report {
+    let inputs = cases
+        .iter()
+        .map(|c| match &c.origin {
+            Origin::Given(label) => format!("{label}{}", focus_flag(c)),
+            Origin::Generated { .. } => format!("generated case {}{}", c.index, focus_flag(c)),
+        })
+        .collect();
     execute(
         config,
-        cases.len() as u64,
+        campaign_of(config, cases.len() as u64, inputs),
         &|i| cases.get(i as usize).map(Cow::Borrowed),
         properties,
         progress,
@@ -354,19 +281,8 @@ struct Tally {
 
 impl Tally {
     fn new(properties: &[Property]) -> Tally {
-        let row = |p: &Property| Row {
-            property: p.name().to_string(),
-            cases: 0,
-            passed: 0,
-            failed: 0,
-            skipped: 0,
-            checks: 0,
-            cut: 0,
-            unchecked: 0,
-            time: Duration::ZERO,
-        };
         Tally {
-            rows: properties.iter().map(row).collect(),
+            rows: properties.iter().map(|p| Row::zero(p.name())).collect(),
             first_failure: vec![None; properties.len()],
             ran: 0,
         }
@@ -463,42 +379,61 @@ fn run_positions(
     tally.into_inner().unwrap_or_else(|e| e.into_inner())
 }
 
+/// What a run identifies its campaign by: the shard's settings and, for given cases, their
+/// labels.
+fn campaign_of(config: &Config, count: u64, inputs: Vec<String>) -> Campaign {
+    Campaign {
+        cases: count,
+        max_faces: config.max_faces,
+        inputs,
+        settings: config.settings.clone(),
+    }
+}
+
 fn execute<'a>(
     config: &Config,
-    count: u64,
+    campaign: Campaign,
     make: &MakeCase<'a>,
     properties: &[Property],
     progress: &(dyn Fn() + Sync),
     replay: &Replay<'_>,
 ) -> Report {
     let started = Instant::now();
-    let planned = config.shard.size_of(count);
+    let planned = config.shard.size_of(campaign.cases);
     let deadline = config.time_limit.map(|t| started + t);
     let tally = run_positions(config, planned, make, properties, progress, deadline);
     let mut failures = Vec::new();
     for (k, first) in tally.first_failure.into_iter().enumerate() {
         let Some((p, outcome)) = first else { continue };
         let Some(case) = make(p) else { continue };
-        failures.push(failure(config, &properties[k], &case, outcome, replay));
+        failures.push(failure(config, &properties[k], &case, p, outcome, replay));
     }
     let cut = tally.rows.iter().any(|r| r.cut > 0);
-    Report {
+    let mut report = Report {
         seed: config.seed,
         shard: config.shard,
         planned,
         run: tally.ran,
         timed_out: tally.ran < planned || cut,
-        elapsed: started.elapsed(),
+        elapsed: Duration::ZERO,
         rows: tally.rows,
         failures,
+        campaign,
+    };
+    if let Some(dir) = &config.out_dir {
+        report.write_counterexamples(dir);
     }
+    report.elapsed = started.elapsed();
+    report
 }
 
-/// A property's first failure: shrunk, written and given its replay command.
+/// A property's first failure (at `position`): shrunk, with its replay command on the
+/// original case (the counterexample is written by [`Report::write_counterexamples`]).
 fn failure(
     config: &Config,
     property: &Property,
     case: &Case,
+    position: u64,
     outcome: Outcome,
     replay: &Replay<'_>,
 ) -> Failure {
@@ -511,54 +446,19 @@ fn failure(
     } else {
         None
     };
-    let path = match (&shrunk, &config.out_dir) {
-        (Some(s), Some(dir)) => write_counterexample(dir, property.name(), case, s),
-        _ => None,
-    };
-    let replay = match (&shrunk, &path) {
-        (Some(s), Some(path)) => {
-            let focus = s
-                .focus
-                .map(|v| format!(" --focus {}", v.index()))
-                .unwrap_or_default();
-            format!(
-                "zipmesh check {} --seed {} --property {}{focus}",
-                path.display(),
-                case.seed,
-                property.name()
-            )
-        }
-        _ => replay(case, property.name()),
-    };
+    let case_replay = replay(case, property.name()) + &report::setting_flags(&config.settings);
     Failure {
         property: property.name().to_string(),
         case: case.index,
+        position,
         description: case.describe(),
         message,
         original_faces: case.mesh.map.num_faces(),
         shrunk,
-        path,
-        replay,
+        path: None,
+        replay: case_replay.clone(),
+        case_replay,
     }
-}
-
-/// Writes the counterexample as `<dir>/<property>-seed<S>-case<I>.obj` (atomically);
-/// `None` if that fails.
-fn write_counterexample(dir: &PathBuf, property: &str, case: &Case, s: &Shrunk) -> Option<PathBuf> {
-    std::fs::create_dir_all(dir).ok()?;
-    let safe: String = property
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    let path = dir.join(format!("{safe}-seed{}-case{}.obj", case.seed, case.index));
-    crate::io::write_mesh(&path, &s.mesh).ok()?;
-    Some(path)
 }
 
 /// The examples of `docs/campaign.md`, compiled and run as doctests.

@@ -184,6 +184,7 @@ impl Property {
 pub fn builtin() -> Vec<Property> {
     let mut all = kernel();
     all.extend(operators());
+    all.extend(super::tri_edit_properties());
     all.extend(super::qzip_properties(super::PairChoice::default()));
     all
 }
@@ -311,7 +312,7 @@ where
             |before, work, d, _| match apply(work, d) {
                 Err(_) if work == before => Ok(false),
                 Err(_) => Err("refused but changed the map".to_string()),
-                Ok(record) => settle(before, work, Ok(()), Ok(record), |_, _| Ok(())),
+                Ok(record) => settle::<_, Refusal>(before, work, Ok(()), Ok(record), |_, _| Ok(())),
             },
         )
     })
@@ -460,7 +461,7 @@ fn shuffle<T>(v: &mut [T], rng: &mut Rng) {
 type Attempt<'a> = dyn FnMut(&Map, &mut Map, Dart, &mut Rng) -> Result<bool, String> + 'a;
 
 /// Sites tried per case by each operator property.
-const SITES: usize = 16;
+pub(super) const SITES: usize = 16;
 
 /// Runs `attempt` at the case's sites on a working copy that must equal the case's map
 /// again after every site. `degree`: the face degree the operator works on; a mesh without
@@ -480,7 +481,7 @@ fn at_sites(
     )
 }
 
-fn at_darts(
+pub(super) fn at_darts(
     case: &Case,
     salt: u64,
     degree: usize,
@@ -515,11 +516,11 @@ fn at_darts(
 /// The common contract: `can` and the operator agree; a refusal leaves the map as it was;
 /// an application gives a valid map meeting `expect` (given the map after and the record),
 /// and its undo restores `before`.
-fn settle<R: Undo>(
+pub(super) fn settle<R: Undo, E: PartialEq + fmt::Display>(
     before: &Map,
     work: &mut Map,
-    can: Result<(), Refusal>,
-    result: Result<R, Refusal>,
+    can: Result<(), E>,
+    result: Result<R, E>,
     expect: impl FnOnce(&Map, &R) -> Result<(), String>,
 ) -> Result<bool, String> {
     match (can, result) {

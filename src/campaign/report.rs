@@ -1,11 +1,13 @@
 //! The campaign's report: one row per property, the failures, as a table or as JSON.
 
+use super::merge::Campaign;
 use super::shrink::Shrunk;
 use super::Shard;
 use core::time::Duration;
 use std::fmt::Write as _;
-use std::path::PathBuf;
-use std::string::String;
+use std::format;
+use std::path::{Path, PathBuf};
+use std::string::{String, ToString};
 use std::vec::Vec;
 
 /// One property's totals.
@@ -43,6 +45,35 @@ pub struct Row {
     pub time: Duration,
 }
 
+impl Row {
+    /// A row of `property` with every count 0.
+    pub(crate) fn zero(property: &str) -> Row {
+        Row {
+            property: property.to_string(),
+            cases: 0,
+            passed: 0,
+            failed: 0,
+            skipped: 0,
+            checks: 0,
+            cut: 0,
+            unchecked: 0,
+            time: Duration::ZERO,
+        }
+    }
+
+    /// Adds `other`'s counts and time to this row (the rows of two disjoint sets of cases).
+    pub(crate) fn add(&mut self, other: &Row) {
+        self.cases += other.cases;
+        self.passed += other.passed;
+        self.failed += other.failed;
+        self.skipped += other.skipped;
+        self.checks += other.checks;
+        self.cut += other.cut;
+        self.unchecked = self.unchecked.saturating_add(other.unchecked);
+        self.time += other.time;
+    }
+}
+
 /// A property's first failing case (the one with the smallest index), shrunk.
 ///
 /// ```
@@ -64,6 +95,9 @@ pub struct Failure {
     pub property: String,
     /// The failing case's index.
     pub case: u64,
+    /// The failing case's position in the campaign (the index for generated cases, the place
+    /// in the list for given ones): the failure reported is the one of smallest position.
+    pub position: u64,
     /// The failing case, described ([`Case::describe`](super::Case::describe)).
     pub description: String,
     /// The failure message on the original case.
@@ -75,8 +109,61 @@ pub struct Failure {
     /// Where the shrunk counterexample was written as OBJ (when an output directory was set).
     pub path: Option<PathBuf>,
     /// One `zipmesh check` command line that replays the failure: on the written
-    /// counterexample when there is one, else on the original case.
+    /// counterexample when there is one, else [`case_replay`](Failure::case_replay).
     pub replay: String,
+    /// The command line that replays the failure on the original case: for a generated case
+    /// it needs no file, so it works on any machine; for a given case it names the file.
+    pub case_replay: String,
+}
+
+impl Failure {
+    /// The counterexample's file name: `<property>-seed<S>-case<I>.obj`, with characters
+    /// other than ASCII letters, digits, `-` and `_` in the property name replaced by `_`.
+    ///
+    /// ```
+    /// use zipmesh::campaign::{self, Config, Outcome, Property};
+    /// let p = Property::new("a/b", "", |_| Outcome::fail("no", None));
+    /// let r = campaign::run(&Config { seed: 2, cases: 1, max_faces: 50, ..Config::default() }, &[p]);
+    /// assert_eq!(r.failures[0].file_name(2), "a_b-seed2-case0.obj");
+    /// ```
+    pub fn file_name(&self, seed: u64) -> String {
+        let safe: String = self
+            .property
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        format!("{safe}-seed{seed}-case{}.obj", self.case)
+    }
+
+    /// Writes the shrunk counterexample (if any) atomically into `dir` as
+    /// [`file_name`](Failure::file_name), and points `path` and `replay` at it; if there is
+    /// none or it cannot be written, `path` is `None` and `replay` is
+    /// [`case_replay`](Failure::case_replay).
+    fn write_counterexample(&mut self, dir: &Path, seed: u64, flags: &str) {
+        self.path = None;
+        self.replay = self.case_replay.clone();
+        let Some(s) = &self.shrunk else { return };
+        let path = dir.join(self.file_name(seed));
+        if std::fs::create_dir_all(dir).is_err() || crate::io::write_mesh(&path, &s.mesh).is_err() {
+            return;
+        }
+        let focus = s
+            .focus
+            .map(|v| format!(" --focus {}", v.index()))
+            .unwrap_or_default();
+        self.replay = format!(
+            "zipmesh check {} --seed {seed} --property {}{focus}{flags}",
+            path.display(),
+            self.property
+        );
+        self.path = Some(path);
+    }
 }
 
 /// Everything a campaign found.
@@ -107,6 +194,8 @@ pub struct Report {
     pub rows: Vec<Row>,
     /// One entry per property that failed, in the order of `rows`.
     pub failures: Vec<Failure>,
+    /// What identifies the campaign, so that only shards of one campaign are merged.
+    pub campaign: Campaign,
 }
 
 impl Report {
@@ -119,6 +208,29 @@ impl Report {
     /// ```
     pub fn passed(&self) -> bool {
         self.failures.is_empty() && self.rows.iter().all(|r| r.failed == 0)
+    }
+
+    /// Writes every shrunk counterexample into `dir` (see [`Failure::file_name`]) and points
+    /// each failure's `path` and `replay` at its file. [`run`](super::run) does this when
+    /// [`Config::out_dir`](super::Config::out_dir) is set; after [`merge`](super::merge) it
+    /// writes the shards' counterexamples on this machine.
+    ///
+    /// ```
+    /// use zipmesh::campaign::{self, Config, Outcome, Property};
+    /// let p = Property::new("never", "", |_| Outcome::fail("no", None));
+    /// let mut r = campaign::run(&Config { cases: 1, max_faces: 50, ..Config::default() }, &[p]);
+    /// assert!(r.failures[0].path.is_none());
+    /// let dir = std::env::temp_dir().join(format!("zipmesh-doc-cx-{}", std::process::id()));
+    /// r.write_counterexamples(&dir);
+    /// let path = r.failures[0].path.clone().unwrap();
+    /// assert!(path.is_file() && r.failures[0].replay.contains("never-seed0-case0.obj"));
+    /// std::fs::remove_dir_all(&dir).unwrap();
+    /// ```
+    pub fn write_counterexamples(&mut self, dir: &Path) {
+        let flags = setting_flags(&self.campaign.settings);
+        for f in &mut self.failures {
+            f.write_counterexample(dir, self.seed, &flags);
+        }
     }
 
     /// The table: property, cases, passed, failed, skipped, checks, cut, unchecked and, if
@@ -164,26 +276,41 @@ impl Report {
         s
     }
 
-    /// The report as one JSON object: `seed`, `shard` (`"i/n"`), `planned`, `run`,
-    /// `timed_out`, `passed`, `properties` (a list of objects with `name`, `cases`, `passed`,
-    /// `failed`, `skipped`, `checks`, `cut`, `unchecked` and, if `times`, `seconds`), if `times` the campaign's
-    /// wall time `seconds`, and `failures` (a list of
-    /// objects with `property`, `case`, `description`, `message`, `original_faces`,
-    /// `shrunk_faces`, `counterexample` (a path or null) and `replay`).
+    /// The report as one JSON object: `seed`, `shard` (`"i/n"`), the campaign (`cases`,
+    /// `max_faces`, `inputs`, a list of labels, and `settings`, an object of strings),
+    /// `planned`, `run`, `timed_out`, `passed`, `properties` (a list of objects with `name`,
+    /// `cases`, `passed`, `failed`, `skipped`, `checks`, `cut`, `unchecked` and, if `times`,
+    /// `seconds`), if `times` the campaign's wall time `seconds`, and `failures` (a list of
+    /// objects with `property`, `case`, `position`, `description`, `message`,
+    /// `original_faces`, `shrunk_faces`, `shrunk_message`, `shrunk_focus`, `counterexample`
+    /// (a path), `counterexample_obj` (the shrunk mesh as OBJ text, so that another machine
+    /// can write it again), `replay` and `case_replay`; absent values are `null`).
     ///
     /// ```
     /// use zipmesh::campaign::{self, Config};
     /// let r = campaign::run(&Config { cases: 2, max_faces: 100, ..Config::default() }, &campaign::kernel());
     /// let json = r.to_json(true);
     /// assert!(json.contains("\"name\":\"validity\"") && json.contains("\"seconds\":"));
+    /// assert!(json.contains("\"cases\":2,\"max_faces\":100,\"inputs\":[],\"settings\":{}"));
     /// ```
     pub fn to_json(&self, times: bool) -> String {
+        let c = &self.campaign;
+        let inputs: Vec<String> = c.inputs.iter().map(|i| quote(i)).collect();
+        let settings: Vec<String> = c
+            .settings
+            .iter()
+            .map(|(k, v)| format!("{}:{}", quote(k), quote(v)))
+            .collect();
         let mut s = String::new();
         let _ = write!(
             s,
-            "{{\"seed\":{},\"shard\":\"{}\",\"planned\":{},\"run\":{},\"timed_out\":{},\"passed\":{},\"properties\":[",
+            "{{\"seed\":{},\"shard\":\"{}\",\"cases\":{},\"max_faces\":{},\"inputs\":[{}],\"settings\":{{{}}},\"planned\":{},\"run\":{},\"timed_out\":{},\"passed\":{},\"properties\":[",
             self.seed,
             self.shard,
+            c.cases,
+            c.max_faces,
+            inputs.join(","),
+            settings.join(","),
             self.planned,
             self.run,
             self.timed_out,
@@ -193,60 +320,83 @@ impl Report {
             if i > 0 {
                 s.push(',');
             }
-            let _ = write!(
-                s,
-                "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{},\"unchecked\":{}",
-                quote(&r.property),
-                r.cases,
-                r.passed,
-                r.failed,
-                r.skipped,
-                r.checks,
-                r.cut,
-                r.unchecked
-            );
-            if times {
-                let _ = write!(s, ",\"seconds\":{}", r.time.as_secs_f64());
-            }
-            s.push('}');
+            row_json(&mut s, r, times);
         }
+        s.push(']');
         if times {
-            let _ = write!(s, "],\"seconds\":{}", self.elapsed.as_secs_f64());
-            s.push_str(",\"failures\":[");
-        } else {
-            s.push_str("],\"failures\":[");
+            let _ = write!(s, ",\"seconds\":{}", self.elapsed.as_secs_f64());
         }
+        s.push_str(",\"failures\":[");
         for (i, f) in self.failures.iter().enumerate() {
             if i > 0 {
                 s.push(',');
             }
-            let shrunk = f
-                .shrunk
-                .as_ref()
-                .map_or("null".into(), |x| x.mesh.map.num_faces().to_string());
-            let path = f
-                .path
-                .as_ref()
-                .map_or("null".into(), |p| quote(&p.display().to_string()));
-            let _ = write!(
-                s,
-                "{{\"property\":{},\"case\":{},\"description\":{},\"message\":{},\"original_faces\":{},\"shrunk_faces\":{},\"counterexample\":{},\"replay\":{}}}",
-                quote(&f.property),
-                f.case,
-                quote(&f.description),
-                quote(&f.message),
-                f.original_faces,
-                shrunk,
-                path,
-                quote(&f.replay)
-            );
+            failure_json(&mut s, f);
         }
         s.push_str("]}");
         s
     }
 }
 
-use std::string::ToString;
+fn row_json(s: &mut String, r: &Row, times: bool) {
+    let _ = write!(
+        s,
+        "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{},\"unchecked\":{}",
+        quote(&r.property),
+        r.cases,
+        r.passed,
+        r.failed,
+        r.skipped,
+        r.checks,
+        r.cut,
+        r.unchecked
+    );
+    if times {
+        let _ = write!(s, ",\"seconds\":{}", r.time.as_secs_f64());
+    }
+    s.push('}');
+}
+
+fn failure_json(s: &mut String, f: &Failure) {
+    let null = || "null".to_string();
+    let shrunk = f.shrunk.as_ref();
+    let faces = shrunk.map_or_else(null, |x| x.mesh.map.num_faces().to_string());
+    let message = shrunk.map_or_else(null, |x| quote(&x.message));
+    let focus = shrunk
+        .and_then(|x| x.focus)
+        .map_or_else(null, |v| v.index().to_string());
+    let obj = shrunk.map_or_else(null, |x| {
+        let mut text = Vec::new();
+        match crate::io::obj::write(&x.mesh, &mut text) {
+            Ok(()) => quote(&String::from_utf8_lossy(&text)),
+            Err(_) => null(),
+        }
+    });
+    let path = f
+        .path
+        .as_ref()
+        .map_or_else(null, |p| quote(&p.display().to_string()));
+    let _ = write!(
+        s,
+        "{{\"property\":{},\"case\":{},\"position\":{},\"description\":{},\"message\":{},\"original_faces\":{},\"shrunk_faces\":{faces},\"shrunk_message\":{message},\"shrunk_focus\":{focus},\"counterexample\":{path},\"counterexample_obj\":{obj},\"replay\":{},\"case_replay\":{}}}",
+        quote(&f.property),
+        f.case,
+        f.position,
+        quote(&f.description),
+        quote(&f.message),
+        f.original_faces,
+        quote(&f.replay),
+        quote(&f.case_replay)
+    );
+}
+
+/// The settings as command-line flags: ` --name value` each, in name order.
+pub(crate) fn setting_flags(settings: &std::collections::BTreeMap<String, String>) -> String {
+    settings
+        .iter()
+        .map(|(k, v)| format!(" --{k} {v}"))
+        .collect()
+}
 
 /// A JSON string literal.
 fn quote(text: &str) -> String {

@@ -12,7 +12,7 @@ mod solids;
 
 pub use catmull_clark::catmull_clark;
 pub use random::{random_mixed, random_quad, random_triangle, MAX_RANDOM_FACES, MAX_RANDOM_GENUS};
-pub use solids::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
+pub use solids::{cone_disk, geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
 
 /// An `nx` x `ny` grid of quads in the plane z = 0: a disk with one boundary loop.
 /// `nx` and `ny` are clamped to at least 1.

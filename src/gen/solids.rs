@@ -1,5 +1,6 @@
 //! Subdivided solids: test meshes with lone irregular vertices in regular neighbourhoods
-//! (v5 on the icosahedron, v3 on the tetrahedron, vk and v4 on a bipyramid).
+//! (v5 on the icosahedron, v3 on the tetrahedron, vk and v4 on a bipyramid), and lattice
+//! cones (one vk at the centre of a disk).
 
 use crate::map::Map;
 use alloc::collections::BTreeMap;
@@ -75,4 +76,43 @@ pub fn subdivided_bipyramid(n: usize, levels: usize) -> Map {
         .flat_map(|i| [[0, r(i), r(i + 1)], [1, r(i + 1), r(i)]])
         .collect();
     subdivide(tris, n + 2, levels)
+}
+
+/// The disk of the triangular lattice around a centre of valence `k`, out to ring `r`: the
+/// cone of `k` lattice sectors (`k` and `r` clamped to 3..=64 and 1..=64). Vertex 0 is the
+/// centre, ring `j` holds vertices `1 + k j (j - 1) / 2 ..` (`k j` of them, counter-clockwise,
+/// corners first); every other interior vertex is regular, and the boundary is a convex
+/// `k`-gon of side `r` (2 triangles at a corner, 3 elsewhere).
+///
+/// ```
+/// let c = zipmesh::gen::cone_disk(7, 3);
+/// assert_eq!((c.num_vertices(), c.num_faces()), (1 + 7 * 6, 7 * 9));
+/// assert_eq!(c.valence(zipmesh::Vert::new(0)), 7);
+/// let inner = c.vertices().filter(|&v| !c.is_boundary_vertex(v) && v.index() > 0);
+/// assert!(inner.into_iter().all(|v| c.valence(v) == 6));
+/// ```
+pub fn cone_disk(k: usize, r: usize) -> Map {
+    let (k, r) = (k.clamp(3, 64), r.clamp(1, 64));
+    let ring = |j: usize, s: usize, t: usize| -> u32 {
+        if j == 0 {
+            return 0;
+        }
+        let (s, t) = if t == j { ((s + 1) % k, 0) } else { (s, t) };
+        (1 + k * j * (j - 1) / 2 + s * j + t) as u32
+    };
+    let mut tris = Vec::new();
+    for j in 1..=r {
+        for s in 0..k {
+            // Sector s between rings j - 1 and j: j triangles out, j - 1 back in.
+            for t in 0..j {
+                let inner = if j == 1 { 0 } else { ring(j - 1, s, t) };
+                tris.push([inner, ring(j, s, t), ring(j, s, t + 1)]);
+            }
+            for t in 0..j.saturating_sub(1) {
+                tris.push([ring(j - 1, s, t), ring(j, s, t + 1), ring(j - 1, s, t + 1)]);
+            }
+        }
+    }
+    let n = 1 + k * r * (r + 1) / 2;
+    Map::from_polygons(n, &tris).unwrap_or_default()
 }

@@ -11,6 +11,7 @@ use super::Mesh;
 use crate::map::{Map, Vert};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
+use hashbrown::HashSet;
 
 /// Where a created or moved vertex takes its data from, read on the map after the edit.
 /// Each editing wrapper states its rule once, as one of these.
@@ -88,13 +89,30 @@ fn neighbours<T>(map: &Map, v: Vert, skip: Option<Vert>, value: impl Fn(Vert) ->
 /// journal.rewind(&mut mesh.positions);
 /// assert_eq!(mesh.positions, before);
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Journal<A: VertexAttributes> {
     /// Old values, in the order first overwritten.
     saved: Vec<(Vert, A::Value)>,
+    /// The vertices of `saved`, filled once `saved` outgrows a short scan, so that an edit
+    /// overwriting many reused slots stays linear.
+    seen: HashSet<Vert>,
     /// The layer's extent before the edit.
     extent: A::Extent,
 }
+
+/// Journals are equal when they saved the same values and extent (`seen` is an index).
+impl<A: VertexAttributes> PartialEq for Journal<A>
+where
+    A::Value: PartialEq,
+    A::Extent: PartialEq,
+{
+    fn eq(&self, other: &Self) -> bool {
+        self.saved == other.saved && self.extent == other.extent
+    }
+}
+
+/// Up to this many saved values a linear scan finds repeats; beyond it, the `seen` index.
+const SCAN: usize = 16;
 
 impl<A: VertexAttributes> Journal<A> {
     /// Starts a journal on the layer as it is before the edit.
@@ -103,6 +121,7 @@ impl<A: VertexAttributes> Journal<A> {
     pub fn start(attrs: &A) -> Self {
         Journal {
             saved: Vec::new(),
+            seen: HashSet::new(),
             extent: attrs.extent(),
         }
     }
@@ -132,11 +151,22 @@ impl<A: VertexAttributes> Journal<A> {
         // Only slots the layer already reached are saved, so the scan runs over the (few)
         // overwritten vertices, never over the new ones an edit appends.
         if let Some(old) = attrs.value(v) {
-            if !self.saved.iter().any(|&(s, _)| s == v) {
+            if !self.saved_before(v) {
                 self.saved.push((v, old));
             }
         }
         attrs.set_value(v, value);
+    }
+
+    /// Whether `v`'s old value is saved already; past [`SCAN`] values, records `v` as saved.
+    fn saved_before(&mut self, v: Vert) -> bool {
+        if self.saved.len() < SCAN {
+            return self.saved.iter().any(|&(s, _)| s == v);
+        }
+        if self.seen.is_empty() {
+            self.seen.extend(self.saved.iter().map(|&(s, _)| s));
+        }
+        !self.seen.insert(v)
     }
 
     /// Puts the saved values back, newest first, and cuts the layer back to its extent
@@ -148,6 +178,17 @@ impl<A: VertexAttributes> Journal<A> {
             attrs.set_value(*v, old.clone());
         }
         attrs.shrink_to(self.extent);
+    }
+
+    /// Takes over the saves of a later journal on the same layer, so that an edit of
+    /// several steps keeps one journal: a vertex saved already keeps its older value, and
+    /// the extent stays this journal's (the layer's before the first step).
+    pub(crate) fn absorb(&mut self, later: Journal<A>) {
+        for (v, old) in later.saved {
+            if !self.saved.iter().any(|&(s, _)| s == v) {
+                self.saved.push((v, old));
+            }
+        }
     }
 
     /// The number of values saved (vertices that existed and were overwritten).

@@ -331,6 +331,13 @@ impl V5Move {
         self.op
     }
 
+    /// The graph operator's record.
+    ///
+    /// See [`generate_pair`] for an example.
+    pub fn record(&self) -> &TriRecord {
+        &self.record
+    }
+
     /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
     ///
     /// See [`generate_pair`] for an example.

@@ -41,10 +41,15 @@
 //! * 5-5-7-7 generation from a regular vertex in three configurations ([`Quadruple`]):
 //!   [`generate_quadruple`], and removal of a quadruple inside two triangles,
 //!   [`remove_quadruple`] (Fig. 8);
-//! * type splitting and aggregation: [`split_type`], [`aggregate_type`] (Sec. 6.3).
+//! * type splitting and aggregation: [`split_type`], [`aggregate_type`] (Sec. 6.3);
+//! * v7 movement with 5-7 generation, [`generate_pair_v7`], and with 5-7 removal,
+//!   [`remove_pair_v7`] (the mirror of Fig. 7), and the cancellation of an adjacent 5-5-7
+//!   or 5-7-7 triple into one v5 or one v7, [`cancel_triple`] (Sec. 7.2; generation,
+//!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]).
 //!
-//! [`crate::gen::geodesic_sphere`], [`crate::gen::subdivided_tetrahedron`] and [`crate::gen::subdivided_bipyramid`] make meshes
-//! with lone v5, v3, v4 and vk in regular neighbourhoods to try them on. The readings chosen
+//! [`crate::gen::geodesic_sphere`], [`crate::gen::subdivided_tetrahedron`],
+//! [`crate::gen::subdivided_bipyramid`] and [`crate::gen::cone_disk`] make meshes with lone
+//! v5, v3, v4, vk and v7 in regular neighbourhoods to try them on. The readings chosen
 //! where the paper's figures are missing, with diagrams: `docs/tri-edit.md`.
 
 use crate::map::{Dart, Map, Vert};
@@ -54,6 +59,7 @@ use core::fmt;
 mod generate;
 mod pair;
 mod quadruple;
+mod triple;
 mod types;
 
 pub use generate::{
@@ -62,10 +68,19 @@ pub use generate::{
 };
 pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
 pub use quadruple::{
-    can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,
-    QuadrupleEdit,
+    can_generate_quadruple, can_remove_quadruple, generate_quadruple, generate_quadruple_with,
+    remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
-pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
+pub use triple::{
+    can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
+    cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,
+    generate_pair_v7_with, remove_pair_v7, remove_pair_v7_with, TripleCancel, TripleEdit, V7Move,
+    Via7,
+};
+pub use types::{
+    aggregate_type, aggregate_type_with, can_aggregate_type, can_split_type, split_type,
+    split_type_with, TypeEdit,
+};
 
 /// Why a semantic edit refuses (the map is then unchanged).
 ///

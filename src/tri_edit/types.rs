@@ -15,6 +15,7 @@
 
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
+use crate::mesh::{Edited, Journal, Rule, VertexAttributes};
 use crate::ops::tri::{can_split_vertex, TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
@@ -47,18 +48,23 @@ fn involved(map: &Map, op: TriOp) -> [Option<Vert>; 4] {
 /// ones from the records).
 type Done = (Vec<TriRecord>, Vec<Vert>);
 
-/// Applies operations one at a time, each computed from the map so far; on a refusal undoes
-/// the steps done in reverse, leaving the map as it was.
-pub(super) fn run(
+/// Applies operations one at a time, each computed from the map so far, on a map and a
+/// per-vertex layer: each step places its vertex by its operator's rule
+/// ([`TriOp::apply_with`]) and one journal keeps every value overwritten. On a refusal the
+/// steps done are undone in reverse and the layer rewound: map and layer as they were.
+pub(super) fn run_with<A: VertexAttributes>(
     map: &mut Map,
+    attrs: &mut A,
     mut next: impl FnMut(&Map, &[TriRecord]) -> Result<Option<TriOp>, TriEditError>,
-) -> Result<Done, TriEditError> {
+) -> Result<(Done, Journal<A>), TriEditError> {
     let (mut done, mut seen): Done = (Vec::new(), Vec::new());
+    let mut journal = Journal::start(attrs);
     loop {
         let step = next(map, &done).and_then(|op| match op {
             Some(op) => {
                 let vs = involved(map, op);
-                let r = op.apply(map)?;
+                let (r, j) = op.apply_with(map, attrs)?.into_parts();
+                journal.absorb(j);
                 seen.extend(vs.into_iter().flatten());
                 if let TriRecord::SplitVertex(s) = r {
                     seen.push(s.created());
@@ -70,15 +76,34 @@ pub(super) fn run(
         });
         match step {
             Ok(true) => {}
-            Ok(false) => return Ok((done, seen)),
+            Ok(false) => return Ok(((done, seen), journal)),
             Err(e) => {
                 // Fresh records of this map: their undo does not refuse.
                 for r in done.iter().rev() {
                     let _ = r.undo(map);
                 }
+                journal.rewind(attrs);
                 return Err(e);
             }
         }
+    }
+}
+
+/// No per-vertex data: the map-only edits run through [`run_with`] with it.
+pub(super) struct NoData;
+
+impl VertexAttributes for NoData {
+    type Value = ();
+    type Extent = ();
+    fn extent(&self) {}
+    fn shrink_to(&mut self, _: ()) {}
+    fn cover(&mut self, _: usize) {}
+    fn value(&self, _: Vert) -> Option<()> {
+        None
+    }
+    fn set_value(&mut self, _: Vert, _: ()) {}
+    fn place(&self, _: &Map, _: Rule) -> Option<()> {
+        None
     }
 }
 
@@ -163,6 +188,30 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 /// assert_eq!(map, before);
 /// ```
 pub fn split_type(map: &mut Map, v: Vert) -> Result<TypeEdit, TriEditError> {
+    split_type_with(map, &mut NoData, v).map(|e| e.into_parts().0)
+}
+
+/// [`split_type`] on a map and its per-vertex data: each step places its vertex by its
+/// operator's rule (see [`TriOp::apply_with`]); the undo restores map and data.
+///
+/// ```
+/// use zipmesh::gen::subdivided_bipyramid;
+/// use zipmesh::tri_edit::split_type_with;
+/// use zipmesh::Vert;
+/// let mut map = subdivided_bipyramid(9, 2);
+/// let mut marks = vec![0.5f64; map.vertex_slots()];
+/// let before = (map.clone(), marks.clone());
+/// let e = split_type_with(&mut map, &mut marks, Vert::new(0)).unwrap(); // a v9 into three v7
+/// assert_eq!(e.record().vertices().len(), 3);
+/// assert_eq!(marks.len(), map.vertex_slots());
+/// e.undo_with(&mut map, &mut marks).unwrap();
+/// assert_eq!((map, marks), before);
+/// ```
+pub fn split_type_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    v: Vert,
+) -> Result<Edited<TypeEdit, A>, TriEditError> {
     if !map.is_live_vertex(v) {
         return Err(TriEditError::DeadHandle);
     }
@@ -170,15 +219,15 @@ pub fn split_type(map: &mut Map, v: Vert) -> Result<TypeEdit, TriEditError> {
     if !interior_of_valence(map, v, k) || !(k == 3 || k == 4 || k > 7) {
         return Err(TriEditError::WrongValence);
     }
-    let (steps, seen) = if k <= 4 {
+    let ((steps, seen), journal) = if k <= 4 {
         let op = low_collapse(map, v)?;
         let mut once = Some(op);
-        run(map, |_, _| Ok(once.take()))?
+        run_with(map, attrs, |_, _| Ok(once.take()))?
     } else {
-        run(map, |m, done| next_high_split(m, v, done))?
+        run_with(map, attrs, |m, done| next_high_split(m, v, done))?
     };
     let vertices = irregular_among(map, seen);
-    Ok(TypeEdit { vertices, steps })
+    Ok(Edited::new(TypeEdit { vertices, steps }, journal))
 }
 
 /// The live irregular vertices among `seen`, sorted, once each.
@@ -206,16 +255,42 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 pub fn aggregate_type(map: &mut Map, v5s: &[Vert]) -> Result<TypeEdit, TriEditError> {
+    aggregate_type_with(map, &mut NoData, v5s).map(|e| e.into_parts().0)
+}
+
+/// [`aggregate_type`] on a map and its per-vertex data (the new vertex placed inside its
+/// fan, see [`TriOp::apply_with`]).
+///
+/// ```
+/// use zipmesh::gen::subdivided_bipyramid;
+/// use zipmesh::tri_edit::{aggregate_type_with, split_type};
+/// use zipmesh::Vert;
+/// let mut map = subdivided_bipyramid(8, 2);
+/// let s = split_type(&mut map, Vert::new(2)).unwrap(); // a v4 into two v5
+/// let mut marks = vec![1.0f64; map.vertex_slots()];
+/// let before = (map.clone(), marks.clone());
+/// let a = aggregate_type_with(&mut map, &mut marks, s.vertices()).unwrap();
+/// assert_eq!(map.valence(a.record().vertices()[0]), 4);
+/// a.undo_with(&mut map, &mut marks).unwrap();
+/// assert_eq!((map, marks), before);
+/// ```
+pub fn aggregate_type_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    v5s: &[Vert],
+) -> Result<Edited<TypeEdit, A>, TriEditError> {
     let op = aggregation_op(map, v5s)?;
-    let r = op.apply(map)?;
-    let created = match r {
-        TriRecord::SplitVertex(s) => alloc::vec![s.created()],
+    let mut once = Some(op);
+    let ((steps, _), journal) = run_with(map, attrs, |_, _| Ok(once.take()))?;
+    let created = match steps.first() {
+        Some(TriRecord::SplitVertex(s)) => alloc::vec![s.created()],
         _ => Vec::new(),
     };
-    Ok(TypeEdit {
+    let edit = TypeEdit {
         vertices: created,
-        steps: alloc::vec![r],
-    })
+        steps,
+    };
+    Ok(Edited::new(edit, journal))
 }
 
 /// Checks whether [`aggregate_type`] applies, without changing anything.

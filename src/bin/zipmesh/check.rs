@@ -1,11 +1,16 @@
-//! `zipmesh check`: property campaigns on generated cases or on given mesh files.
+//! `zipmesh check`: property campaigns on generated cases or on given mesh files, and
+//! `--merge` of the JSON reports of a campaign's shards (run on other machines).
 //!
 //! Exit codes: 0 every property held on every planned case, 1 a property failed, 2 a usage
-//! or input error, 3 every property held on what ran but the time limit cut the campaign
-//! (cases not run, or properties cut short inside a case).
+//! or input error (with `--merge`: reports that are not the shards of one campaign), 3 every
+//! property held on what ran but the time limit cut the campaign (cases not run, or
+//! properties cut short inside a case).
+
+mod report_json;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -18,7 +23,8 @@ use crate::out::{self, outln};
 /// Arguments of `zipmesh check`.
 #[derive(Args)]
 pub struct CheckArgs {
-    /// Mesh files (.obj, .off) to check; without them, generated cases.
+    /// Mesh files (.obj, .off) to check; without them, generated cases. With `--merge`: the
+    /// shard reports (JSON) to merge.
     files: Vec<PathBuf>,
     /// The campaign seed: the same seed and arguments give the same cases and table.
     #[arg(long, default_value_t = 0)]
@@ -38,16 +44,24 @@ pub struct CheckArgs {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     json: bool,
-    /// Run only the cases whose position p has p % n == i.
+    /// Run only the cases whose position p has p % n == i (0-based: shards 0/n to n-1/n).
     #[arg(long, value_name = "i/n")]
     shard: Option<Shard>,
+    /// Merge the FILEs, the `--json` reports of every shard of one campaign, into the table
+    /// (or with --json the JSON) and exit status of one unsharded run; counterexamples are
+    /// written again into --out.
+    #[arg(long, conflicts_with_all = [
+        "seed", "cases", "max_faces", "properties", "jobs", "shard", "time_limit",
+        "max_distance", "case", "focus", "list",
+    ])]
+    merge: bool,
     /// Stop after this many seconds: no new case starts and properties stop between their
     /// checks; exit 3 if everything that ran held.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
     /// Q-zip pairs: the largest distance (in edges) between two irregular vertices to pair;
     /// on given files every such ordered pair is tried with every movement.
-    #[arg(long, default_value_t = 12)]
+    #[arg(long, default_value_t = DEFAULT_MAX_DISTANCE)]
     max_distance: usize,
     /// Run only generated case number INDEX (what a replay line uses).
     #[arg(long, value_name = "INDEX")]
@@ -74,7 +88,14 @@ pub fn run(args: CheckArgs) -> ExitCode {
     }
 }
 
+/// `--max-distance` when not given; other values are recorded in the report's settings and
+/// passed on in replay lines.
+const DEFAULT_MAX_DISTANCE: usize = 12;
+
 fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
+    if args.merge {
+        return merge_reports(&args);
+    }
     let all = properties(&args);
     if args.list {
         for p in &all {
@@ -111,6 +132,7 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         checks: campaign::CheckCounter::default(),
         shrink: true,
         out_dir: Some(args.out.clone()),
+        settings: settings(&args),
     };
     let focus = args.focus.map(Vert::new);
     let given: Option<Vec<Case>> = if !args.files.is_empty() {
@@ -134,16 +156,57 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
         None => config.cases,
     });
     let report = run_campaign(&config, given.as_deref(), &properties, planned, !args.json);
-    if args.json {
+    Ok(print_report(&report, args.json))
+}
+
+/// The settings the properties depend on besides the cases: `--max-distance` when it is not
+/// the default (so default campaigns keep short replay lines).
+fn settings(args: &CheckArgs) -> BTreeMap<String, String> {
+    let mut settings = BTreeMap::new();
+    if args.max_distance != DEFAULT_MAX_DISTANCE {
+        settings.insert("max-distance".into(), args.max_distance.to_string());
+    }
+    settings
+}
+
+/// Prints the report as the table or as JSON; the exit status of the campaign.
+fn print_report(report: &Report, json: bool) -> ExitCode {
+    if json {
         outln!("{}", report.to_json(true));
     } else {
-        print_text(&report);
+        print_text(report);
     }
-    Ok(ExitCode::from(match (report.passed(), report.timed_out) {
+    ExitCode::from(match (report.passed(), report.timed_out) {
         (false, _) => 1,
         (true, true) => CUT_BY_TIME_LIMIT,
         (true, false) => 0,
-    }))
+    })
+}
+
+/// `--merge`: reads the shard reports, merges them (refusing reports of different campaigns
+/// and missing or duplicate shards), writes the counterexamples into `--out` and prints what
+/// one unsharded run would.
+fn merge_reports(args: &CheckArgs) -> Result<ExitCode, String> {
+    if args.files.is_empty() {
+        return Err(
+            "--merge needs the shard reports (the JSON of check --shard i/n --json)".into(),
+        );
+    }
+    let names: Vec<String> = args
+        .files
+        .iter()
+        .map(|p| out::escape(&p.display().to_string()))
+        .collect();
+    let mut parts = Vec::with_capacity(args.files.len());
+    for (path, name) in args.files.iter().zip(&names) {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{name}: {e}"))?;
+        let report = report_json::parse(&text)
+            .map_err(|e| format!("{name}: not a report of check --json: {e}"))?;
+        parts.push(report);
+    }
+    let mut report = campaign::merge(&parts).map_err(|e| e.describe(&names))?;
+    report.write_counterexamples(&args.out);
+    Ok(print_report(&report, args.json))
 }
 
 /// Runs the campaign, with a progress bar on a terminal (when `bar` is wanted) that moves
@@ -208,6 +271,7 @@ fn show_checks(
 fn properties(args: &CheckArgs) -> Vec<Property> {
     let mut all = campaign::kernel();
     all.extend(campaign::operators());
+    all.extend(campaign::tri_edit_properties());
     let per_case = if args.files.is_empty() { Some(4) } else { None };
     all.extend(campaign::qzip_properties(campaign::PairChoice {
         max_distance: args.max_distance,

@@ -11,6 +11,7 @@ mod out;
 mod qzip;
 mod render;
 mod signals;
+mod tri;
 
 use out::outln;
 
@@ -83,6 +84,16 @@ enum Command {
     /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
     /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
     Zip(qzip::ZipArgs),
+    /// Move an adjacent 5-7 pair of a triangle mesh K steps in one of six directions
+    /// (docs/tri-edit.md) and write the result; prints the command that undoes it.
+    TriMove(tri::MoveArgs),
+    /// Generate a 5-5-7-7 quadruple at a regular vertex of a triangle mesh.
+    TriGenerate(tri::GenerateArgs),
+    /// Split the type of an irregular vertex of a triangle mesh (v3, v4, vk with k > 7) or
+    /// aggregate two or three v5 into a v4 or a v3.
+    TriType(tri::TypeArgs),
+    /// Cancel a 5-5-7-7 quadruple inside two triangles of a triangle mesh.
+    TriCancel(tri::CancelArgs),
     /// Draw the mesh (SVG or PNG): shaded faces and edges, hidden surfaces removed, the seen
     /// interior singularities as balls, optionally surgery paths from a JSON report.
     Render(render::RenderArgs),
@@ -97,6 +108,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
+        Command::TriMove(args) => tri::run_move(args).map_err(|e| e.to_string()),
+        Command::TriGenerate(args) => tri::run_generate(args).map_err(|e| e.to_string()),
+        Command::TriType(args) => tri::run_type(args).map_err(|e| e.to_string()),
+        Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
     };
@@ -126,7 +141,13 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     match command {
         Command::Check(args) => return Ok(check::run(args)),
         // Dispatched in `main`: their errors are not file errors.
-        Command::Moves(_) | Command::Zip(_) | Command::Render(_) => {}
+        Command::Moves(_)
+        | Command::Zip(_)
+        | Command::TriMove(_)
+        | Command::TriGenerate(_)
+        | Command::TriType(_)
+        | Command::TriCancel(_)
+        | Command::Render(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

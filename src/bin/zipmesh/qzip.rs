@@ -57,7 +57,7 @@ pub struct ZipArgs {
 }
 
 /// An input problem: printed as `zipmesh: <message>`, exit 2.
-pub struct InputError(String);
+pub struct InputError(pub String);
 
 impl std::fmt::Display for InputError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

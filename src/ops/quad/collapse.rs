@@ -82,7 +82,7 @@ fn collapse_raw(map: &mut Map, p: &CollapsePlan) {
     let [h0, h1, h2, h3] = p.h;
     let (o0, o1, o2, o3) = (h0.twin(), h1.twin(), h2.twin(), h3.twin());
     let [a, b, c, d] = p.v;
-    let (g1, g3) = (map.face[o1.index()], map.face[o3.index()]);
+    let (g1, g3) = (map.face(o1), map.face(o3));
     let (n1, n3) = (map.next(o1), map.next(o3));
     // Record for the merged vertex: its boundary dart if it has one, with o1 and o3 replaced
     // by the darts that take their places.
@@ -105,16 +105,16 @@ fn collapse_raw(map: &mut Map, p: &CollapsePlan) {
         if x == o1 {
             break;
         }
-        map.vert[x.index()] = a.0;
+        map.set_origin(x, a);
         x = map.rotate_cw(x);
     }
-    map.next[p.p1.index()] = h0.0;
-    map.next[h0.index()] = n1.0;
-    map.face[h0.index()] = g1;
-    map.next[p.p3.index()] = h2.0;
-    map.next[h2.index()] = n3.0;
-    map.face[h2.index()] = g3;
-    map.vdart[a.index()] = keep.0;
+    map.set_next(p.p1, h0);
+    map.set_next(h0, n1);
+    map.set_face(h0, g1);
+    map.set_next(p.p3, h2);
+    map.set_next(h2, n3);
+    map.set_face(h2, g3);
+    map.set_vertex_dart(a, keep);
     replace_vdart(map, b, h1, o0);
     replace_vdart(map, d, h3, o2);
     replace_fdart(map, g1, o1, h0);
@@ -388,7 +388,7 @@ fn split_raw(map: &mut Map, p: &SplitPlan, h1: Dart, h3: Dart, c: Vert, f: Face)
     let (b, d) = (map.dest(h0), map.dest(h2));
     let (p1, p3) = (p.pred[0].twin(), p.pred[1].twin());
     let (n1, n3) = (map.next(h0), map.next(h2));
-    let (g1, g3) = (map.face[h0.index()], map.face[h2.index()]);
+    let (g1, g3) = (map.face(h0), map.face(h2));
     let va = map.vertex_dart(a);
     let a_boundary = map.is_boundary_dart(va);
     // h2 and the darts clockwise after it, up to h0, move to c.
@@ -399,26 +399,25 @@ fn split_raw(map: &mut Map, p: &SplitPlan, h1: Dart, h3: Dart, c: Vert, f: Face)
             break;
         }
         va_moves |= x == va;
-        map.vert[x.index()] = c.0;
+        map.set_origin(x, c);
         x = map.rotate_cw(x);
     }
-    let i = |d: Dart| d.index();
     // o1 takes h0's place beyond b–c, o3 takes h2's place beyond d–a.
-    map.next[i(p1)] = o1.0;
-    map.next[i(o1)] = n1.0;
-    map.face[i(o1)] = g1;
-    map.vert[i(o1)] = c.0;
-    map.next[i(p3)] = o3.0;
-    map.next[i(o3)] = n3.0;
-    map.face[i(o3)] = g3;
-    map.vert[i(o3)] = a.0;
+    map.set_next(p1, o1);
+    map.set_next(o1, n1);
+    map.set_face(o1, g1);
+    map.set_origin(o1, c);
+    map.set_next(p3, o3);
+    map.set_next(o3, n3);
+    map.set_face(o3, g3);
+    map.set_origin(o3, a);
     for (x, n) in [(h0, h1), (h1, h2), (h2, h3), (h3, h0)] {
-        map.next[i(x)] = n.0;
-        map.face[i(x)] = f.0;
+        map.set_next(x, n);
+        map.set_face(x, f);
     }
-    map.vert[i(h1)] = b.0;
-    map.vert[i(h3)] = d.0;
-    map.fdart[f.index()] = h0.0;
+    map.set_origin(h1, b);
+    map.set_origin(h3, d);
+    map.set_face_dart(f, h0);
     replace_fdart(map, g1, h0, o1);
     replace_fdart(map, g3, h2, o3);
     // Vertex records: a boundary dart keeps its role, through the dart that took its place.
@@ -437,8 +436,8 @@ fn split_raw(map: &mut Map, p: &SplitPlan, h1: Dart, h3: Dart, c: Vert, f: Face)
     } else {
         (va, h2)
     };
-    map.vdart[a.index()] = ra.0;
-    map.vdart[c.index()] = rc.0;
+    map.set_vertex_dart(a, ra);
+    map.set_vertex_dart(c, rc);
 }
 
 /// Checks whether [`split_vertex`] applies to the separators `s1`, `s2`; changes nothing.

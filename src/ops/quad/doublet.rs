@@ -59,17 +59,17 @@ fn plan_removal(map: &Map, x: Dart) -> Result<RemovalPlan, Refusal> {
 fn removal_raw(map: &mut Map, p: &RemovalPlan) {
     let [x, x1, x2, ty] = p.qx;
     let [_, y1, y2, tx] = p.qy;
-    let f = map.face[x.index()];
+    let f = map.face(x);
     let (pv, qv) = (map.origin(x1), map.origin(y1));
-    map.next[x2.index()] = y1.0;
-    map.next[y2.index()] = x1.0;
-    map.face[y1.index()] = f;
-    map.face[y2.index()] = f;
+    map.set_next(x2, y1);
+    map.set_next(y2, x1);
+    map.set_face(y1, f);
+    map.set_face(y2, f);
     replace_vdart(map, pv, tx, x1);
     replace_vdart(map, qv, ty, y1);
-    let fd = map.fdart[f as usize];
-    if fd == x.0 || fd == ty.0 {
-        map.fdart[f as usize] = x1.0;
+    let fd = fdart_of(map, f);
+    if fd == x || fd == ty {
+        map.set_face_dart(f, x1);
     }
 }
 
@@ -257,26 +257,26 @@ fn plan_insertion(map: &Map, d: Dart) -> Result<[Dart; 4], Refusal> {
 fn insertion_raw(map: &mut Map, q: [Dart; 4], x: Dart, y: Dart, v: Vert, g: Face) {
     let [x1, x2, y1, y2] = q;
     let (tx, ty) = (x.twin(), y.twin());
-    let f = map.face[x1.index()];
+    let f = map.face(x1);
     let (pv, qv) = (map.origin(x1), map.origin(y1));
     for (a, b) in [(x, x1), (x2, ty), (ty, x), (y, y1), (y2, tx), (tx, y)] {
-        map.next[a.index()] = b.0;
+        map.set_next(a, b);
     }
     for d in [x, ty] {
-        map.face[d.index()] = f;
+        map.set_face(d, f);
     }
     for d in [y, y1, y2, tx] {
-        map.face[d.index()] = g.0;
+        map.set_face(d, g);
     }
-    map.vert[x.index()] = v.0;
-    map.vert[y.index()] = v.0;
-    map.vert[tx.index()] = pv.0;
-    map.vert[ty.index()] = qv.0;
-    map.vdart[v.index()] = x.0;
-    map.fdart[g.index()] = y.0;
-    let fd = map.fdart[f as usize];
-    if fd == y1.0 || fd == y2.0 {
-        map.fdart[f as usize] = x1.0;
+    map.set_origin(x, v);
+    map.set_origin(y, v);
+    map.set_origin(tx, pv);
+    map.set_origin(ty, qv);
+    map.set_vertex_dart(v, x);
+    map.set_face_dart(g, y);
+    let fd = fdart_of(map, f);
+    if fd == y1 || fd == y2 {
+        map.set_face_dart(f, x1);
     }
 }
 

@@ -324,7 +324,7 @@ fn restore_vdart(map: &mut Map, v: Vert, old: Dart) {
         return;
     }
     if old == cur || (!map.is_boundary_dart(cur) && !map.is_boundary_dart(old)) {
-        map.vdart[v.index()] = old.0;
+        map.set_vertex_dart(v, old);
     }
 }
 
@@ -332,7 +332,7 @@ fn restore_vdart(map: &mut Map, v: Vert, old: Dart) {
 fn restore_fdart(map: &mut Map, f: Option<Face>, old: Dart) {
     if let Some(f) = f {
         if map.is_live_face(f) && map.is_live_dart(old) && map.face(old) == Some(f) {
-            map.fdart[f.index()] = old.0;
+            map.set_face_dart(f, old);
         }
     }
 }
@@ -344,17 +344,17 @@ fn fdart_of(map: &Map, f: Option<Face>) -> Dart {
 
 /// Sets `fdart[f] = to` if it was `from` (`f` may be a boundary loop: nothing to do).
 #[inline]
-fn replace_fdart(map: &mut Map, f: u32, from: Dart, to: Dart) {
-    if f != NONE && map.fdart[f as usize] == from.0 {
-        map.fdart[f as usize] = to.0;
+fn replace_fdart(map: &mut Map, f: Option<Face>, from: Dart, to: Dart) {
+    if fdart_of(map, f) == from {
+        map.set_face_dart(f, to);
     }
 }
 
 /// Sets `vdart[v] = to` if it was `from`.
 #[inline]
 fn replace_vdart(map: &mut Map, v: Vert, from: Dart, to: Dart) {
-    if map.vdart[v.index()] == from.0 {
-        map.vdart[v.index()] = to.0;
+    if map.vertex_dart(v) == from {
+        map.set_vertex_dart(v, to);
     }
 }
 

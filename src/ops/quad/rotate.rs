@@ -79,11 +79,11 @@ fn plan_rotation(map: &Map, h: Dart, dir: Rotation) -> Result<RotationPlan, Refu
 fn rotation_raw(map: &mut Map, p: &RotationPlan, dir: Rotation) {
     let [h, h1, h2, h3] = p.h;
     let [t, t1, t2, t3] = p.t;
-    let (fh, ft) = (map.face[h.index()], map.face[t.index()]);
+    let (fh, ft) = (map.face(h), map.face(t));
     let (u, v) = (map.origin(h), map.origin(t));
     let set = |map: &mut Map, links: [(Dart, Dart); 6]| {
         for (a, b) in links {
-            map.next[a.index()] = b.0;
+            map.set_next(a, b);
         }
     };
     match dir {
@@ -94,10 +94,10 @@ fn rotation_raw(map: &mut Map, p: &RotationPlan, dir: Rotation) {
                 map,
                 [(h, h2), (h3, t1), (t1, h), (t, t2), (t3, h1), (h1, t)],
             );
-            map.face[t1.index()] = fh;
-            map.face[h1.index()] = ft;
-            map.vert[h.index()] = z.0;
-            map.vert[t.index()] = x.0;
+            map.set_face(t1, fh);
+            map.set_face(h1, ft);
+            map.set_origin(h, z);
+            map.set_origin(t, x);
             replace_fdart(map, fh, h1, h);
             replace_fdart(map, ft, t1, t);
         }
@@ -108,10 +108,10 @@ fn rotation_raw(map: &mut Map, p: &RotationPlan, dir: Rotation) {
                 map,
                 [(h, t3), (t3, h1), (h2, h), (t, h3), (h3, t1), (t2, t)],
             );
-            map.face[t3.index()] = fh;
-            map.face[h3.index()] = ft;
-            map.vert[h.index()] = y.0;
-            map.vert[t.index()] = w.0;
+            map.set_face(t3, fh);
+            map.set_face(h3, ft);
+            map.set_origin(h, y);
+            map.set_origin(t, w);
             replace_fdart(map, fh, h3, h);
             replace_fdart(map, ft, t3, t);
         }

@@ -1,7 +1,7 @@
 //! Edge flip: the diagonal of the two triangles at an edge turns a quarter turn.
 
 use super::{distinct_corners, joined, min_valence, triangle, valence_at_least, Undo};
-use crate::map::{Dart, Face, Map, Vert, NONE};
+use crate::map::{Dart, Face, Map, Vert};
 use crate::ops::guard::Guard;
 use crate::ops::Refusal;
 
@@ -75,14 +75,13 @@ pub fn can_flip_edge(map: &Map, h: Dart) -> Result<(), Refusal> {
 /// assert_eq!(map, before);
 /// ```
 pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
-    let [h, h1, h2, t, t1, t2] = plan(map, h)?;
-    let (f0, f1) = (map.face(h), map.face(t));
+    let ([h, h1, h2, t, t1, t2], [f0, f1]) = plan(map, h)?;
     let (a, b, c, d) = (map.origin(h), map.origin(t), map.origin(h2), map.origin(t2));
     let old = [
         map.vertex_dart(a),
         map.vertex_dart(b),
-        face_dart(map, f0),
-        face_dart(map, f1),
+        map.face_dart(f0),
+        map.face_dart(f1),
     ];
     rewire(map, [h, h2, t1], d, f0, 2);
     rewire(map, [t, t2, h1], c, f1, 2);
@@ -110,7 +109,7 @@ pub fn flip_edge(map: &mut Map, h: Dart) -> Result<EdgeFlip, Refusal> {
 /// Makes `x = [x0, x1, x2]` the triangle `x0 -> x1 -> x2` of face `f`, with `x0` leaving `o`;
 /// `x[joins]` is the one dart that comes from the other face (the others are in `f`).
 #[inline]
-fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
+fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: impl Into<Option<Face>>, joins: usize) {
     map.set_next(x[0], x[1]);
     map.set_next(x[1], x[2]);
     map.set_next(x[2], x[0]);
@@ -118,21 +117,16 @@ fn rewire(map: &mut Map, x: [Dart; 3], o: Vert, f: Option<Face>, joins: usize) {
     map.set_face(x[joins], f);
 }
 
-/// The record of face `f` (`NONE` for none).
-#[inline]
-fn face_dart(map: &Map, f: Option<Face>) -> Dart {
-    f.map_or(Dart(NONE), |f| map.face_dart(f))
-}
-
-/// The six darts `[h, h1, h2, t, t1, t2]` of the two triangles, if the flip applies.
-fn plan(map: &Map, h: Dart) -> Result<[Dart; 6], Refusal> {
+/// The six darts `[h, h1, h2, t, t1, t2]` of the two triangles and their faces, if the flip
+/// applies.
+fn plan(map: &Map, h: Dart) -> Result<([Dart; 6], [Face; 2]), Refusal> {
     if !map.is_live_dart(h) {
         return Err(Refusal::DeadHandle);
     }
     let t = h.twin();
-    if map.face(h).is_none() || map.face(t).is_none() {
+    let (Some(f0), Some(f1)) = (map.face(h), map.face(t)) else {
         return Err(Refusal::Boundary);
-    }
+    };
     // Both faces exist: the sides' degrees, then their corners (the order `sides` checks).
     let (l, r) = (triangle(map, h)?, triangle(map, t)?);
     if !distinct_corners(map, l) || !distinct_corners(map, r) {
@@ -151,7 +145,7 @@ fn plan(map: &Map, h: Dart) -> Result<[Dart; 6], Refusal> {
             return Err(Refusal::ValenceTooLow);
         }
     }
-    Ok([h, l[1], l[2], t, r[1], r[2]])
+    Ok(([h, l[1], l[2], t, r[1], r[2]], [f0, f1]))
 }
 
 impl EdgeFlip {

@@ -1,0 +1,780 @@
+//! `zipmesh tri-move`, `tri-generate`, `tri-type` and `tri-cancel`: the triangle paper's
+//! semantic edits (`zipmesh::tri_edit`) from the command line.
+//!
+//! Same conventions as `zip`: 0-based vertex numbers of the file, OUT written compacted and
+//! atomically after the report, exit 2 and no OUT on bad input. Vertices the edit does not
+//! touch keep their positions bit for bit; a vertex an operator creates or moves is placed
+//! by its rule (`TriOp::apply_with`).
+
+use clap::{Args, ValueEnum};
+use serde_json::{json, Value};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use zipmesh::io;
+use zipmesh::ops::tri::TriRecord;
+use zipmesh::tri_edit::{
+    aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
+    cancel_triple_along_with, generate_pair, generate_pair_v7, generate_pair_v7_with,
+    generate_pair_with, generate_quadruple_with, move_pair_with, remove_quadruple_with,
+    split_type_with, Direction, Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
+};
+use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
+
+use crate::out::{self, outln};
+use crate::qzip::InputError;
+
+/// The most atomic 5-7 moves `tri-cancel --triple` makes to bring a pair next to the
+/// third vertex (Sec. 7.2).
+const MAX_WALK: usize = 64;
+
+/// Input and output shared by every triangle edit.
+#[derive(Args)]
+pub struct Files {
+    /// A triangle mesh (.obj or .off).
+    file: PathBuf,
+    /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print one JSON value instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `zipmesh tri-move`.
+#[derive(Args)]
+pub struct MoveArgs {
+    #[command(flatten)]
+    files: Files,
+    /// The adjacent 5-7 pair: two 0-based vertex numbers, a v5 and a v7 (either order).
+    #[arg(long, value_delimiter = ',', num_args = 1, required = true)]
+    pair: Vec<u32>,
+    /// The direction, 0 to 5, counter-clockwise; 0 is just left of the edge v5 -> v7
+    /// (docs/tri-edit.md).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(0..6))]
+    direction: u8,
+    /// How many steps to move (each a flip, a collapse or a split).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    steps: u32,
+}
+
+/// A configuration of generation (docs/tri-edit.md).
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Config {
+    /// Regular V: flip V-W (v5 at V and W). v5 V: flip the link edge W-B. v7 V: flip V-W.
+    Flip,
+    /// Regular V: split V along V->W and the opposite dart. v5 V: split W along W->V and
+    /// the opposite dart. v7 V: split V along V->W and four darts clockwise.
+    Split,
+    /// v5 V only: collapse V into W.
+    Collapse,
+    /// Regular V only: collapse V into W, then flip a spoke of W: a 5-7-7-5 chain, not a
+    /// quadruple in two triangles (tri-cancel does not remove it).
+    CollapseFlip,
+}
+
+impl Config {
+    fn name(self) -> &'static str {
+        match self {
+            Config::Flip => "flip",
+            Config::Split => "split",
+            Config::Collapse => "collapse",
+            Config::CollapseFlip => "collapse-flip",
+        }
+    }
+}
+
+/// What a generation makes at `--at`: read off its valence.
+#[derive(Clone, Copy)]
+enum Generation {
+    Quadruple(Quadruple),
+    Five(Via),
+    Seven(Via7),
+}
+
+impl Generation {
+    /// The generation `config` names at a vertex of valence `k`, if there is one.
+    fn of(k: usize, config: Config) -> Option<Generation> {
+        use Config as C;
+        Some(match (k, config) {
+            (6, C::Flip) => Generation::Quadruple(Quadruple::Flip),
+            (6, C::Split) => Generation::Quadruple(Quadruple::Split),
+            (6, C::CollapseFlip) => Generation::Quadruple(Quadruple::CollapseFlip),
+            (5, C::Flip) => Generation::Five(Via::Flip),
+            (5, C::Collapse) => Generation::Five(Via::Collapse),
+            (5, C::Split) => Generation::Five(Via::Split),
+            (7, C::Flip) => Generation::Seven(Via7::Flip),
+            (7, C::Split) => Generation::Seven(Via7::Split),
+            _ => return None,
+        })
+    }
+
+    fn can(self, map: &Map, d: Dart) -> Result<(), TriEditError> {
+        match self {
+            Generation::Quadruple(how) => can_generate_quadruple(map, d, how),
+            Generation::Five(via) => can_generate_pair(map, d, via),
+            Generation::Seven(via) => can_generate_pair_v7(map, d, via),
+        }
+    }
+}
+
+/// `zipmesh tri-generate`.
+#[derive(Args)]
+pub struct GenerateArgs {
+    #[command(flatten)]
+    files: Files,
+    /// An interior vertex: regular (a 5-5-7-7 quadruple), a v5 (a 5-5-7 triple: the v5
+    /// moves and generates a 5-7 pair) or a v7 (a 5-7-7 triple).
+    #[arg(long)]
+    at: u32,
+    /// A neighbour of V that fixes the dart V->W (default: the first neighbour that works).
+    #[arg(long)]
+    toward: Option<u32>,
+    /// The configuration.
+    #[arg(long, value_enum, default_value = "flip")]
+    config: Config,
+}
+
+/// `zipmesh tri-type`.
+#[derive(Args)]
+#[group(id = "which", required = true, multiple = false, args = ["split", "aggregate"])]
+pub struct TypeArgs {
+    #[command(flatten)]
+    files: Files,
+    /// Split an interior v3 (three v5), v4 (two v5) or vk, k > 7 (k - 6 v7).
+    #[arg(long)]
+    split: Option<u32>,
+    /// Aggregate two v5 into a v4 or three v5 into a v3.
+    #[arg(long, value_delimiter = ',', num_args = 1)]
+    aggregate: Option<Vec<u32>>,
+}
+
+/// `zipmesh tri-cancel`.
+#[derive(Args)]
+#[group(id = "what", required = true, multiple = false, args = ["quadruple", "triple"])]
+pub struct CancelArgs {
+    #[command(flatten)]
+    files: Files,
+    /// A 5-5-7-7 quadruple inside two triangles: four vertex numbers.
+    #[arg(long, value_delimiter = ',', num_args = 1)]
+    quadruple: Option<Vec<u32>>,
+    /// A 5-5-7 triple (one v5 is left) or 5-7-7 triple (one v7 is left): three vertex
+    /// numbers, an adjacent 5-7 pair among them. When the third is not next to the pair's
+    /// v7 (5-5-7) or v5 (5-7-7) the pair first moves toward it (Sec. 7.2). The first v5 (v7)
+    /// given is the one that moves in the cancellation.
+    #[arg(long, value_delimiter = ',', num_args = 1)]
+    triple: Option<Vec<u32>>,
+}
+
+fn err(msg: impl std::fmt::Display) -> InputError {
+    InputError(msg.to_string())
+}
+
+/// Reads a triangle mesh.
+fn load(f: &Files) -> Result<Mesh, InputError> {
+    let (mesh, _) = io::read_mesh(&f.file)?;
+    let map = &mesh.map;
+    if let Some(face) = map.faces().find(|&x| map.degree(x) != 3) {
+        return Err(err(format_args!(
+            "{}: not a triangle mesh (face {} has {} corners)",
+            f.file.display(),
+            face.index(),
+            map.degree(face)
+        )));
+    }
+    Ok(mesh)
+}
+
+/// The vertices `vs` given with `flag`, each live, and `n` of them when `n` is given.
+fn verts(
+    f: &Files,
+    map: &Map,
+    flag: &str,
+    vs: &[u32],
+    n: Option<usize>,
+) -> Result<Vec<Vert>, InputError> {
+    if let Some(n) = n.filter(|&n| n != vs.len()) {
+        return Err(err(format_args!(
+            "{}: {flag} takes {n} vertex numbers, got {}",
+            f.file.display(),
+            vs.len()
+        )));
+    }
+    vs.iter()
+        .map(|&v| {
+            let x = Vert::new(v);
+            if map.is_live_vertex(x) {
+                Ok(x)
+            } else {
+                Err(err(format_args!(
+                    "{}: {flag} {v}: no such vertex (the file has {} vertex numbers, and \
+                     unreferenced ones do not count)",
+                    f.file.display(),
+                    map.vertex_slots()
+                )))
+            }
+        })
+        .collect()
+}
+
+/// A vertex of the edited map in the compacted numbering.
+fn renumber(c: &Compaction, v: Vert) -> Option<u32> {
+    c.vertices
+        .get(v.index())
+        .copied()
+        .flatten()
+        .map(|x| x.index() as u32)
+}
+
+fn renumber_all(c: &Compaction, vs: &[Vert]) -> Vec<Option<u32>> {
+    vs.iter().map(|&v| renumber(c, v)).collect()
+}
+
+/// Flips, collapses and splits among the graph operations applied.
+#[derive(Default)]
+struct Ops {
+    flips: usize,
+    collapses: usize,
+    splits: usize,
+}
+
+impl Ops {
+    fn add(&mut self, r: &TriRecord) {
+        match r {
+            TriRecord::Flip(_) => self.flips += 1,
+            TriRecord::Collapse(_) => self.collapses += 1,
+            _ => self.splits += 1,
+        }
+    }
+
+    fn of(steps: &[TriRecord]) -> Ops {
+        let mut ops = Ops::default();
+        steps.iter().for_each(|r| ops.add(r));
+        ops
+    }
+
+    fn text(&self) -> String {
+        format!(
+            "{} flips, {} collapses, {} splits",
+            self.flips, self.collapses, self.splits
+        )
+    }
+}
+
+/// Compacts, prepares OUT, prints the report (`json` built from the compaction), then puts
+/// OUT in place: no OUT with a failing status.
+fn finish(
+    f: &Files,
+    mut mesh: Mesh,
+    ops: &Ops,
+    report: impl FnOnce(&Compaction) -> (Value, String),
+) -> Result<ExitCode, InputError> {
+    let c = mesh.compact();
+    let pending = io::prepare_mesh(&f.output, &mesh)?;
+    let (mut value, text) = report(&c);
+    value["file"] = json!(f.file.display().to_string());
+    value["output"] = json!(f.output.display().to_string());
+    value["flips"] = json!(ops.flips);
+    value["collapses"] = json!(ops.collapses);
+    value["splits"] = json!(ops.splits);
+    if f.json {
+        outln!("{value}");
+    } else {
+        outln!(
+            "{} -> {}: {}; {text}",
+            f.file.display(),
+            f.output.display(),
+            ops.text()
+        );
+    }
+    out::flush()?;
+    pending.commit()?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn list(v: &[Option<u32>]) -> String {
+    v.iter()
+        .map(|x| x.map_or("?".to_string(), |x| x.to_string()))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// Runs `zipmesh tri-move`: an adjacent 5-7 pair moved `--steps` times in `--direction`.
+pub fn run_move(args: MoveArgs) -> Result<ExitCode, InputError> {
+    let f = &args.files;
+    let mut mesh = load(f)?;
+    let given = verts(f, &mesh.map, "--pair", &args.pair, Some(2))?;
+    let swapped = mesh.map.valence(given[0]) == 7 && mesh.map.valence(given[1]) == 5;
+    let (mut p, mut q) = if swapped {
+        (given[1], given[0])
+    } else {
+        (given[0], given[1])
+    };
+    let dir = Direction::from_index(args.direction.into()).unwrap_or(Direction::SplitLeft);
+    let mut ops = Ops::default();
+    for step in 1..=args.steps {
+        let e = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir).map_err(|e| {
+            err(format_args!(
+                "{}: --pair {},{} --direction {}: step {step} of {} refused: {}",
+                f.file.display(),
+                args.pair[0],
+                args.pair[1],
+                args.direction,
+                args.steps,
+                why(e)
+            ))
+        })?;
+        ops.add(e.record().record());
+        (p, q) = (e.record().p(), e.record().q());
+    }
+    let back = dir.opposite().index();
+    let steps = args.steps;
+    finish(f, mesh, &ops, |c| {
+        let (np, nq) = (renumber(c, p), renumber(c, q));
+        let pair = if swapped { [nq, np] } else { [np, nq] };
+        let value = json!({
+            "pair": pair,
+            "direction": args.direction,
+            "steps": steps,
+            "undo": {"pair": pair, "direction": back, "steps": steps},
+        });
+        let text = format!(
+            "the pair is at {}\nundo: zipmesh tri-move {} --pair {} --direction {back} --steps {steps} -o UNDONE",
+            list(&pair),
+            f.output.display(),
+            list(&pair)
+        );
+        (value, text)
+    })
+}
+
+/// A refusal in words, with what `NotAPair` means for a pair move.
+fn why(e: TriEditError) -> String {
+    match e {
+        TriEditError::NotAPair => {
+            "not an adjacent 5-7 pair (an interior v5 and an interior v7 joined by one edge)"
+                .to_string()
+        }
+        TriEditError::Irregular => "a vertex whose valence the edit changes is not regular \
+             (interior, valence 6): the paper's edits need a regular neighbourhood"
+            .to_string(),
+        e => e.to_string(),
+    }
+}
+
+/// The generation at `--at` and its dart: `at -> toward`, or the first dart of `at` whose
+/// generation applies.
+fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart), InputError> {
+    let f = &args.files;
+    let at = verts(f, map, "--at", &[args.at], None)?[0];
+    let k = if map.is_boundary_vertex(at) {
+        0
+    } else {
+        map.valence(at)
+    };
+    let how = Generation::of(k, args.config).ok_or_else(|| {
+        err(format_args!(
+            "{}: --at {} --config {}: no such generation at {}; a regular vertex takes flip, \
+             split or collapse-flip, a v5 flip, collapse or split, a v7 flip or split",
+            f.file.display(),
+            args.at,
+            args.config.name(),
+            if k == 0 {
+                "a boundary vertex".to_string()
+            } else {
+                format!("an interior v{k}")
+            }
+        ))
+    })?;
+    let darts: Vec<Dart> = match args.toward {
+        Some(w) => {
+            let w = verts(f, map, "--toward", &[w], None)?[0];
+            let d = map.dart_between(at, w).ok_or_else(|| {
+                err(format_args!(
+                    "{}: --toward {}: not a neighbour of {}",
+                    f.file.display(),
+                    args.toward.unwrap_or(0),
+                    args.at
+                ))
+            })?;
+            vec![d]
+        }
+        None => map.vertex_darts(at).collect(),
+    };
+    let mut last = TriEditError::WrongValence;
+    for &d in &darts {
+        match how.can(map, d) {
+            Ok(()) => return Ok((how, d)),
+            Err(e) => last = e,
+        }
+    }
+    Err(err(format_args!(
+        "{}: --at {}: no {} generation there: {}",
+        f.file.display(),
+        args.at,
+        args.config.name(),
+        why(last)
+    )))
+}
+
+/// Runs `zipmesh tri-generate`: a 5-5-7-7 quadruple from a regular vertex, or a 5-5-7 /
+/// 5-7-7 triple from a v5 / v7.
+pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
+    let f = &args.files;
+    let mut mesh = load(f)?;
+    let (how, d) = generation_dart(&args, &mesh.map)?;
+    let refused = |e: TriEditError| {
+        err(format_args!(
+            "{}: --at {}: {}",
+            f.file.display(),
+            args.at,
+            why(e)
+        ))
+    };
+    let (m, pos) = (&mut mesh.map, &mut mesh.positions);
+    let triple = |moved: Vert, pair: Option<(Vert, Vert)>| {
+        let (p, q) = pair.unwrap_or((moved, moved));
+        [moved, p, q]
+    };
+    let (made, steps): (Made, Vec<TriRecord>) = match how {
+        Generation::Quadruple(q) => {
+            let g = generate_quadruple_with(m, pos, d, q)
+                .map_err(refused)?
+                .into_parts()
+                .0;
+            let in_two = g.in_two_triangles(m);
+            (
+                Made::Four(g.vertices().to_vec(), in_two),
+                g.steps().to_vec(),
+            )
+        }
+        Generation::Five(via) => {
+            let g = generate_pair_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let r = g.record();
+            (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
+        }
+        Generation::Seven(via) => {
+            let g = generate_pair_v7_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let r = g.record();
+            (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
+        }
+    };
+    let ops = Ops::of(&steps);
+    match made {
+        Made::Four(four, in_two) => report_quadruple(f, mesh, &ops, four, in_two),
+        Made::Three(three) => report_triple(f, mesh, &ops, three),
+    }
+}
+
+enum Made {
+    Four(Vec<Vert>, bool),
+    Three([Vert; 3]),
+}
+
+fn report_quadruple(
+    f: &Files,
+    mesh: Mesh,
+    ops: &Ops,
+    four: Vec<Vert>,
+    in_two: bool,
+) -> Result<ExitCode, InputError> {
+    let by = |k: usize| -> Vec<Vert> {
+        four.iter()
+            .copied()
+            .filter(|&v| mesh.map.valence(v) == k)
+            .collect()
+    };
+    let (fives, sevens) = (by(5), by(7));
+    finish(f, mesh, ops, |c| {
+        let four = renumber_all(c, &four);
+        let undo = in_two.then(|| json!({"quadruple": four}));
+        let value = json!({
+            "four": four,
+            "v5": renumber_all(c, &fives),
+            "v7": renumber_all(c, &sevens),
+            "in_two_triangles": in_two,
+            "undo": undo,
+        });
+        let undo_text = if in_two {
+            format!(
+                "undo: zipmesh tri-cancel {} --quadruple {} -o UNDONE",
+                f.output.display(),
+                list(&four)
+            )
+        } else {
+            "undo: none (a 5-7-7-5 chain, not a quadruple in two triangles)".to_string()
+        };
+        let text = format!(
+            "v5 at {}, v7 at {}\n{undo_text}",
+            list(&renumber_all(c, &fives)),
+            list(&renumber_all(c, &sevens))
+        );
+        (value, text)
+    })
+}
+
+fn report_triple(
+    f: &Files,
+    mesh: Mesh,
+    ops: &Ops,
+    three: [Vert; 3],
+) -> Result<ExitCode, InputError> {
+    finish(f, mesh, ops, |c| {
+        let t = renumber_all(c, &three);
+        let value = json!({
+            "three": t,
+            "moved": t[0],
+            "pair": [t[1], t[2]],
+            "undo": {"triple": t},
+        });
+        let text = format!(
+            "the moved vertex is at {}, the new 5-7 pair at {},{}\nundo: zipmesh tri-cancel {} --triple {} -o UNDONE",
+            list(&t[..1]),
+            list(&t[1..2]),
+            list(&t[2..]),
+            f.output.display(),
+            list(&t)
+        );
+        (value, text)
+    })
+}
+
+/// Runs `zipmesh tri-type`: type splitting or aggregation.
+pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
+    let f = &args.files;
+    let mut mesh = load(f)?;
+    let name = f.file.display();
+    let (edit, what) = match (&args.split, &args.aggregate) {
+        (Some(v), _) => {
+            let x = verts(f, &mesh.map, "--split", &[*v], None)?[0];
+            let e = split_type_with(&mut mesh.map, &mut mesh.positions, x).map_err(|e| {
+                err(format_args!(
+                    "{name}: --split {v}: {}",
+                    type_why(e, &mesh.map, x)
+                ))
+            })?;
+            (e.into_parts().0, "split")
+        }
+        (None, Some(vs)) => {
+            let xs = verts(f, &mesh.map, "--aggregate", vs, None)?;
+            let e = aggregate_type_with(&mut mesh.map, &mut mesh.positions, &xs).map_err(|e| {
+                err(format_args!(
+                    "{name}: --aggregate {}: {}",
+                    list(&vs.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+                    match e {
+                        TriEditError::NotAPair => "not two interior v5 with a regular common \
+                             neighbour one dart apart, nor three interior v5 around a triangle"
+                            .to_string(),
+                        e => e.to_string(),
+                    }
+                ))
+            })?;
+            (e.into_parts().0, "aggregate")
+        }
+        (None, None) => return Err(err("tri-type needs --split V or --aggregate A,B[,C]")),
+    };
+    let valences: Vec<usize> = edit
+        .vertices()
+        .iter()
+        .map(|&v| mesh.map.valence(v))
+        .collect();
+    let ops = Ops::of(edit.steps());
+    finish(f, mesh, &ops, |c| {
+        let vs = renumber_all(c, edit.vertices());
+        // A v3 or v4 split is undone by aggregation, an aggregation by a split; the v7 of a
+        // vk split have no aggregation (only the input file undoes it).
+        let undo = match what {
+            "split" if valences.iter().all(|&k| k == 5) => Some(json!({"aggregate": vs})),
+            "aggregate" => Some(json!({"split": vs.first()})),
+            _ => None,
+        };
+        let undo_text = match &undo {
+            Some(u) if what == "split" => format!(
+                "undo: zipmesh tri-type {} --aggregate {} -o UNDONE",
+                f.output.display(),
+                list(&vs)
+            ),
+            Some(_) => format!(
+                "undo: zipmesh tri-type {} --split {} -o UNDONE",
+                f.output.display(),
+                list(&vs)
+            ),
+            None => "undo: none (the v7 of a split have no aggregation)".to_string(),
+        };
+        let value = json!({
+            "edit": what,
+            "vertices": vs,
+            "valences": valences,
+            "undo": undo,
+        });
+        (
+            value,
+            format!("irregular vertices left: {}\n{undo_text}", list(&vs)),
+        )
+    })
+}
+
+fn type_why(e: TriEditError, map: &Map, v: Vert) -> String {
+    match e {
+        TriEditError::WrongValence => format!(
+            "valence {}{}: a type split takes an interior v3, v4 or vk with k > 7",
+            map.valence(v),
+            if map.is_boundary_vertex(v) {
+                " on the boundary"
+            } else {
+                ""
+            }
+        ),
+        TriEditError::Irregular => {
+            "no split or collapse with regular neighbours applies here".to_string()
+        }
+        e => e.to_string(),
+    }
+}
+
+/// Runs `zipmesh tri-cancel`: a 5-5-7-7 quadruple inside two triangles, or an adjacent
+/// 5-5-7 or 5-7-7 triple, removed.
+pub fn run_cancel(args: CancelArgs) -> Result<ExitCode, InputError> {
+    match (&args.quadruple, &args.triple) {
+        (Some(q), _) => cancel_quadruple(&args.files, q),
+        (None, Some(t)) => cancel_triple_cli(&args.files, t),
+        (None, None) => Err(err(
+            "tri-cancel needs --quadruple A,B,C,D or --triple A,B,C",
+        )),
+    }
+}
+
+/// The generation at `at` (some dart, some configuration) that gives back a map isomorphic
+/// to `original`: the undo of a triple cancellation, found by trying each.
+fn find_generation(edited: &Map, original: &Map, at: Vert) -> Option<(Vert, Config)> {
+    let k = edited.valence(at);
+    let configs = [Config::Flip, Config::Split, Config::Collapse];
+    edited.vertex_darts(at).find_map(|d| {
+        configs.into_iter().find_map(|config| {
+            let mut m = edited.clone();
+            let ok = match Generation::of(k, config)? {
+                Generation::Five(via) => generate_pair(&mut m, d, via, Moved::First).is_ok(),
+                Generation::Seven(via) => generate_pair_v7(&mut m, d, via, Moved::First).is_ok(),
+                Generation::Quadruple(_) => false,
+            };
+            (ok && is_isomorphic(&m, original)).then(|| (edited.dest(d), config))
+        })
+    })
+}
+
+fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
+    let mut mesh = load(f)?;
+    let original = mesh.map.clone();
+    let three = verts(f, &mesh.map, "--triple", given, Some(3))?;
+    let t = cancel_triple_along_with(&mut mesh.map, &mut mesh.positions, &three, MAX_WALK)
+        .map_err(|e| {
+            err(format_args!(
+                "{}: --triple {}: {}",
+                f.file.display(),
+                list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+                match e {
+                    TriEditError::NotAPair =>
+                        "not a 5-5-7 triple (two v5 and a v7, the v7 next to \
+                     one of them) nor a 5-7-7 triple (a v5, two v7, the v5 next to one of them)"
+                            .to_string(),
+                    TriEditError::Irregular => format!(
+                        "the pair cannot be brought next to the third vertex through a regular \
+                     neighbourhood within {MAX_WALK} steps (or the cancellation needs a \
+                     vertex regular that is not)"
+                    ),
+                    e => why(e),
+                }
+            ))
+        })?;
+    let t = t.into_parts().0;
+    let left = t.remaining();
+    let walked = t.moves().len();
+    // An adjacent triple is undone by one generation at the vertex left, found by trying.
+    let undo = (walked == 0)
+        .then(|| find_generation(&mesh.map, &original, left))
+        .flatten();
+    let mut steps: Vec<TriRecord> = t.moves().iter().map(|m| *m.record()).collect();
+    steps.push(match t.cancellation() {
+        TripleEdit::Five(m) => *m.record(),
+        TripleEdit::Seven(m) => *m.record(),
+    });
+    let ops = Ops::of(&steps);
+    let k = mesh.map.valence(left);
+    finish(f, mesh, &ops, |c| {
+        let at = renumber(c, left);
+        let undo = undo.map(
+            |(w, config)| json!({"at": at, "toward": renumber(c, w), "config": config.name()}),
+        );
+        let text = match &undo {
+            Some(u) => format!(
+                "one v{k} left at {}\nundo: zipmesh tri-generate {} --at {} --toward {} --config {} -o UNDONE",
+                list(&[at]),
+                f.output.display(),
+                u["at"],
+                u["toward"],
+                u["config"].as_str().unwrap_or("?")
+            ),
+            None => format!(
+                "one v{k} left at {} after {walked} pair moves\nundo: no single generation \
+                 restores the input here (only the input file does)",
+                list(&[at])
+            ),
+        };
+        let value = json!({
+            "triple": given,
+            "remaining": at,
+            "valence": k,
+            "pair_moves": walked,
+            "undo": undo,
+        });
+        (value, text)
+    })
+}
+
+/// `tri-cancel --quadruple`.
+fn cancel_quadruple(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
+    let mut mesh = load(f)?;
+    let four = verts(f, &mesh.map, "--quadruple", given, Some(4))?;
+    let fives: Vec<Vert> = four
+        .iter()
+        .copied()
+        .filter(|&v| mesh.map.valence(v) == 5)
+        .collect();
+    let e = remove_quadruple_with(&mut mesh.map, &mut mesh.positions, &four).map_err(|e| {
+        err(format_args!(
+            "{}: --quadruple {}: {}",
+            f.file.display(),
+            list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+            match e {
+                TriEditError::NotAPair => "not two v5 and two v7 forming two triangles that \
+                     share the edge of the two v7 or of the two v5"
+                    .to_string(),
+                e => e.to_string(),
+            }
+        ))
+    })?;
+    let r = e.into_parts().0;
+    // The inverse generation: a flip between the two old v5 (now joined), or a split of the
+    // kept vertex toward an old v7.
+    let (at, toward, config) = match r.steps().first() {
+        Some(TriRecord::Collapse(c)) => {
+            let v7 = four.iter().copied().find(|v| !fives.contains(v));
+            (c.kept(), v7, "split")
+        }
+        _ => (fives[0], fives.get(1).copied(), "flip"),
+    };
+    let ops = Ops::of(r.steps());
+    finish(f, mesh, &ops, |c| {
+        let (at, toward) = (renumber(c, at), toward.and_then(|t| renumber(c, t)));
+        let value = json!({
+            "quadruple": given,
+            "undo": {"at": at, "toward": toward, "config": config},
+        });
+        let text = format!(
+            "undo: zipmesh tri-generate {} --at {} --toward {} --config {config} -o UNDONE",
+            f.output.display(),
+            list(&[at]),
+            list(&[toward])
+        );
+        (value, text)
+    })
+}

@@ -1,0 +1,694 @@
+//! Atomic v7 movement with 5-7 generation and its inverse with 5-7 removal (the mirror of
+//! Fig. 7, Sec. 6.2 "similar"), and the 5-5-7 / 5-7-7 triples of Sec. 7.2-7.3 built on
+//! them and on the v5 counterparts ([`super::generate_pair`], [`super::remove_pair`]).
+//!
+//! Generation at a lone v7 `v`, along the dart `d = v -> a` (`b`, `e` the apexes left and
+//! right of `d`, `c` the neighbour four darts clockwise from `a`):
+//!
+//! ```text
+//!   Flip (flip v-a)               Split (v along v->a, v->c, 3 darts kept between)
+//!       b                b(7)          a                a(7)
+//!      /|\              /   \          |                |   \
+//!     v | a    =>    v(6)---a(5)   ... v(7) ...  =>  v(6)---v'(5)
+//!      \|/              \   /          |                |   /
+//!       e                e(7)          c                c(7)
+//! ```
+//!
+//! | [`Via7`] | operation | the two new v7 (`Moved::First`, `Moved::Second`) | new v5 | `v` |
+//! |---|---|---|---|---|
+//! | `Flip` | flip `v-a` | `b`, `e` | `a` | 6 |
+//! | `Split` | split `v` along `v->a`, `v->c` (3 darts in the kept arc) | `a`, `c` | the new `v'` | 6 |
+//!
+//! A collapse cannot take a v7 down by one with every other vertex regular (a collapse
+//! lowers only the two apexes, and the kept vertex gets `6 + 6 - 4 = 8` or more), so the
+//! v7 has two configurations where the v5 has three.
+//!
+//! **Removal** (`remove_pair_v7(map, m, p, q)`: the v7 `m` moves, the pair of the v5 `p`
+//! and the v7 `q` goes; `m` and `q` both neighbours of `p`) is read off the gap between
+//! `m` and `q` around `p`: 1 (`m-q` an edge), flip `m-q`, the v7 ends at the far apex;
+//! 2 (one vertex `x` between), collapse `p` into `x`, which becomes the v7 (5 + 6 - 4).
+
+use super::generate::{remove_pair, remove_pair_with, Moved, V5Move};
+use super::{apex, interior_of_valence, regular, TriEditError};
+use crate::map::{Dart, Map, Vert};
+use crate::mesh::{Edited, VertexAttributes};
+use crate::ops::tri::{TriOp, TriRecord};
+use crate::ops::{Refusal, Undo};
+
+/// The graph operation of a v7 movement with 5-7 generation (see the module table).
+///
+/// ```
+/// use zipmesh::tri_edit::Via7;
+/// assert_ne!(Via7::Flip, Via7::Split);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Via7 {
+    /// Flip the spoke `v-a`.
+    Flip,
+    /// Split `v` along `v -> a` and `v -> c`, three darts in the kept arc.
+    Split,
+}
+
+impl Via7 {
+    /// Both configurations.
+    ///
+    /// See [`Via7`] for an example.
+    pub const ALL: [Via7; 2] = [Via7::Flip, Via7::Split];
+}
+
+fn turn(map: &Map, d: Dart, k: usize) -> Dart {
+    (0..k).fold(d, |x, _| map.rotate_cw(x))
+}
+
+fn tri_apex(map: &Map, d: Dart) -> Result<Vert, TriEditError> {
+    apex(map, d).ok_or(TriEditError::Refused(Refusal::WrongDegree))
+}
+
+/// The operation, the two new v7 (first, second) and the new v5 (`None`: created).
+type Plan7 = (TriOp, [Vert; 2], Option<Vert>);
+
+fn plan_generation(map: &Map, d: Dart, via: Via7) -> Result<Plan7, TriEditError> {
+    if !map.is_live_dart(d) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let (v, a) = (map.origin(d), map.dest(d));
+    if !interior_of_valence(map, v, 7) {
+        return Err(TriEditError::NotAPair);
+    }
+    let plan = match via {
+        Via7::Flip => {
+            let (b, e) = (tri_apex(map, d)?, tri_apex(map, d.twin())?);
+            (TriOp::Flip(d), [b, e], Some(a))
+        }
+        Via7::Split => {
+            let vc = turn(map, d, 4);
+            (TriOp::SplitVertex(d, vc), [a, map.dest(vc)], None)
+        }
+    };
+    for w in plan.1.into_iter().chain(plan.2) {
+        regular(map, w)?;
+    }
+    Ok(plan)
+}
+
+/// Checks whether [`generate_pair_v7`] applies, without changing anything: `origin(d)` an
+/// interior v7 ([`TriEditError::NotAPair`] otherwise), the vertices that change valence
+/// regular ([`TriEditError::Irregular`]), then the graph operator's rules.
+///
+/// See [`generate_pair_v7`] for an example.
+pub fn can_generate_pair_v7(map: &Map, d: Dart, via: Via7) -> Result<(), TriEditError> {
+    let (op, _, _) = plan_generation(map, d, via)?;
+    Ok(op.can(map)?)
+}
+
+/// Moves the v7 `origin(d)` one step by `via`, generating an adjacent 5-7 pair, or refuses
+/// (see [`can_generate_pair_v7`]) with the map unchanged. [`V7Move::moved`] is the v7 that
+/// `moved` names; [`V7Move::pair`] the new v5 and the other new v7. The irregular multiset
+/// gains one v5 and one v7.
+///
+/// ```
+/// use zipmesh::gen::cone_disk;
+/// use zipmesh::tri_edit::{generate_pair_v7, Moved, Via7};
+/// use zipmesh::Vert;
+/// let mut map = cone_disk(7, 4); // a lone v7 at vertex 0
+/// let before = map.clone();
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair_v7(&mut map, d, Via7::Split, Moved::First).unwrap();
+/// let (p, q) = g.pair().unwrap();
+/// assert_eq!((map.valence(g.moved()), map.valence(p), map.valence(q)), (7, 5, 7));
+/// assert_eq!(map.valence(Vert::new(0)), 6);
+/// g.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// ```
+pub fn generate_pair_v7(
+    map: &mut Map,
+    d: Dart,
+    via: Via7,
+    moved: Moved,
+) -> Result<V7Move, TriEditError> {
+    let (op, sevens, five) = plan_generation(map, d, via)?;
+    let record = op.apply(map)?;
+    Ok(generation_record(op, record, sevens, five, moved))
+}
+
+/// [`generate_pair_v7`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
+///
+/// See [`generate_pair_v7`]; the undo of the result is `undo_with` (map and data `==`).
+pub fn generate_pair_v7_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    d: Dart,
+    via: Via7,
+    moved: Moved,
+) -> Result<Edited<V7Move, A>, TriEditError> {
+    let (op, sevens, five) = plan_generation(map, d, via)?;
+    let edit = op.apply_with(map, attrs)?;
+    Ok(edit.map_record(|r| generation_record(op, r, sevens, five, moved)))
+}
+
+fn created(record: &TriRecord) -> Option<Vert> {
+    match record {
+        TriRecord::SplitVertex(s) => Some(s.created()),
+        _ => None,
+    }
+}
+
+fn generation_record(
+    op: TriOp,
+    record: TriRecord,
+    [x, y]: [Vert; 2],
+    five: Option<Vert>,
+    moved: Moved,
+) -> V7Move {
+    let p = five.or(created(&record)).unwrap_or(x);
+    let (m, q) = if moved == Moved::First {
+        (x, y)
+    } else {
+        (y, x)
+    };
+    V7Move {
+        moved: m,
+        pair: Some((p, q)),
+        op,
+        record,
+    }
+}
+
+/// The removal's operation and where the v7 ends.
+fn plan_removal(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(TriOp, Vert), TriEditError> {
+    if ![m, p, q].iter().all(|&v| map.is_live_vertex(v)) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let seven = |v| interior_of_valence(map, v, 7);
+    if m == q || !seven(m) || !seven(q) || !interior_of_valence(map, p, 5) {
+        return Err(TriEditError::NotAPair);
+    }
+    let pm = map.dart_between(p, m).ok_or(TriEditError::NotAPair)?;
+    let gap = (1..5).find(|&k| map.dest(turn(map, pm, k)) == q);
+    let gap = gap.ok_or(TriEditError::NotAPair)?;
+    let plan = match gap.min(5 - gap) {
+        1 => {
+            let mq = map.dart_between(m, q).ok_or(TriEditError::NotAPair)?;
+            // The apex of m-q other than p.
+            let x = if tri_apex(map, mq)? == p {
+                tri_apex(map, mq.twin())?
+            } else {
+                tri_apex(map, mq)?
+            };
+            (TriOp::Flip(mq), x)
+        }
+        _ => {
+            let px = turn(map, pm, if gap == 2 { 1 } else { 4 });
+            (TriOp::Collapse(px), map.dest(px))
+        }
+    };
+    regular(map, plan.1)?;
+    Ok(plan)
+}
+
+/// Checks whether [`remove_pair_v7`] applies, without changing anything.
+///
+/// See [`remove_pair_v7`] for an example.
+pub fn can_remove_pair_v7(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEditError> {
+    let (op, _) = plan_removal(map, m, p, q)?;
+    Ok(op.can(map)?)
+}
+
+/// The inverse of [`generate_pair_v7`]: the v7 `m` moves one step and the adjacent pair of
+/// the v5 `p` and the v7 `q` disappears (all three interior, `m` and `q` both neighbours of
+/// `p`, one or two darts apart around it). Afterwards [`V7Move::moved`] is the one v7 left.
+/// Refusals: [`TriEditError::NotAPair`], [`TriEditError::Irregular`] (the vertex that
+/// becomes the v7 is not regular), then the graph operator's own; the map is then unchanged.
+///
+/// ```
+/// use zipmesh::gen::cone_disk;
+/// use zipmesh::tri_edit::{generate_pair_v7, remove_pair_v7, Moved, Via7};
+/// use zipmesh::{is_isomorphic, Vert};
+/// let mut map = cone_disk(7, 4);
+/// let before = map.clone();
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair_v7(&mut map, d, Via7::Flip, Moved::Second).unwrap();
+/// let (p, q) = g.pair().unwrap();
+/// let r = remove_pair_v7(&mut map, g.moved(), p, q).unwrap();
+/// assert_eq!(map.valence(r.moved()), 7);
+/// assert!(is_isomorphic(&map, &before));
+/// ```
+pub fn remove_pair_v7(map: &mut Map, m: Vert, p: Vert, q: Vert) -> Result<V7Move, TriEditError> {
+    let (op, to) = plan_removal(map, m, p, q)?;
+    let record = op.apply(map)?;
+    Ok(V7Move {
+        moved: to,
+        pair: None,
+        op,
+        record,
+    })
+}
+
+/// [`remove_pair_v7`] on a map and its per-vertex data.
+///
+/// See [`remove_pair_v7`]; the undo of the result is `undo_with`.
+pub fn remove_pair_v7_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    m: Vert,
+    p: Vert,
+    q: Vert,
+) -> Result<Edited<V7Move, A>, TriEditError> {
+    let (op, to) = plan_removal(map, m, p, q)?;
+    let edit = op.apply_with(map, attrs)?;
+    Ok(edit.map_record(|record| V7Move {
+        moved: to,
+        pair: None,
+        op,
+        record,
+    }))
+}
+
+/// Record of a [`generate_pair_v7`] or a [`remove_pair_v7`].
+///
+/// See [`generate_pair_v7`] for an example.
+#[derive(Clone, Copy, Debug)]
+pub struct V7Move {
+    moved: Vert,
+    pair: Option<(Vert, Vert)>,
+    op: TriOp,
+    record: TriRecord,
+}
+
+impl V7Move {
+    /// Where the moved v7 is now.
+    ///
+    /// See [`generate_pair_v7`] for an example.
+    pub fn moved(&self) -> Vert {
+        self.moved
+    }
+
+    /// The generated pair (v5, v7); `None` after a removal.
+    ///
+    /// See [`generate_pair_v7`] for an example.
+    pub fn pair(&self) -> Option<(Vert, Vert)> {
+        self.pair
+    }
+
+    /// The graph operation applied.
+    ///
+    /// See [`generate_pair_v7`] for an example.
+    pub fn op(&self) -> TriOp {
+        self.op
+    }
+
+    /// The graph operator's record.
+    ///
+    /// See [`generate_pair_v7`] for an example.
+    pub fn record(&self) -> &TriRecord {
+        &self.record
+    }
+
+    /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
+    ///
+    /// See [`generate_pair_v7`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.record.undo(map)
+    }
+}
+
+impl Undo for V7Move {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        V7Move::undo(self, map)
+    }
+}
+
+/// The roles of a 5-5-7 or 5-7-7 triple: the vertex that moves (the first of its type in
+/// the order given, or the second when the first cannot), and the pair that goes.
+fn triple_plan(map: &Map, three: &[Vert]) -> Result<Triple, TriEditError> {
+    let &[a, b, c] = three else {
+        return Err(TriEditError::NotAPair);
+    };
+    if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let val = |v: Vert| {
+        if map.is_boundary_vertex(v) {
+            0
+        } else {
+            map.valence(v)
+        }
+    };
+    let fives: alloc::vec::Vec<Vert> = [a, b, c].into_iter().filter(|&v| val(v) == 5).collect();
+    let sevens: alloc::vec::Vec<Vert> = [a, b, c].into_iter().filter(|&v| val(v) == 7).collect();
+    let (options, kind) = match (fives.as_slice(), sevens.as_slice()) {
+        (&[x, y], &[q]) => ([(x, y, q), (y, x, q)], 5),
+        (&[p], &[x, y]) => ([(x, p, y), (y, p, x)], 7),
+        _ => return Err(TriEditError::NotAPair),
+    };
+    let mut last = TriEditError::NotAPair;
+    for (m, p, q) in options {
+        let ok = if kind == 5 {
+            super::can_remove_pair(map, m, p, q)
+        } else {
+            can_remove_pair_v7(map, m, p, q)
+        };
+        match ok {
+            Ok(()) => return Ok(Triple { kind, m, p, q }),
+            // Keep the most telling refusal.
+            Err(e) if last == TriEditError::NotAPair => last = e,
+            Err(_) => {}
+        }
+    }
+    Err(last)
+}
+
+#[derive(Clone, Copy)]
+struct Triple {
+    kind: usize,
+    m: Vert,
+    p: Vert,
+    q: Vert,
+}
+
+/// Checks whether [`cancel_triple`] applies, without changing anything.
+///
+/// See [`cancel_triple`] for an example.
+pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> {
+    triple_plan(map, three).map(|_| ())
+}
+
+/// Cancels an adjacent 5-5-7 triple into one v5, or a 5-7-7 triple into one v7 (Sec. 7.2's
+/// last step: the atomic v5 or v7 movement with 5-7 removal). For 5-5-7 the v7 must be a
+/// neighbour of both v5, for 5-7-7 the v5 of both v7; the vertex of the doubled type that
+/// comes first in `three` is the one that moves (the other when the first cannot).
+/// Refuses with the map unchanged: [`TriEditError::NotAPair`] when the three are not such
+/// a triple, then the removal's refusals.
+///
+/// ```
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{cancel_triple, generate_pair, Moved, Via};
+/// use zipmesh::{is_isomorphic, Vert};
+/// let mut map = geodesic_sphere(2);
+/// let before = map.clone();
+/// // 7.3: a v5 moves and generates a pair: a 5-5-7 triple ...
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
+/// let (p, q) = g.pair().unwrap();
+/// // ... and 7.2 cancels it into one v5.
+/// let c = cancel_triple(&mut map, &[g.moved(), p, q]).unwrap();
+/// assert_eq!(map.valence(c.remaining()), 5);
+/// assert!(is_isomorphic(&map, &before));
+/// ```
+pub fn cancel_triple(map: &mut Map, three: &[Vert]) -> Result<TripleEdit, TriEditError> {
+    let t = triple_plan(map, three)?;
+    Ok(if t.kind == 5 {
+        TripleEdit::Five(remove_pair(map, t.m, t.p, t.q)?)
+    } else {
+        TripleEdit::Seven(remove_pair_v7(map, t.m, t.p, t.q)?)
+    })
+}
+
+/// [`cancel_triple`] on a map and its per-vertex data.
+///
+/// See [`cancel_triple`]; the undo of the result is `undo_with` (map and data `==`).
+pub fn cancel_triple_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    three: &[Vert],
+) -> Result<Edited<TripleEdit, A>, TriEditError> {
+    let t = triple_plan(map, three)?;
+    Ok(if t.kind == 5 {
+        remove_pair_with(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Five)
+    } else {
+        remove_pair_v7_with(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Seven)
+    })
+}
+
+/// Record of a [`cancel_triple`]: the removal applied.
+///
+/// See [`cancel_triple`] for an example.
+#[derive(Clone, Copy, Debug)]
+pub enum TripleEdit {
+    /// A 5-5-7 triple cancelled by a v5 movement with 5-7 removal.
+    Five(V5Move),
+    /// A 5-7-7 triple cancelled by a v7 movement with 5-7 removal.
+    Seven(V7Move),
+}
+
+impl TripleEdit {
+    /// The one irregular vertex left (the v5 or the v7 that moved).
+    ///
+    /// See [`cancel_triple`] for an example.
+    pub fn remaining(&self) -> Vert {
+        match self {
+            TripleEdit::Five(m) => m.moved(),
+            TripleEdit::Seven(m) => m.moved(),
+        }
+    }
+
+    /// The graph operation applied.
+    ///
+    /// See [`cancel_triple`] for an example.
+    pub fn op(&self) -> TriOp {
+        match self {
+            TripleEdit::Five(m) => m.op(),
+            TripleEdit::Seven(m) => m.op(),
+        }
+    }
+
+    /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
+    ///
+    /// See [`cancel_triple`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        match self {
+            TripleEdit::Five(m) => m.undo(map),
+            TripleEdit::Seven(m) => m.undo(map),
+        }
+    }
+}
+
+impl Undo for TripleEdit {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        TripleEdit::undo(self, map)
+    }
+}
+
+/// The adjacent 5-7 pair of a triple that is not adjacent yet, and the vertex that its
+/// moves must bring next to the third: for 5-5-7 the v7 (to touch the other v5), for 5-7-7
+/// the v5 (to touch the other v7). `(p, q, third, v7_leads)`.
+fn far_plan(map: &Map, three: &[Vert]) -> Result<(Vert, Vert, Vert, bool), TriEditError> {
+    let &[a, b, c] = three else {
+        return Err(TriEditError::NotAPair);
+    };
+    if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let val = |v: Vert| {
+        if map.is_boundary_vertex(v) {
+            0
+        } else {
+            map.valence(v)
+        }
+    };
+    let of = |k| [a, b, c].into_iter().filter(move |&v| val(v) == k);
+    let (fives, sevens): (alloc::vec::Vec<Vert>, alloc::vec::Vec<Vert>) =
+        (of(5).collect(), of(7).collect());
+    let adjacent = |x: Vert, y: Vert| map.dart_between(x, y).is_some();
+    match (fives.as_slice(), sevens.as_slice()) {
+        (&[x, y], &[q]) => {
+            // The v5 given first that forms the pair stays with the v7; the other waits.
+            let (p, w) = if adjacent(x, q) { (x, y) } else { (y, x) };
+            adjacent(p, q)
+                .then_some((p, q, w, true))
+                .ok_or(TriEditError::NotAPair)
+        }
+        (&[p], &[x, y]) => {
+            let (q, w) = if adjacent(p, x) { (x, y) } else { (y, x) };
+            adjacent(p, q)
+                .then_some((p, q, w, false))
+                .ok_or(TriEditError::NotAPair)
+        }
+        _ => Err(TriEditError::NotAPair),
+    }
+}
+
+/// Graph distance from `from` to `to` (`usize::MAX` when apart), by breadth-first search.
+fn distance(map: &Map, from: Vert, to: Vert) -> usize {
+    let mut seen = alloc::collections::BTreeMap::new();
+    seen.insert(from, 0usize);
+    let mut queue = alloc::collections::VecDeque::from([from]);
+    while let Some(v) = queue.pop_front() {
+        let dv = seen[&v];
+        if v == to {
+            return dv;
+        }
+        for d in map.vertex_darts(v) {
+            let w = map.dest(d);
+            if let alloc::collections::btree_map::Entry::Vacant(e) = seen.entry(w) {
+                e.insert(dv + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    usize::MAX
+}
+
+/// Cancels a 5-5-7 or 5-7-7 triple whose third vertex is not next to the pair yet (Sec.
+/// 7.2): the adjacent 5-7 pair among the three moves by atomic 5-7 movements
+/// ([`super::move_pair`]) until its v7 (5-5-7) or its v5 (5-7-7) touches the third vertex,
+/// each step in the direction that brings it one edge closer, at most `max_steps` steps;
+/// then [`cancel_triple`] removes the triple. All or nothing: when no direction brings it
+/// closer, a move or the cancellation refuses, or the steps run out, every step is undone
+/// and the error returned (the map `==` to before). An adjacent triple takes no step.
+///
+/// ```
+/// use zipmesh::gen::geodesic_sphere;
+/// use zipmesh::tri_edit::{cancel_triple_along, generate_pair, move_pair, Direction, Moved, Via};
+/// use zipmesh::{is_isomorphic, Vert};
+/// let mut map = geodesic_sphere(3);
+/// let d = map.vertex_dart(Vert::new(0));
+/// let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
+/// let (p, q) = g.pair().unwrap();
+/// // Walk the pair two steps away from the moved v5: a triple that is not adjacent.
+/// let m1 = move_pair(&mut map, p, q, Direction::CollapseLeft).unwrap();
+/// let m2 = move_pair(&mut map, m1.p(), m1.q(), Direction::CollapseLeft).unwrap();
+/// let before = map.clone();
+/// let c = cancel_triple_along(&mut map, &[g.moved(), m2.p(), m2.q()], 10).unwrap();
+/// assert!(!c.moves().is_empty());
+/// assert_eq!(map.valence(c.remaining()), 5);
+/// c.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// ```
+pub fn cancel_triple_along(
+    map: &mut Map,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<TripleCancel, TriEditError> {
+    cancel_triple_along_with(map, &mut super::types::NoData, three, max_steps)
+        .map(|e| e.into_parts().0)
+}
+
+/// [`cancel_triple_along`] on a map and its per-vertex data (one journal for every step).
+///
+/// See [`cancel_triple_along`]; the undo of the result is `undo_with` (map and data `==`).
+pub fn cancel_triple_along_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<Edited<TripleCancel, A>, TriEditError> {
+    let mut journal = crate::mesh::Journal::start(attrs);
+    let mut moves: alloc::vec::Vec<super::PairMove> = alloc::vec::Vec::new();
+    let result = walk_and_cancel(map, attrs, &mut journal, &mut moves, three, max_steps);
+    match result {
+        Ok(last) => Ok(Edited::new(TripleCancel { moves, last }, journal)),
+        Err(e) => {
+            // Fresh records of this map: their undo does not refuse.
+            for m in moves.iter().rev() {
+                let _ = m.undo(map);
+            }
+            journal.rewind(attrs);
+            Err(e)
+        }
+    }
+}
+
+fn walk_and_cancel<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    journal: &mut crate::mesh::Journal<A>,
+    moves: &mut alloc::vec::Vec<super::PairMove>,
+    three: &[Vert],
+    max_steps: usize,
+) -> Result<TripleEdit, TriEditError> {
+    if triple_plan(map, three).is_err() {
+        let (mut p, mut q, w, v7_leads) = far_plan(map, three)?;
+        let lead = |p: Vert, q: Vert| if v7_leads { q } else { p };
+        let mut left = distance(map, lead(p, q), w);
+        while left > 1 {
+            if moves.len() >= max_steps {
+                return Err(TriEditError::Irregular);
+            }
+            // The direction whose lead vertex ends one edge closer to w.
+            let step = super::Direction::ALL.into_iter().find_map(|dir| {
+                let (np, nq) = next_pair(map, p, q, dir)?;
+                (distance(map, lead(np, nq), w) < left).then_some(dir)
+            });
+            let dir = step.ok_or(TriEditError::Irregular)?;
+            let e = super::move_pair_with(map, attrs, p, q, dir)?;
+            let (m, j) = e.into_parts();
+            journal.absorb(j);
+            (p, q) = (m.p(), m.q());
+            moves.push(m);
+            left = distance(map, lead(p, q), w);
+        }
+        let mut three = [p, q, w];
+        // The vertex of the doubled type that waited moves in the cancellation.
+        three.rotate_right(1);
+        return cancel_step(map, attrs, journal, &three);
+    }
+    cancel_step(map, attrs, journal, three)
+}
+
+fn cancel_step<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    journal: &mut crate::mesh::Journal<A>,
+    three: &[Vert],
+) -> Result<TripleEdit, TriEditError> {
+    let (t, j) = cancel_triple_with(map, attrs, three)?.into_parts();
+    journal.absorb(j);
+    Ok(t)
+}
+
+/// Where a 5-7 move in `dir` would leave the pair, if it applies (read without moving).
+fn next_pair(map: &Map, p: Vert, q: Vert, dir: super::Direction) -> Option<(Vert, Vert)> {
+    super::can_move_pair(map, p, q, dir).ok()?;
+    let mut probe = map.clone();
+    let m = super::move_pair(&mut probe, p, q, dir).ok()?;
+    // A split creates no vertex of the pair (q stays), so the handles are `map`'s.
+    Some((m.p(), m.q()))
+}
+
+/// Record of a [`cancel_triple_along`]: the pair's moves, then the cancellation.
+///
+/// See [`cancel_triple_along`] for an example.
+#[derive(Clone, Debug)]
+pub struct TripleCancel {
+    moves: alloc::vec::Vec<super::PairMove>,
+    last: TripleEdit,
+}
+
+impl TripleCancel {
+    /// The atomic 5-7 movements done before the cancellation, in order.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn moves(&self) -> &[super::PairMove] {
+        &self.moves
+    }
+
+    /// The cancellation of the (then adjacent) triple.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn cancellation(&self) -> &TripleEdit {
+        &self.last
+    }
+
+    /// The one irregular vertex left.
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn remaining(&self) -> Vert {
+        self.last.remaining()
+    }
+
+    /// Undoes the cancellation and the moves in reverse (`==`), or refuses with
+    /// [`Refusal::StaleRecord`] (the steps already undone are not redone).
+    ///
+    /// See [`cancel_triple_along`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.last.undo(map)?;
+        self.moves.iter().rev().try_for_each(|m| m.undo(map))
+    }
+}
+
+impl Undo for TripleCancel {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        TripleCancel::undo(self, map)
+    }
+}

@@ -1,0 +1,541 @@
+//! `zipmesh tri-move`, `tri-generate`, `tri-type` and `tri-cancel`: JSON reports checked
+//! on the written mesh, the printed undo restoring the input up to isomorphism
+//! (`invariants::canonical`), untouched vertices keeping their positions bit for bit, and
+//! exit 2 with no output file on bad input.
+#![cfg(feature = "cli")]
+
+mod common;
+
+use common::cli::{s, stderr, temp_dir, zipmesh};
+use glam::DVec3;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+use zipmesh::gen::{cone_disk, geodesic_sphere, subdivided_bipyramid};
+use zipmesh::invariants::canonical::is_isomorphic;
+use zipmesh::ops::tri;
+use zipmesh::tri_edit::{move_pair, Direction};
+use zipmesh::{gen, io, Map, Mesh, Vert};
+
+fn json(o: &Output) -> Value {
+    assert!(o.status.success(), "{}", stderr(o));
+    serde_json::from_slice(&o.stdout).expect("one JSON value")
+}
+
+/// Distinct, irregular positions, so that "unchanged" compares real bits.
+fn with_positions(mut map: Map) -> Mesh {
+    map.compact();
+    let positions = (0..map.vertex_slots())
+        .map(|i| {
+            let t = i as f64;
+            DVec3::new(
+                (t * 0.731).sin() * 3.1,
+                (t * 1.137).cos() + t / 7.0,
+                t.sqrt() * 0.3,
+            )
+        })
+        .collect();
+    Mesh { map, positions }
+}
+
+fn write(dir: &Path, name: &str, map: Map) -> PathBuf {
+    let p = dir.join(name);
+    io::write_mesh(&p, &with_positions(map)).unwrap();
+    p
+}
+
+/// A 14 x 14 triangulated torus with one diagonal flipped (two 5-7 pairs), one pair moved
+/// three steps away from the other: a 5-7 pair in a regular neighbourhood. Returns the
+/// file and the pair's numbers in it (v5, v7).
+fn lone_pair_file(dir: &Path) -> (PathBuf, u32, u32) {
+    let n = 14;
+    let tris: Vec<[u32; 3]> = gen::torus_quads(n, n)
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    let mut map = Map::from_polygons(n * n, &tris).unwrap();
+    let d = map
+        .dart_between(Vert::new(0), Vert::new(n as u32 + 1))
+        .unwrap();
+    tri::flip_edge(&mut map, d).unwrap();
+    let (mut p, mut q) = (Vert::new(0), Vert::new(1));
+    for _ in 0..3 {
+        let m = move_pair(&mut map, p, q, Direction::SplitRight).unwrap();
+        (p, q) = (m.p(), m.q());
+    }
+    let c = map.compact();
+    let at = |v: Vert| c.vertices[v.index()].unwrap().index() as u32;
+    let (p, q) = (at(p), at(q));
+    let file = write(dir, "pair.obj", map);
+    (file, p, q)
+}
+
+fn read(p: &Path) -> Mesh {
+    io::read_mesh(p).unwrap().0
+}
+
+/// How many of `before`'s positions (as bits, with multiplicity) are missing from `after`.
+fn positions_lost(before: &Mesh, after: &Mesh) -> usize {
+    let bits = |m: &Mesh| {
+        let mut v: Vec<[u64; 3]> = m
+            .positions
+            .iter()
+            .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+            .collect();
+        v.sort();
+        v
+    };
+    let (a, b) = (bits(before), bits(after));
+    let mut lost = 0;
+    let mut j = 0;
+    for x in &a {
+        while j < b.len() && b[j] < *x {
+            j += 1;
+        }
+        if j < b.len() && b[j] == *x {
+            j += 1;
+        } else {
+            lost += 1;
+        }
+    }
+    lost
+}
+
+fn numbers(v: &Value) -> Vec<u32> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_u64().unwrap() as u32)
+        .collect()
+}
+
+fn join(v: &[u32]) -> String {
+    v.iter().map(u32::to_string).collect::<Vec<_>>().join(",")
+}
+
+/// Every direction, 1 and 2 steps, both orders of the pair: the report's pair has a v5 and
+/// a v7 in the given order, adjacent, in OUT; the counts add up to the steps; at most two
+/// input positions change (a collapse moves one vertex and removes another); and the
+/// printed undo, run on OUT, gives a mesh isomorphic to the input.
+#[test]
+fn tri_move_reports_and_undoes() {
+    let dir = temp_dir("tri-move");
+    let (file, p, q) = lone_pair_file(&dir);
+    let input = read(&file);
+    for d in 0..6u32 {
+        for steps in 1..=2u32 {
+            for (a, b, want) in [(p, q, (5, 7)), (q, p, (7, 5))] {
+                let out = dir.join(format!("m{d}-{steps}-{a}.obj"));
+                let args = [
+                    "tri-move",
+                    s(&file),
+                    "--pair",
+                    &format!("{a},{b}"),
+                    "--direction",
+                    &d.to_string(),
+                    "--steps",
+                    &steps.to_string(),
+                    "-o",
+                    s(&out),
+                    "--json",
+                ];
+                let v = json(&zipmesh(&args));
+                let moved = read(&out);
+                moved.map.check().unwrap();
+                let pair = numbers(&v["pair"]);
+                let (x, y) = (Vert::new(pair[0]), Vert::new(pair[1]));
+                assert_eq!((moved.map.valence(x), moved.map.valence(y)), want, "{v}");
+                assert!(moved.map.dart_between(x, y).is_some());
+                let ops = ["flips", "collapses", "splits"].map(|k| v[k].as_u64().unwrap());
+                assert_eq!(ops.iter().sum::<u64>(), u64::from(steps));
+                assert!(positions_lost(&input, &moved) <= 2 * steps as usize, "{v}");
+                if ops[0] == u64::from(steps) {
+                    assert_eq!(moved.positions, input.positions, "flips move nothing");
+                }
+                let undo = &v["undo"];
+                assert_eq!(undo["direction"], (d + 3) % 6);
+                let back = dir.join(format!("u{d}-{steps}-{a}.obj"));
+                let o = zipmesh(&[
+                    "tri-move",
+                    s(&out),
+                    "--pair",
+                    &join(&numbers(&undo["pair"])),
+                    "--direction",
+                    &undo["direction"].to_string(),
+                    "--steps",
+                    &undo["steps"].to_string(),
+                    "-o",
+                    s(&back),
+                ]);
+                assert!(o.status.success(), "{}", stderr(&o));
+                assert!(is_isomorphic(&read(&back).map, &input.map), "{d} x {steps}");
+            }
+        }
+    }
+}
+
+/// Bad input: exit 2, a message, and no OUT.
+#[test]
+fn tri_commands_refuse_bad_input() {
+    let dir = temp_dir("tri-bad");
+    let (file, p, q) = lone_pair_file(&dir);
+    let quad = dir.join("quad.obj");
+    io::write_mesh(&quad, &gen::torus_grid(4, 4)).unwrap();
+    let pq = format!("{p},{q}");
+    let far = format!("{p},{}", q + 40);
+    let cases: Vec<Vec<String>> = vec![
+        vec!["tri-move", s(&quad), "--pair", "0,1", "--direction", "0"],
+        vec!["tri-move", s(&file), "--pair", &far, "--direction", "0"],
+        vec!["tri-move", s(&file), "--pair", "1,2", "--direction", "0"],
+        vec![
+            "tri-move",
+            s(&file),
+            "--pair",
+            "0,99999",
+            "--direction",
+            "0",
+        ],
+        vec!["tri-move", s(&file), "--pair", &pq, "--direction", "6"],
+        vec![
+            "tri-move",
+            s(&file),
+            "--pair",
+            &pq,
+            "--direction",
+            "1",
+            "--steps",
+            "0",
+        ],
+        // Back toward the other pair (the file moved it 3 steps in direction 5): the fourth
+        // step needs a vertex of that pair regular and refuses.
+        vec![
+            "tri-move",
+            s(&file),
+            "--pair",
+            &pq,
+            "--direction",
+            "2",
+            "--steps",
+            "5",
+        ],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            &p.to_string(),
+            "--config",
+            "collapse-flip",
+        ],
+        vec!["tri-type", s(&file), "--split", "0"],
+        vec!["tri-type", s(&file), "--aggregate", "0,1"],
+        vec!["tri-cancel", s(&file), "--quadruple", "0,1,2"],
+        vec!["tri-cancel", s(&file), "--quadruple", "0,1,2,3"],
+        vec!["tri-cancel", s(&file), "--triple", "0,1"],
+        vec!["tri-cancel", s(&file), "--triple", &format!("{p},{q},0")],
+        vec!["tri-cancel", s(&file)],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            &q.to_string(),
+            "--config",
+            "collapse",
+        ],
+        vec![
+            "tri-generate",
+            s(&file),
+            "--at",
+            "0",
+            "--config",
+            "collapse",
+        ],
+    ]
+    .into_iter()
+    .map(|v| v.into_iter().map(String::from).collect())
+    .collect();
+    for (i, case) in cases.iter().enumerate() {
+        let out = dir.join(format!("bad{i}.obj"));
+        let mut args: Vec<&str> = case.iter().map(String::as_str).collect();
+        args.extend(["-o", s(&out)]);
+        let o = zipmesh(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).is_empty());
+        assert!(!out.exists(), "{args:?} wrote OUT");
+    }
+}
+
+/// `tri-generate` in the two configurations inside two triangles, every neighbour: the
+/// four are two v5 and two v7 in OUT, and the printed `tri-cancel` undoes it; the chain
+/// configuration reports no undo.
+#[test]
+fn tri_generate_and_cancel() {
+    let dir = temp_dir("tri-generate");
+    let file = write(&dir, "sphere.obj", geodesic_sphere(3));
+    let input = read(&file);
+    let at = 100u32;
+    let neighbours: Vec<u32> = input
+        .map
+        .vertex_darts(Vert::new(at))
+        .map(|d| input.map.dest(d).index() as u32)
+        .collect();
+    for config in ["flip", "split", "collapse-flip"] {
+        let mut applied = 0;
+        for &w in &neighbours {
+            let out = dir.join(format!("g-{config}-{w}.obj"));
+            let o = zipmesh(&[
+                "tri-generate",
+                s(&file),
+                "--at",
+                &at.to_string(),
+                "--toward",
+                &w.to_string(),
+                "--config",
+                config,
+                "-o",
+                s(&out),
+                "--json",
+            ]);
+            // Toward the sphere's v5 the edit needs an irregular vertex regular: refused.
+            if o.status.code() == Some(2) {
+                assert!(stderr(&o).contains("not regular"), "{}", stderr(&o));
+                assert!(!out.exists());
+                continue;
+            }
+            applied += 1;
+            let v = json(&o);
+            let g = read(&out);
+            let mut vals: Vec<usize> = numbers(&v["four"])
+                .iter()
+                .map(|&x| g.map.valence(Vert::new(x)))
+                .collect();
+            vals.sort();
+            assert_eq!(vals, [5, 5, 7, 7]);
+            for x in numbers(&v["v5"]) {
+                assert_eq!(g.map.valence(Vert::new(x)), 5);
+            }
+            assert!(positions_lost(&input, &g) <= 2);
+            if config == "collapse-flip" {
+                assert_eq!(v["in_two_triangles"], false);
+                assert!(v["undo"].is_null());
+                continue;
+            }
+            let four = join(&numbers(&v["undo"]["quadruple"]));
+            let back = dir.join(format!("c-{config}-{w}.obj"));
+            let c = json(&zipmesh(&[
+                "tri-cancel",
+                s(&out),
+                "--quadruple",
+                &four,
+                "-o",
+                s(&back),
+                "--json",
+            ]));
+            let cancelled = read(&back);
+            assert!(is_isomorphic(&cancelled.map, &input.map), "{config} {w}");
+            // And the cancel's own undo generates the quadruple again.
+            let u = &c["undo"];
+            let again = dir.join(format!("a-{config}-{w}.obj"));
+            let o = zipmesh(&[
+                "tri-generate",
+                s(&back),
+                "--at",
+                &u["at"].to_string(),
+                "--toward",
+                &u["toward"].to_string(),
+                "--config",
+                u["config"].as_str().unwrap(),
+                "-o",
+                s(&again),
+            ]);
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(
+                is_isomorphic(&read(&again).map, &g.map),
+                "{config} {w}: {u}"
+            );
+        }
+        assert!(applied >= 3, "{config}: {applied} of {}", neighbours.len());
+    }
+}
+
+/// `tri-type`: a v9 apex splits into three v7 (no undo), a ring v4 into two v5 whose
+/// printed aggregation gives back a mesh isomorphic to the input.
+#[test]
+fn tri_type_split_and_aggregate() {
+    let dir = temp_dir("tri-type");
+    let file = write(&dir, "bipyramid.obj", subdivided_bipyramid(9, 2));
+    let input = read(&file);
+    let v9 = (0..input.map.vertex_slots() as u32)
+        .find(|&v| input.map.valence(Vert::new(v)) == 9)
+        .unwrap();
+    let out = dir.join("v9.obj");
+    let v = json(&zipmesh(&[
+        "tri-type",
+        s(&file),
+        "--split",
+        &v9.to_string(),
+        "-o",
+        s(&out),
+        "--json",
+    ]));
+    let split = read(&out);
+    let sevens: Vec<usize> = numbers(&v["vertices"])
+        .iter()
+        .map(|&x| split.map.valence(Vert::new(x)))
+        .collect();
+    assert_eq!(sevens, [7, 7, 7]);
+    assert!(v["undo"].is_null());
+    assert!(positions_lost(&input, &split) <= 3);
+
+    let v4 = (0..input.map.vertex_slots() as u32)
+        .find(|&v| input.map.valence(Vert::new(v)) == 4)
+        .unwrap();
+    let out = dir.join("v4.obj");
+    let v = json(&zipmesh(&[
+        "tri-type",
+        s(&file),
+        "--split",
+        &v4.to_string(),
+        "-o",
+        s(&out),
+        "--json",
+    ]));
+    let fives = numbers(&v["undo"]["aggregate"]);
+    let split = read(&out);
+    assert!(fives.iter().all(|&x| split.map.valence(Vert::new(x)) == 5));
+    assert_eq!(fives.len(), 2);
+    let back = dir.join("v4-back.obj");
+    let a = json(&zipmesh(&[
+        "tri-type",
+        s(&out),
+        "--aggregate",
+        &join(&fives),
+        "-o",
+        s(&back),
+        "--json",
+    ]));
+    let agg = read(&back);
+    assert_eq!(agg.map.valence(Vert::new(numbers(&a["vertices"])[0])), 4);
+    assert!(is_isomorphic(&agg.map, &input.map));
+}
+
+/// Sec. 7.3 then 7.2 from the command line: `tri-generate` at a v5 (the geodesic sphere)
+/// or a v7 (a lattice cone) makes a triple whose printed `tri-cancel --triple` gives back
+/// a mesh isomorphic to the input, and that cancellation's own printed undo generates the
+/// triple again (up to isomorphism).
+#[test]
+fn tri_generate_triples_and_cancel_them() {
+    let dir = temp_dir("tri-triple");
+    let cases = [
+        (
+            write(&dir, "sphere.obj", geodesic_sphere(2)),
+            0u32,
+            vec!["flip", "collapse", "split"],
+            5,
+        ),
+        (
+            write(&dir, "cone.obj", cone_disk(7, 5)),
+            0u32,
+            vec!["flip", "split"],
+            7,
+        ),
+    ];
+    for (file, at, configs, k) in cases {
+        let input = read(&file);
+        assert_eq!(input.map.valence(Vert::new(at)), k);
+        for config in configs {
+            let out = dir.join(format!("t{k}-{config}.obj"));
+            let v = json(&zipmesh(&[
+                "tri-generate",
+                s(&file),
+                "--at",
+                &at.to_string(),
+                "--config",
+                config,
+                "-o",
+                s(&out),
+                "--json",
+            ]));
+            let g = read(&out);
+            let three = numbers(&v["three"]);
+            let vals: Vec<usize> = three.iter().map(|&x| g.map.valence(Vert::new(x))).collect();
+            let want = if k == 5 { [5, 5, 7] } else { [7, 5, 7] };
+            assert_eq!(vals, want, "{config}: {v}");
+            assert!(positions_lost(&input, &g) <= 2);
+            let back = dir.join(format!("c{k}-{config}.obj"));
+            let c = json(&zipmesh(&[
+                "tri-cancel",
+                s(&out),
+                "--triple",
+                &join(&numbers(&v["undo"]["triple"])),
+                "-o",
+                s(&back),
+                "--json",
+            ]));
+            let cancelled = read(&back);
+            assert!(is_isomorphic(&cancelled.map, &input.map), "{k} {config}");
+            let left = c["remaining"].as_u64().unwrap() as u32;
+            assert_eq!(cancelled.map.valence(Vert::new(left)), k);
+            let u = &c["undo"];
+            let again = dir.join(format!("a{k}-{config}.obj"));
+            let o = zipmesh(&[
+                "tri-generate",
+                s(&back),
+                "--at",
+                &u["at"].to_string(),
+                "--toward",
+                &u["toward"].to_string(),
+                "--config",
+                u["config"].as_str().unwrap(),
+                "-o",
+                s(&again),
+            ]);
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(
+                is_isomorphic(&read(&again).map, &g.map),
+                "{k} {config}: {u}"
+            );
+        }
+    }
+}
+
+/// `tri-cancel --triple` on a triple that is not adjacent (Sec. 7.2): the pair walks back
+/// and the triple cancels into one v5; the report counts the pair moves and has no undo.
+#[test]
+fn tri_cancel_far_triple() {
+    use zipmesh::tri_edit::{generate_pair, Moved, Via};
+    let dir = temp_dir("tri-far");
+    let mut map = geodesic_sphere(3);
+    let d = map.vertex_dart(Vert::new(0));
+    let g = generate_pair(&mut map, d, Via::Flip, Moved::First).unwrap();
+    let (mut p, mut q) = g.pair().unwrap();
+    for _ in 0..2 {
+        let m = move_pair(&mut map, p, q, Direction::CollapseLeft).unwrap();
+        (p, q) = (m.p(), m.q());
+    }
+    assert!(map.dart_between(q, g.moved()).is_none());
+    let c = map.compact();
+    let at = |v: Vert| c.vertices[v.index()].unwrap().index() as u32;
+    let three = [at(g.moved()), at(p), at(q)];
+    let file = write(&dir, "far.obj", map);
+    let input = read(&file);
+    let out = dir.join("cancelled.obj");
+    let v = json(&zipmesh(&[
+        "tri-cancel",
+        s(&file),
+        "--triple",
+        &join(&three),
+        "-o",
+        s(&out),
+        "--json",
+    ]));
+    let done = read(&out);
+    done.map.check().unwrap();
+    let left = v["remaining"].as_u64().unwrap() as u32;
+    assert_eq!(done.map.valence(Vert::new(left)), 5);
+    let walked = v["pair_moves"].as_u64().unwrap();
+    assert!(walked >= 1);
+    assert!(v["undo"].is_null());
+    let fives = |m: &Mesh| m.map.vertices().filter(|&x| m.map.valence(x) == 5).count();
+    assert_eq!((fives(&input), fives(&done)), (13, 12));
+    assert!(positions_lost(&input, &done) <= 2 * (walked as usize + 1));
+}

@@ -1,0 +1,107 @@
+//! The fuzz regressions (`fuzz/regressions/TARGET/`), replayed in `cargo test`: the inputs
+//! of the Q-zip targets are decoded by the targets' own decoder
+//! (`fuzz/fuzz_targets/common/qzip_case.rs`) and checked with the `qzip` target's oracle
+//! for every tag; the `qzip_four_moves` inputs also keep what made them crash. `.ci/run`
+//! replays every regression through the fuzz binaries themselves.
+
+#[path = "../fuzz/fuzz_targets/common/qzip_case.rs"]
+mod qzip_case;
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::qzip::{sketch, verify_edit, Qzip, SketchOptions, Tag};
+
+const QZIP_TARGETS: [&str; 4] = ["qzip", "qzip_four_moves", "qzip_homotopy", "qzip_reverse"];
+
+/// The regression files of `target` (none when it has no directory).
+fn regressions(target: &str) -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/regressions")
+        .join(target);
+    let mut files: Vec<PathBuf> = fs::read_dir(dir)
+        .map(|d| d.flatten().map(|e| e.path()).collect())
+        .unwrap_or_default();
+    files.sort();
+    files
+}
+
+#[test]
+fn every_fuzz_target_directory_of_regressions_names_a_target() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz");
+    let manifest = fs::read_to_string(root.join("Cargo.toml")).unwrap();
+    let mut seen = 0;
+    for entry in fs::read_dir(root.join("regressions")).unwrap().flatten() {
+        if entry.path().is_dir() {
+            let name = entry.file_name().into_string().unwrap();
+            assert!(
+                manifest.contains(&format!("name = \"{name}\"")),
+                "fuzz/regressions/{name} is not a fuzz target"
+            );
+            seen += regressions(&name).len();
+        }
+    }
+    assert!(seen >= 1, "no regression input at all");
+}
+
+#[test]
+fn qzip_regressions_keep_the_qzip_targets_oracle() {
+    let mut replayed = 0;
+    for target in QZIP_TARGETS {
+        for file in regressions(target) {
+            let data = fs::read(&file).unwrap();
+            let c = qzip_case::case(&data)
+                .unwrap_or_else(|| panic!("{} decodes to no case", file.display()));
+            for tag in Tag::CCW {
+                let mut map = c.original.clone();
+                match Qzip::new().zip_along(&mut map, &c.path, tag) {
+                    Ok(report) => {
+                        if let Err(b) = verify_edit(&c.original, &map, &c.path, &report) {
+                            panic!("{} {tag}: {b}", file.display());
+                        }
+                    }
+                    Err(_) => assert!(map == c.original, "{} {tag}", file.display()),
+                }
+            }
+            replayed += 1;
+        }
+    }
+    assert!(replayed >= 1);
+}
+
+/// The input found with the shortest-path condition removed: along its bent path two of
+/// the four movements are isomorphic, and a shorter path joins the ends, so the target
+/// (which requires a shortest path) skips it.
+#[test]
+fn the_bent_path_regression_is_bent_and_makes_two_movements_isomorphic() {
+    let files = regressions("qzip_four_moves");
+    let file = files
+        .iter()
+        .find(|f| f.ends_with("bent-path-rs-equals-lc"))
+        .expect("the bent-path regression");
+    let data = fs::read(file).unwrap();
+    let c = qzip_case::case(&data).unwrap();
+    let shortest = sketch(
+        &c.original,
+        c.path.start(),
+        c.path.end(),
+        &SketchOptions::default(),
+    )
+    .unwrap();
+    assert!(shortest.len() < c.path.len(), "{} vs {}", shortest, c.path);
+    let codes: Vec<(Tag, CanonicalCode)> = Tag::CCW
+        .iter()
+        .filter_map(|&t| {
+            let mut m = c.original.clone();
+            Qzip::new()
+                .zip_along(&mut m, &c.path, t)
+                .ok()
+                .map(|_| (t, CanonicalCode::of(&m)))
+        })
+        .collect();
+    let same = codes
+        .iter()
+        .enumerate()
+        .any(|(i, (_, a))| codes[..i].iter().any(|(_, b)| a == b));
+    assert!(same, "movements along {} now pairwise distinct", c.path);
+}
