@@ -24,7 +24,8 @@
 //! ## Features
 //! * `std` (default): mesh files ([`io`]), `std::error::Error` for the error types.
 //! * `campaign`: [`campaign`], property campaigns over generated or given meshes (rayon).
-//! * `cli`: the `zipmesh` command-line tool (includes `campaign`).
+//! * `render`: [`render`], pictures of meshes (SVG, and PNG through resvg).
+//! * `cli`: the `zipmesh` command-line tool (includes `campaign` and `render`).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
 #![no_std]
 #![forbid(unsafe_code)]
@@ -48,6 +49,8 @@ pub mod mesh;
 pub mod ops;
 pub mod optimize;
 pub mod qzip;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod rng;
 pub mod tri_edit;
 

@@ -3,6 +3,8 @@
 
 #[cfg(feature = "cli")]
 pub mod cli;
+#[cfg(feature = "render")]
+pub mod svg;
 
 use zipmesh::invariants::{irregular_valences, irregular_vertices, MeshKind};
 use zipmesh::ops::quad;

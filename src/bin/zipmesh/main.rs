@@ -11,6 +11,7 @@ mod hybrid;
 mod optimize;
 mod out;
 mod qzip;
+mod render;
 mod signals;
 mod tri;
 
@@ -101,6 +102,9 @@ enum Command {
     /// Reduce the singularities of a quad mesh by batches of Q-zips (Q-zip paper, Sec. 4.1)
     /// and write the result; `--json` prints the counts before, after each batch and at the end.
     Optimize(optimize::OptimizeArgs),
+    /// Draw the mesh (SVG or PNG): shaded faces and edges, hidden surfaces removed, the seen
+    /// interior singularities as balls, optionally surgery paths from a JSON report.
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -118,6 +122,7 @@ fn main() -> ExitCode {
         Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
         Command::TriWalk(args) => hybrid::run_tri_walk(args).map_err(|e| e.to_string()),
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
+        Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
     };
     match result {
@@ -153,7 +158,8 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriType(_)
         | Command::TriCancel(_)
         | Command::TriWalk(_)
-        | Command::Optimize(_) => {}
+        | Command::Optimize(_)
+        | Command::Render(_) => {}
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),

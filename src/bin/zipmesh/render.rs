@@ -1,0 +1,190 @@
+//! `zipmesh render`: a picture of a mesh (SVG or PNG), with its seen interior singularities
+//! as balls and optionally surgery paths read from a JSON report.
+
+use clap::Args;
+use serde_json::Value;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use zipmesh::io;
+use zipmesh::render::{Options, Scene, View, MAX_SIDE};
+
+use crate::out::{self, outln};
+
+/// `zipmesh render`.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// A mesh (.obj or .off).
+    file: PathBuf,
+    /// The picture: a name ending in .svg or .png.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// The eye's azimuth and elevation in degrees, as AZ,EL: azimuth about +Y from +Z toward
+    /// +X, elevation above the XZ plane (default: a three-quarter view chosen from the
+    /// bounding box, see docs/render.md).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_view)]
+    view: Option<View>,
+    /// The picture's width and height in pixels, as W,H (each 1 to 16384; a PNG at most
+    /// 8192x8192 pixels in all).
+    #[arg(long, value_parser = parse_size, default_value = "800,600")]
+    size: (u32, u32),
+    /// A JSON file whose arrays of vertex numbers under a key `path` (as `zip --json`
+    /// prints), and whose arrays under a key `paths`, at any depth, are drawn as paths
+    /// (0-based vertex numbers of FILE).
+    #[arg(long)]
+    paths: Option<PathBuf>,
+}
+
+fn pair(s: &str) -> Result<(&str, &str), String> {
+    s.split_once(',')
+        .map(|(a, b)| (a.trim(), b.trim()))
+        .ok_or_else(|| format!("`{s}`: expected two numbers separated by a comma"))
+}
+
+fn parse_view(s: &str) -> Result<View, String> {
+    let (a, e) = pair(s)?;
+    let num = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| format!("`{t}` is not a number of degrees"))
+    };
+    View::new(num(a)?, num(e)?).map_err(|e| e.to_string())
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = pair(s)?;
+    let side = |t: &str| match t.parse::<u64>() {
+        Ok(n) if (1..=u64::from(MAX_SIDE)).contains(&n) => Ok(n as u32),
+        _ => Err(format!(
+            "`{t}`: each side must be a whole number of pixels from 1 to {MAX_SIDE}"
+        )),
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// The picture format, from OUT's extension.
+#[derive(Clone, Copy, PartialEq)]
+enum Picture {
+    Svg,
+    Png,
+}
+
+fn picture(path: &Path) -> Result<Picture, String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(Picture::Svg),
+        Some("png") => Ok(Picture::Png),
+        _ => Err(format!(
+            "{}: the picture's name must end in .svg or .png",
+            path.display()
+        )),
+    }
+}
+
+/// Runs `zipmesh render`.
+pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
+    let format = picture(&args.output)?;
+    let (mesh, _) = io::read_mesh(&args.file).map_err(|e| e.to_string())?;
+    let paths = match &args.paths {
+        Some(p) => read_paths(p)?,
+        None => Vec::new(),
+    };
+    let options = Options {
+        view: args.view,
+        width: args.size.0,
+        height: args.size.1,
+        paths,
+    };
+    let name = args.file.display();
+    let scene = Scene::new(&mesh, &options).map_err(|e| format!("{name}: {e}"))?;
+    let bytes = match format {
+        Picture::Svg => scene.svg().into_bytes(),
+        Picture::Png => scene.png().map_err(|e| format!("{name}: {e}"))?,
+    };
+    let pending =
+        io::prepare_atomic(&args.output, |w| w.write_all(&bytes)).map_err(|e| e.to_string())?;
+    let view = scene.camera().view();
+    let seen = scene.balls().iter().filter(|b| b.visible).count();
+    outln!(
+        "{name} -> {}: {}x{}, view {},{}; {} of {} faces drawn; {} of {} interior \
+         singularities seen; {} path stretches drawn",
+        args.output.display(),
+        args.size.0,
+        args.size.1,
+        view.azimuth,
+        view.elevation,
+        scene.faces().len(),
+        scene.total_faces(),
+        seen,
+        scene.balls().len(),
+        scene.polylines().len()
+    );
+    out::flush().map_err(|e| e.to_string())?;
+    pending.commit().map_err(|e| e.to_string())?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Every path in the JSON file `path`: arrays under a key `path`, and the elements of
+/// arrays under a key `paths`, at any depth, in document order.
+fn read_paths(path: &Path) -> Result<Vec<Vec<u64>>, String> {
+    let name = path.display();
+    let text = std::fs::read(path).map_err(|e| format!("{name}: {e}"))?;
+    let value: Value =
+        serde_json::from_slice(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
+    let mut found = Vec::new();
+    collect(&value, &mut found).map_err(|e| format!("{name}: {e}"))?;
+    Ok(found)
+}
+
+fn collect(value: &Value, found: &mut Vec<Vec<u64>>) -> Result<(), String> {
+    match value {
+        Value::Object(o) => {
+            for (key, v) in o {
+                match (key.as_str(), v) {
+                    ("path", Value::Array(a)) => found.push(indices(a, found.len())?),
+                    ("paths", Value::Array(a)) => {
+                        for p in a {
+                            let Value::Array(p) = p else {
+                                return Err(format!(
+                                    "an element of `paths` is {p}, not an array of vertex \
+                                     numbers"
+                                ));
+                            };
+                            found.push(indices(p, found.len())?);
+                        }
+                    }
+                    ("path" | "paths", Value::Null) => {}
+                    ("path" | "paths", other) => {
+                        return Err(format!(
+                            "`{key}` is {other}, not an array of vertex numbers"
+                        ))
+                    }
+                    _ => collect(v, found)?,
+                }
+            }
+        }
+        Value::Array(a) => {
+            for v in a {
+                collect(v, found)?;
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+fn indices(a: &[Value], which: usize) -> Result<Vec<u64>, String> {
+    a.iter()
+        .enumerate()
+        .map(|(i, v)| {
+            v.as_u64().ok_or_else(|| {
+                format!(
+                    "path {which}, entry {i}: {v} is not a vertex number (a whole number \
+                     from 0)"
+                )
+            })
+        })
+        .collect()
+}
