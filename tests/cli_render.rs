@@ -174,6 +174,11 @@ fn paths_from_reports_are_drawn() {
             vec![2],
         ),
         (json!({"path": null}), vec![]),
+        // A zip report: its undo path numbers OUT's vertices, so it is not drawn on IN.
+        (
+            json!({"path": edge, "undo": {"path": [0, 1, 2, 3, 4, 5, 6, 7]}}),
+            vec![edge.len()],
+        ),
     ];
     for (value, want) in shapes {
         fs::write(&report, value.to_string()).unwrap();

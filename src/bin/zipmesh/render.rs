@@ -127,7 +127,8 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
 }
 
 /// Every path in the JSON file `path`: arrays under a key `path`, and the elements of
-/// arrays under a key `paths`, at any depth, in document order.
+/// arrays under a key `paths`, at any depth, in document order; nothing under a key `undo`
+/// (a `zip` report's undo path numbers OUT's vertices, not IN's).
 fn read_paths(path: &Path) -> Result<Vec<Vec<u64>>, String> {
     let name = path.display();
     let text = std::fs::read(path).map_err(|e| format!("{name}: {e}"))?;
@@ -155,6 +156,8 @@ fn collect(value: &Value, found: &mut Vec<Vec<u64>>) -> Result<(), String> {
                             found.push(indices(p, found.len())?);
                         }
                     }
+                    // A `zip` report's undo path is in OUT's numbering, not IN's.
+                    ("undo", _) => {}
                     ("path" | "paths", Value::Null) => {}
                     ("path" | "paths", other) => {
                         return Err(format!(
