@@ -163,6 +163,11 @@ fn paths_from_reports_are_drawn() {
     let out = dir.join("cube.svg");
     let report = dir.join("report.json");
     let half = edge[..2].to_vec();
+    let mesh = io::read_mesh(&cube).unwrap().0;
+    let points: Vec<[f64; 3]> = edge
+        .iter()
+        .map(|&v| mesh.positions[v as usize].to_array())
+        .collect();
     let shapes = [
         (json!({"path": edge}), vec![edge.len()]),
         (
@@ -174,6 +179,8 @@ fn paths_from_reports_are_drawn() {
             vec![2],
         ),
         (json!({"path": null}), vec![]),
+        // Points, as `optimize --paths` writes them: the cube's front edge again.
+        (json!({"batches": [{"paths": [points]}]}), vec![edge.len()]),
         // A zip report: its undo path numbers OUT's vertices, so it is not drawn on IN.
         (
             json!({"path": edge, "undo": {"path": [0, 1, 2, 3, 4, 5, 6, 7]}}),
@@ -273,6 +280,11 @@ fn bad_path_entries_exit_2_without_output() {
         (json!({"paths": [[0, 1], 7]}), "not an array"),
         (json!({"path": "0,1"}), "not an array"),
         (json!({"path": [1.5]}), "not a vertex number"),
+        (
+            json!({"path": [[0.0, 1.0, 2.0], [0.0, 1.0]]}),
+            "path 0, entry 1: [0.0,1.0] is not a point",
+        ),
+        (json!({"path": [[0.0, 0.0, 0.0], 3]}), "is not a point"),
     ];
     for (value, says) in cases {
         fs::write(&report, value.to_string()).unwrap();

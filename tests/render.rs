@@ -30,6 +30,7 @@ fn at(view: Option<(f64, f64)>, width: u32, height: u32) -> Options {
         width,
         height,
         paths: Vec::new(),
+        point_paths: Vec::new(),
     }
 }
 
@@ -431,8 +432,30 @@ fn a_seen_path_is_a_polyline_and_a_hidden_one_is_not() {
     assert_eq!(lines.len(), 1);
     let points = common::svg::attr(lines[0], "points").unwrap();
     assert_eq!(points.split(' ').count(), seen.len());
-    let svg = Scene::new(&cube, &o(vec![hidden])).unwrap().svg();
+    let svg = Scene::new(&cube, &o(vec![hidden.clone()])).unwrap().svg();
     assert_eq!(elements(&svg, "polyline").len(), 0);
+    // The same paths given as points (as `optimize --paths` writes them) draw the same.
+    let as_points = |vs: &[u64]| -> Vec<[f64; 3]> {
+        vs.iter()
+            .map(|&v| cube.positions[v as usize].to_array())
+            .collect()
+    };
+    let p = |point_paths| Options {
+        view: Some(View::new(30.0, 20.0).unwrap()),
+        point_paths,
+        ..Options::default()
+    };
+    let by_points = Scene::new(&cube, &p(vec![as_points(&seen)])).unwrap().svg();
+    assert_eq!(elements(&by_points, "polyline"), lines);
+    let svg = Scene::new(&cube, &p(vec![as_points(&hidden)]))
+        .unwrap()
+        .svg();
+    assert_eq!(elements(&svg, "polyline").len(), 0);
+    let bad = p(vec![vec![[0.0, f64::NAN, 0.0]]]);
+    assert!(matches!(
+        Scene::new(&cube, &bad),
+        Err(zipmesh::render::RenderError::PathPoint { path: 0, entry: 0 })
+    ));
 }
 
 proptest! {

@@ -76,6 +76,9 @@ fuzz_target!(|data: &[u8]| {
         width: 1 + u32::from(bytes.u16() % 600),
         height: 1 + u32::from(bytes.u16() % 600),
         paths: vec![path],
+        point_paths: vec![(0..bytes.u8() % 4)
+            .map(|_| [0, 1, 2].map(|_| f64::from(bytes.u16() as i16) / 100.0))
+            .collect()],
     };
     let Ok(scene) = Scene::new(&mesh, &options) else {
         return;

@@ -69,6 +69,10 @@ pub struct Options {
     pub height: u32,
     /// Surgery paths to draw, as vertex numbers (slots) of the mesh.
     pub paths: Vec<Vec<u64>>,
+    /// Surgery paths to draw, as points in the mesh's coordinates (as `zipmesh optimize
+    /// --paths` writes them: vertices are renumbered from batch to batch, positions are
+    /// not). A point is seen unless a face is more than [`TOLERANCE`] pixels nearer there.
+    pub point_paths: Vec<Vec<[f64; 3]>>,
 }
 
 impl Default for Options {
@@ -78,6 +82,7 @@ impl Default for Options {
             width: DEFAULT_SIZE.0,
             height: DEFAULT_SIZE.1,
             paths: Vec::new(),
+            point_paths: Vec::new(),
         }
     }
 }
@@ -130,6 +135,13 @@ pub enum RenderError {
         /// The mesh's vertex slots (valid numbers are below this and not unreferenced).
         slots: usize,
     },
+    /// A point of a point path that is not finite.
+    PathPoint {
+        /// Which point path (0-based, in the order given).
+        path: usize,
+        /// Which entry of that path (0-based).
+        entry: usize,
+    },
     /// The rasteriser failed (not expected for the SVG this module writes).
     Png(String),
 }
@@ -164,6 +176,9 @@ impl fmt::Display for RenderError {
                 "path {path}, entry {entry}: {vertex} is not a vertex of the mesh (vertex \
                  numbers are 0-based, below {slots}, and unreferenced ones do not count)"
             ),
+            RenderError::PathPoint { path, entry } => {
+                write!(f, "point path {path}, entry {entry}: not a finite point")
+            }
             RenderError::Png(e) => write!(f, "cannot rasterise the picture: {e}"),
         }
     }
@@ -234,8 +249,9 @@ impl Scene {
             return Err(RenderError::Size { width, height });
         }
         let map = &mesh.map;
-        let positions = live_positions(mesh)?;
+        let (positions, scale) = live_positions(mesh)?;
         check_paths(map, &options.paths)?;
+        let points = scaled_points(&options.point_paths, scale)?;
         let live = || map.vertices().map(|v| positions[v.index()]);
         let (lo, hi) = live().fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
@@ -281,7 +297,19 @@ impl Scene {
             })
             .collect();
         balls.sort_by(|a, b| b.centre.z.total_cmp(&a.centre.z));
-        let polylines = seen_runs(&options.paths, &projected, &sees);
+        let mut polylines = seen_runs(options.paths.iter().map(|path| {
+            // Every entry was checked to be a live vertex (below u32::MAX).
+            path.iter()
+                .map(|&v| Vert::new(v as u32))
+                .map(|v| (projected[v.index()], sees(v)))
+                .collect()
+        }));
+        polylines.extend(seen_runs(points.iter().map(|path| {
+            path.iter()
+                .map(|&p| camera.project(p))
+                .map(|q| (q, buffer.sees(q, TOLERANCE, |_| false)))
+                .collect()
+        })));
         Ok(Scene {
             width,
             height,
@@ -404,7 +432,8 @@ impl Scene {
 
 /// The positions of the vertex slots, checked finite for every live vertex (dead slots
 /// are set to the origin: nothing draws them), scaled by one common factor.
-fn live_positions(mesh: &Mesh) -> Result<Vec<DVec3>, RenderError> {
+/// The live vertices' positions, scaled, and the factor they were divided by.
+fn live_positions(mesh: &Mesh) -> Result<(Vec<DVec3>, f64), RenderError> {
     let map = &mesh.map;
     let mut p = vec![DVec3::ZERO; map.vertex_slots()];
     for v in map.vertices() {
@@ -417,10 +446,30 @@ fn live_positions(mesh: &Mesh) -> Result<Vec<DVec3>, RenderError> {
     // Scaled into [-1, 1]^3 (the picture is fitted anyway), so that no difference or sum
     // of coordinates overflows, whatever finite positions the mesh has.
     let largest = p.iter().map(|q| q.abs().max_element()).fold(0.0, f64::max);
-    if largest > 0.0 {
-        p.iter_mut().for_each(|q| *q /= largest);
-    }
-    Ok(p)
+    let scale = if largest > 0.0 { largest } else { 1.0 };
+    p.iter_mut().for_each(|q| *q /= scale);
+    Ok((p, scale))
+}
+
+/// The point paths divided by the positions' `scale`; a point that is not finite (before or
+/// after scaling) is an error.
+fn scaled_points(paths: &[Vec<[f64; 3]>], scale: f64) -> Result<Vec<Vec<DVec3>>, RenderError> {
+    paths
+        .iter()
+        .enumerate()
+        .map(|(path, points)| {
+            points
+                .iter()
+                .enumerate()
+                .map(|(entry, &q)| {
+                    let p = DVec3::from_array(q) / scale;
+                    p.is_finite()
+                        .then_some(p)
+                        .ok_or(RenderError::PathPoint { path, entry })
+                })
+                .collect()
+        })
+        .collect()
 }
 
 fn check_paths(map: &Map, paths: &[Vec<u64>]) -> Result<(), RenderError> {
@@ -544,19 +593,15 @@ fn shade(corners: &[Vert], positions: &[DVec3], toward_eye: DVec3, light: DVec3)
     base.map(|b| (b * k * 255.0).round().clamp(0.0, 255.0) as u8)
 }
 
-/// The stretches of the paths whose consecutive vertices are both seen.
-fn seen_runs(
-    paths: &[Vec<u64>],
-    projected: &[DVec3],
-    sees: &impl Fn(Vert) -> bool,
-) -> Vec<Vec<[f64; 2]>> {
+/// The stretches of the paths (projected points, each with whether it is seen) whose
+/// consecutive points are both seen, two points at least.
+fn seen_runs(paths: impl Iterator<Item = Vec<(DVec3, bool)>>) -> Vec<Vec<[f64; 2]>> {
     let mut runs = Vec::new();
     for path in paths {
         let mut run: Vec<[f64; 2]> = Vec::new();
-        // Every entry was checked to be a live vertex (below u32::MAX) by `check_paths`.
-        for v in path.iter().map(|&v| Vert::new(v as u32)) {
-            if sees(v) {
-                run.push(projected[v.index()].truncate().to_array());
+        for (p, seen) in path {
+            if seen {
+                run.push(p.truncate().to_array());
             } else if run.len() >= 2 {
                 runs.push(core::mem::take(&mut run));
             } else {

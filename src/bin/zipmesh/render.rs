@@ -87,15 +87,16 @@ fn picture(path: &Path) -> Result<Picture, String> {
 pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
     let format = picture(&args.output)?;
     let (mesh, _) = io::read_mesh(&args.file).map_err(|e| e.to_string())?;
-    let paths = match &args.paths {
+    let Found { paths, points } = match &args.paths {
         Some(p) => read_paths(p)?,
-        None => Vec::new(),
+        None => Found::default(),
     };
     let options = Options {
         view: args.view,
         width: args.size.0,
         height: args.size.1,
         paths,
+        point_paths: points,
     };
     let name = args.file.display();
     let scene = Scene::new(&mesh, &options).map_err(|e| format!("{name}: {e}"))?;
@@ -126,25 +127,47 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The paths of a report: vertex numbers, or points (`[x, y, z]` entries, as `optimize
+/// --paths` writes them).
+#[derive(Default)]
+struct Found {
+    paths: Vec<Vec<u64>>,
+    points: Vec<Vec<[f64; 3]>>,
+}
+
 /// Every path in the JSON file `path`: arrays under a key `path`, and the elements of
 /// arrays under a key `paths`, at any depth, in document order; nothing under a key `undo`
-/// (a `zip` report's undo path numbers OUT's vertices, not IN's).
-fn read_paths(path: &Path) -> Result<Vec<Vec<u64>>, String> {
+/// (a `zip` report's undo path numbers OUT's vertices, not IN's). A path whose first entry
+/// is an array is a path of points.
+fn read_paths(path: &Path) -> Result<Found, String> {
     let name = path.display();
     let text = std::fs::read(path).map_err(|e| format!("{name}: {e}"))?;
     let value: Value =
         serde_json::from_slice(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
-    let mut found = Vec::new();
+    let mut found = Found::default();
     collect(&value, &mut found).map_err(|e| format!("{name}: {e}"))?;
     Ok(found)
 }
 
-fn collect(value: &Value, found: &mut Vec<Vec<u64>>) -> Result<(), String> {
+impl Found {
+    /// Adds one path: points if its first entry is an array, else vertex numbers.
+    fn push(&mut self, a: &[Value]) -> Result<(), String> {
+        let which = self.paths.len() + self.points.len();
+        if a.first().is_some_and(Value::is_array) {
+            self.points.push(points(a, which)?);
+        } else {
+            self.paths.push(indices(a, which)?);
+        }
+        Ok(())
+    }
+}
+
+fn collect(value: &Value, found: &mut Found) -> Result<(), String> {
     match value {
         Value::Object(o) => {
             for (key, v) in o {
                 match (key.as_str(), v) {
-                    ("path", Value::Array(a)) => found.push(indices(a, found.len())?),
+                    ("path", Value::Array(a)) => found.push(a)?,
                     ("paths", Value::Array(a)) => {
                         for p in a {
                             let Value::Array(p) = p else {
@@ -153,7 +176,7 @@ fn collect(value: &Value, found: &mut Vec<Vec<u64>>) -> Result<(), String> {
                                      numbers"
                                 ));
                             };
-                            found.push(indices(p, found.len())?);
+                            found.push(p)?;
                         }
                     }
                     // A `zip` report's undo path is in OUT's numbering, not IN's.
@@ -176,6 +199,20 @@ fn collect(value: &Value, found: &mut Vec<Vec<u64>>) -> Result<(), String> {
         _ => {}
     }
     Ok(())
+}
+
+fn points(a: &[Value], which: usize) -> Result<Vec<[f64; 3]>, String> {
+    a.iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let xyz: Option<Vec<f64>> = v
+                .as_array()
+                .filter(|c| c.len() == 3)
+                .and_then(|c| c.iter().map(Value::as_f64).collect());
+            xyz.map(|c| [c[0], c[1], c[2]])
+                .ok_or_else(|| format!("path {which}, entry {i}: {v} is not a point [x, y, z]"))
+        })
+        .collect()
 }
 
 fn indices(a: &[Value], which: usize) -> Result<Vec<u64>, String> {
