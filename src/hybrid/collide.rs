@@ -20,7 +20,7 @@
 //! vectors of colliding triangles, `docs/qzip.md`); the kinds themselves are combinatorial.
 
 use super::patch::{Patch, SlotChange};
-use super::walk::{triangle, Tri};
+use super::walk::{simple_at, triangle, Tri};
 use crate::map::{Dart, Face, Map, Vert};
 use crate::ops::slots::Slots;
 use crate::ops::{Refusal, VertexChanges};
@@ -438,21 +438,6 @@ fn plan_collapse_base(map: &Map, d: Dart) -> Result<(Tri, Tri), Refusal> {
         return Err(Refusal::LinkCondition);
     }
     Ok((a, b))
-}
-
-fn simple_at(map: &Map, v: Vert) -> Result<(), Refusal> {
-    let mut seen: Vec<Vert> = Vec::new();
-    for e in map.vertex_darts(v) {
-        let w = map.dest(e);
-        if w == v {
-            return Err(Refusal::Loop);
-        }
-        if seen.contains(&w) {
-            return Err(Refusal::MultiEdge);
-        }
-        seen.push(w);
-    }
-    Ok(())
 }
 
 /// Checks whether [`collapse_shared_base`] applies; changes nothing.

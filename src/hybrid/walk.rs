@@ -168,7 +168,7 @@ fn joined(map: &Map, p: Vert, q: Vert, except: Option<Dart>) -> bool {
 }
 
 /// No loop and no two edges to one neighbour at `v`.
-fn simple_at(map: &Map, v: Vert) -> Result<(), Refusal> {
+pub(super) fn simple_at(map: &Map, v: Vert) -> Result<(), Refusal> {
     let mut seen: Vec<Vert> = Vec::new();
     for d in map.vertex_darts(v) {
         let w = map.dest(d);
