@@ -22,6 +22,39 @@ fn json(o: &Output) -> Value {
     serde_json::from_slice(&o.stdout).expect("one JSON value")
 }
 
+/// Runs `zipmesh ARGS -o OUT` and returns its output.
+fn zipmesh_to(args: &[&str], out: &Path) -> Output {
+    let mut all = args.to_vec();
+    all.extend(["-o", s(out)]);
+    zipmesh(&all)
+}
+
+/// Runs `zipmesh ARGS -o OUT --json`, which must succeed, and returns its report.
+fn report(args: &[&str], out: &Path) -> Value {
+    let mut all = args.to_vec();
+    all.push("--json");
+    json(&zipmesh_to(&all, out))
+}
+
+/// Runs the `tri-generate` that a cancellation's printed undo (`at`, `toward`, `config`)
+/// names, on `file` into `out`; it must succeed.
+fn generate_from_undo(file: &Path, u: &Value, out: &Path) {
+    let (at, toward) = (u["at"].to_string(), u["toward"].to_string());
+    let config = u["config"].as_str().unwrap();
+    let args = [
+        "tri-generate",
+        s(file),
+        "--at",
+        &at,
+        "--toward",
+        &toward,
+        "--config",
+        config,
+    ];
+    let o = zipmesh_to(&args, out);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// Distinct, irregular positions, so that "unchanged" compares real bits.
 fn with_positions(mut map: Map) -> Mesh {
     map.compact();
@@ -135,11 +168,8 @@ fn tri_move_reports_and_undoes() {
                     &d.to_string(),
                     "--steps",
                     &steps.to_string(),
-                    "-o",
-                    s(&out),
-                    "--json",
                 ];
-                let v = json(&zipmesh(&args));
+                let v = report(&args, &out);
                 let moved = read(&out);
                 moved.map.check().unwrap();
                 let pair = numbers(&v["pair"]);
@@ -155,18 +185,19 @@ fn tri_move_reports_and_undoes() {
                 let undo = &v["undo"];
                 assert_eq!(undo["direction"], (d + 3) % 6);
                 let back = dir.join(format!("u{d}-{steps}-{a}.obj"));
-                let o = zipmesh(&[
-                    "tri-move",
-                    s(&out),
-                    "--pair",
-                    &join(&numbers(&undo["pair"])),
-                    "--direction",
-                    &undo["direction"].to_string(),
-                    "--steps",
-                    &undo["steps"].to_string(),
-                    "-o",
-                    s(&back),
-                ]);
+                let o = zipmesh_to(
+                    &[
+                        "tri-move",
+                        s(&out),
+                        "--pair",
+                        &join(&numbers(&undo["pair"])),
+                        "--direction",
+                        &undo["direction"].to_string(),
+                        "--steps",
+                        &undo["steps"].to_string(),
+                    ],
+                    &back,
+                );
                 assert!(o.status.success(), "{}", stderr(&o));
                 assert!(is_isomorphic(&read(&back).map, &input.map), "{d} x {steps}");
             }
@@ -183,75 +214,30 @@ fn tri_commands_refuse_bad_input() {
     io::write_mesh(&quad, &gen::torus_grid(4, 4)).unwrap();
     let pq = format!("{p},{q}");
     let far = format!("{p},{}", q + 40);
-    let cases: Vec<Vec<String>> = vec![
-        vec!["tri-move", s(&quad), "--pair", "0,1", "--direction", "0"],
-        vec!["tri-move", s(&file), "--pair", &far, "--direction", "0"],
-        vec!["tri-move", s(&file), "--pair", "1,2", "--direction", "0"],
-        vec![
-            "tri-move",
-            s(&file),
-            "--pair",
-            "0,99999",
-            "--direction",
-            "0",
-        ],
-        vec!["tri-move", s(&file), "--pair", &pq, "--direction", "6"],
-        vec![
-            "tri-move",
-            s(&file),
-            "--pair",
-            &pq,
-            "--direction",
-            "1",
-            "--steps",
-            "0",
-        ],
+    let (f, q4) = (s(&file), s(&quad));
+    let cases: Vec<Vec<String>> = [
+        format!("tri-move {q4} --pair 0,1 --direction 0"),
+        format!("tri-move {f} --pair {far} --direction 0"),
+        format!("tri-move {f} --pair 1,2 --direction 0"),
+        format!("tri-move {f} --pair 0,99999 --direction 0"),
+        format!("tri-move {f} --pair {pq} --direction 6"),
+        format!("tri-move {f} --pair {pq} --direction 1 --steps 0"),
         // Back toward the other pair (the file moved it 3 steps in direction 5): the fourth
         // step needs a vertex of that pair regular and refuses.
-        vec![
-            "tri-move",
-            s(&file),
-            "--pair",
-            &pq,
-            "--direction",
-            "2",
-            "--steps",
-            "5",
-        ],
-        vec![
-            "tri-generate",
-            s(&file),
-            "--at",
-            &p.to_string(),
-            "--config",
-            "collapse-flip",
-        ],
-        vec!["tri-type", s(&file), "--split", "0"],
-        vec!["tri-type", s(&file), "--aggregate", "0,1"],
-        vec!["tri-cancel", s(&file), "--quadruple", "0,1,2"],
-        vec!["tri-cancel", s(&file), "--quadruple", "0,1,2,3"],
-        vec!["tri-cancel", s(&file), "--triple", "0,1"],
-        vec!["tri-cancel", s(&file), "--triple", &format!("{p},{q},0")],
-        vec!["tri-cancel", s(&file)],
-        vec![
-            "tri-generate",
-            s(&file),
-            "--at",
-            &q.to_string(),
-            "--config",
-            "collapse",
-        ],
-        vec![
-            "tri-generate",
-            s(&file),
-            "--at",
-            "0",
-            "--config",
-            "collapse",
-        ],
+        format!("tri-move {f} --pair {pq} --direction 2 --steps 5"),
+        format!("tri-generate {f} --at {p} --config collapse-flip"),
+        format!("tri-type {f} --split 0"),
+        format!("tri-type {f} --aggregate 0,1"),
+        format!("tri-cancel {f} --quadruple 0,1,2"),
+        format!("tri-cancel {f} --quadruple 0,1,2,3"),
+        format!("tri-cancel {f} --triple 0,1"),
+        format!("tri-cancel {f} --triple {p},{q},0"),
+        format!("tri-cancel {f}"),
+        format!("tri-generate {f} --at {q} --config collapse"),
+        format!("tri-generate {f} --at 0 --config collapse"),
     ]
-    .into_iter()
-    .map(|v| v.into_iter().map(String::from).collect())
+    .iter()
+    .map(|c| c.split_whitespace().map(String::from).collect())
     .collect();
     for (i, case) in cases.iter().enumerate() {
         let out = dir.join(format!("bad{i}.obj"));
@@ -282,19 +268,18 @@ fn tri_generate_and_cancel() {
         let mut applied = 0;
         for &w in &neighbours {
             let out = dir.join(format!("g-{config}-{w}.obj"));
-            let o = zipmesh(&[
+            let (at, w) = (at.to_string(), w.to_string());
+            let args = [
                 "tri-generate",
                 s(&file),
                 "--at",
-                &at.to_string(),
+                &at,
                 "--toward",
-                &w.to_string(),
+                &w,
                 "--config",
                 config,
-                "-o",
-                s(&out),
-                "--json",
-            ]);
+            ];
+            let o = zipmesh_to(&[&args[..], &["--json"]].concat(), &out);
             // Toward the sphere's v5 the edit needs an irregular vertex regular: refused.
             if o.status.code() == Some(2) {
                 assert!(stderr(&o).contains("not regular"), "{}", stderr(&o));
@@ -321,33 +306,13 @@ fn tri_generate_and_cancel() {
             }
             let four = join(&numbers(&v["undo"]["quadruple"]));
             let back = dir.join(format!("c-{config}-{w}.obj"));
-            let c = json(&zipmesh(&[
-                "tri-cancel",
-                s(&out),
-                "--quadruple",
-                &four,
-                "-o",
-                s(&back),
-                "--json",
-            ]));
+            let c = report(&["tri-cancel", s(&out), "--quadruple", &four], &back);
             let cancelled = read(&back);
             assert!(is_isomorphic(&cancelled.map, &input.map), "{config} {w}");
             // And the cancel's own undo generates the quadruple again.
             let u = &c["undo"];
             let again = dir.join(format!("a-{config}-{w}.obj"));
-            let o = zipmesh(&[
-                "tri-generate",
-                s(&back),
-                "--at",
-                &u["at"].to_string(),
-                "--toward",
-                &u["toward"].to_string(),
-                "--config",
-                u["config"].as_str().unwrap(),
-                "-o",
-                s(&again),
-            ]);
-            assert!(o.status.success(), "{}", stderr(&o));
+            generate_from_undo(&back, u, &again);
             assert!(
                 is_isomorphic(&read(&again).map, &g.map),
                 "{config} {w}: {u}"
@@ -368,15 +333,7 @@ fn tri_type_split_and_aggregate() {
         .find(|&v| input.map.valence(Vert::new(v)) == 9)
         .unwrap();
     let out = dir.join("v9.obj");
-    let v = json(&zipmesh(&[
-        "tri-type",
-        s(&file),
-        "--split",
-        &v9.to_string(),
-        "-o",
-        s(&out),
-        "--json",
-    ]));
+    let v = report(&["tri-type", s(&file), "--split", &v9.to_string()], &out);
     let split = read(&out);
     let sevens: Vec<usize> = numbers(&v["vertices"])
         .iter()
@@ -390,29 +347,13 @@ fn tri_type_split_and_aggregate() {
         .find(|&v| input.map.valence(Vert::new(v)) == 4)
         .unwrap();
     let out = dir.join("v4.obj");
-    let v = json(&zipmesh(&[
-        "tri-type",
-        s(&file),
-        "--split",
-        &v4.to_string(),
-        "-o",
-        s(&out),
-        "--json",
-    ]));
+    let v = report(&["tri-type", s(&file), "--split", &v4.to_string()], &out);
     let fives = numbers(&v["undo"]["aggregate"]);
     let split = read(&out);
     assert!(fives.iter().all(|&x| split.map.valence(Vert::new(x)) == 5));
     assert_eq!(fives.len(), 2);
     let back = dir.join("v4-back.obj");
-    let a = json(&zipmesh(&[
-        "tri-type",
-        s(&out),
-        "--aggregate",
-        &join(&fives),
-        "-o",
-        s(&back),
-        "--json",
-    ]));
+    let a = report(&["tri-type", s(&out), "--aggregate", &join(&fives)], &back);
     let agg = read(&back);
     assert_eq!(agg.map.valence(Vert::new(numbers(&a["vertices"])[0])), 4);
     assert!(is_isomorphic(&agg.map, &input.map));
@@ -444,17 +385,17 @@ fn tri_generate_triples_and_cancel_them() {
         assert_eq!(input.map.valence(Vert::new(at)), k);
         for config in configs {
             let out = dir.join(format!("t{k}-{config}.obj"));
-            let v = json(&zipmesh(&[
-                "tri-generate",
-                s(&file),
-                "--at",
-                &at.to_string(),
-                "--config",
-                config,
-                "-o",
-                s(&out),
-                "--json",
-            ]));
+            let v = report(
+                &[
+                    "tri-generate",
+                    s(&file),
+                    "--at",
+                    &at.to_string(),
+                    "--config",
+                    config,
+                ],
+                &out,
+            );
             let g = read(&out);
             let three = numbers(&v["three"]);
             let vals: Vec<usize> = three.iter().map(|&x| g.map.valence(Vert::new(x))).collect();
@@ -462,34 +403,22 @@ fn tri_generate_triples_and_cancel_them() {
             assert_eq!(vals, want, "{config}: {v}");
             assert!(positions_lost(&input, &g) <= 2);
             let back = dir.join(format!("c{k}-{config}.obj"));
-            let c = json(&zipmesh(&[
-                "tri-cancel",
-                s(&out),
-                "--triple",
-                &join(&numbers(&v["undo"]["triple"])),
-                "-o",
-                s(&back),
-                "--json",
-            ]));
+            let c = report(
+                &[
+                    "tri-cancel",
+                    s(&out),
+                    "--triple",
+                    &join(&numbers(&v["undo"]["triple"])),
+                ],
+                &back,
+            );
             let cancelled = read(&back);
             assert!(is_isomorphic(&cancelled.map, &input.map), "{k} {config}");
             let left = c["remaining"].as_u64().unwrap() as u32;
             assert_eq!(cancelled.map.valence(Vert::new(left)), k);
             let u = &c["undo"];
             let again = dir.join(format!("a{k}-{config}.obj"));
-            let o = zipmesh(&[
-                "tri-generate",
-                s(&back),
-                "--at",
-                &u["at"].to_string(),
-                "--toward",
-                &u["toward"].to_string(),
-                "--config",
-                u["config"].as_str().unwrap(),
-                "-o",
-                s(&again),
-            ]);
-            assert!(o.status.success(), "{}", stderr(&o));
+            generate_from_undo(&back, u, &again);
             assert!(
                 is_isomorphic(&read(&again).map, &g.map),
                 "{k} {config}: {u}"
@@ -519,15 +448,7 @@ fn tri_cancel_far_triple() {
     let file = write(&dir, "far.obj", map);
     let input = read(&file);
     let out = dir.join("cancelled.obj");
-    let v = json(&zipmesh(&[
-        "tri-cancel",
-        s(&file),
-        "--triple",
-        &join(&three),
-        "-o",
-        s(&out),
-        "--json",
-    ]));
+    let v = report(&["tri-cancel", s(&file), "--triple", &join(&three)], &out);
     let done = read(&out);
     done.map.check().unwrap();
     let left = v["remaining"].as_u64().unwrap() as u32;

@@ -15,11 +15,11 @@
 //! adjacent (gap 1), collapse `m-p` keeping `m`; one vertex `x` between them (gap 2), flip
 //! `q-x`; gap 3, split `q` with the new vertex on the side with two darts between them.
 
-use super::{apex, interior_of_valence, regular, TriEditError};
+use super::record::{apply_one, created, map_only, tri_apex, turn, VertexMove};
+use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
-use crate::ops::{Refusal, Undo};
 
 /// The graph operation of a v5 movement with 5-7 generation (see the module table).
 ///
@@ -50,15 +50,6 @@ pub enum Moved {
     First,
     /// The second reading.
     Second,
-}
-
-/// `d` turned clockwise `k` times around its origin.
-fn turn(map: &Map, d: Dart, k: usize) -> Dart {
-    (0..k).fold(d, |x, _| map.rotate_cw(x))
-}
-
-fn tri_apex(map: &Map, d: Dart) -> Result<Vert, TriEditError> {
-    apex(map, d).ok_or(TriEditError::Refused(Refusal::WrongDegree))
 }
 
 /// The operation of a generation, the two new v5 (first, second; `None` for a vertex the
@@ -132,9 +123,7 @@ pub fn generate_pair(
     via: Via,
     moved: Moved,
 ) -> Result<V5Move, TriEditError> {
-    let (op, fives, q) = plan_generation(map, d, via)?;
-    let record = op.apply(map)?;
-    Ok(generation_record(op, record, fives, q, moved))
+    map_only(|none| generate_pair_with(map, none, d, via, moved))
 }
 
 /// [`generate_pair`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
@@ -160,8 +149,9 @@ pub fn generate_pair_with<A: VertexAttributes>(
     moved: Moved,
 ) -> Result<Edited<V5Move, A>, TriEditError> {
     let (op, fives, q) = plan_generation(map, d, via)?;
-    let edit = op.apply_with(map, attrs)?;
-    Ok(edit.map_record(|r| generation_record(op, r, fives, q, moved)))
+    apply_one(map, attrs, op, |op, r| {
+        generation_record(op, r, fives, q, moved)
+    })
 }
 
 fn generation_record(
@@ -171,11 +161,8 @@ fn generation_record(
     q: Vert,
     moved: Moved,
 ) -> V5Move {
-    let created = match record {
-        TriRecord::SplitVertex(s) => Some(s.created()),
-        _ => None,
-    };
-    let [x, y] = fives.map(|f| f.or(created).unwrap_or(q));
+    let new = created(&record);
+    let [x, y] = fives.map(|f| f.or(new).unwrap_or(q));
     let (m, p) = if moved == Moved::First {
         (x, y)
     } else {
@@ -265,9 +252,7 @@ pub fn can_remove_pair(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEd
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 pub fn remove_pair(map: &mut Map, m: Vert, p: Vert, q: Vert) -> Result<V5Move, TriEditError> {
-    let (op, to) = plan_removal(map, m, p, q)?;
-    let record = op.apply(map)?;
-    Ok(removal_record(op, record, to))
+    map_only(|none| remove_pair_with(map, none, m, p, q))
 }
 
 /// [`remove_pair`] on a map and its per-vertex data.
@@ -281,73 +266,20 @@ pub fn remove_pair_with<A: VertexAttributes>(
     q: Vert,
 ) -> Result<Edited<V5Move, A>, TriEditError> {
     let (op, to) = plan_removal(map, m, p, q)?;
-    let edit = op.apply_with(map, attrs)?;
-    Ok(edit.map_record(|r| removal_record(op, r, to)))
+    apply_one(map, attrs, op, |op, r| removal_record(op, r, to))
 }
 
 fn removal_record(op: TriOp, record: TriRecord, to: Option<Vert>) -> V5Move {
-    let created = match record {
-        TriRecord::SplitVertex(s) => Some(s.created()),
-        _ => None,
-    };
     V5Move {
-        moved: to.or(created).unwrap_or(Vert::new(0)),
+        moved: to.or(created(&record)).unwrap_or(Vert::new(0)),
         pair: None,
         op,
         record,
     }
 }
 
-/// Record of a [`generate_pair`] or a [`remove_pair`].
+/// Record of a [`generate_pair`] or a [`remove_pair`] (the record of every lone vertex's
+/// movement, [`VertexMove`]).
 ///
 /// See [`generate_pair`] for an example.
-#[derive(Clone, Copy, Debug)]
-pub struct V5Move {
-    moved: Vert,
-    pair: Option<(Vert, Vert)>,
-    op: TriOp,
-    record: TriRecord,
-}
-
-impl V5Move {
-    /// Where the moved v5 is now.
-    ///
-    /// See [`generate_pair`] for an example.
-    pub fn moved(&self) -> Vert {
-        self.moved
-    }
-
-    /// The generated pair (v5, v7); `None` after a removal.
-    ///
-    /// See [`generate_pair`] for an example.
-    pub fn pair(&self) -> Option<(Vert, Vert)> {
-        self.pair
-    }
-
-    /// The graph operation applied.
-    ///
-    /// See [`generate_pair`] for an example.
-    pub fn op(&self) -> TriOp {
-        self.op
-    }
-
-    /// The graph operator's record.
-    ///
-    /// See [`generate_pair`] for an example.
-    pub fn record(&self) -> &TriRecord {
-        &self.record
-    }
-
-    /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
-    ///
-    /// See [`generate_pair`] for an example.
-    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        self.record.undo(map)
-    }
-}
-
-impl Undo for V5Move {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        V5Move::undo(self, map)
-    }
-}
+pub type V5Move = VertexMove;

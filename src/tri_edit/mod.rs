@@ -45,7 +45,10 @@
 //! * v7 movement with 5-7 generation, [`generate_pair_v7`], and with 5-7 removal,
 //!   [`remove_pair_v7`] (the mirror of Fig. 7), and the cancellation of an adjacent 5-5-7
 //!   or 5-7-7 triple into one v5 or one v7, [`cancel_triple`] (Sec. 7.2; generation,
-//!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]).
+//!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]);
+//! * composite movement of a 5-7, 5-5 or 7-7 pair that need not be adjacent (Sec. 7.1):
+//!   [`move_far_pair`], the three-step pipeline of 7.1.1 (generation at one vertex, a walk
+//!   of the generated pair, removal at the other).
 //!
 //! [`crate::gen::geodesic_sphere`], [`crate::gen::subdivided_tetrahedron`],
 //! [`crate::gen::subdivided_bipyramid`] and [`crate::gen::cone_disk`] make meshes with lone
@@ -56,12 +59,15 @@ use crate::map::{Dart, Map, Vert};
 use crate::ops::Refusal;
 use core::fmt;
 
+mod composite;
 mod generate;
 mod pair;
 mod quadruple;
+mod record;
 mod triple;
 mod types;
 
+pub use composite::{can_move_far_pair, move_far_pair, move_far_pair_with, FarPairMove, Start};
 pub use generate::{
     can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
     remove_pair_with, Moved, V5Move, Via,
@@ -71,6 +77,7 @@ pub use quadruple::{
     can_generate_quadruple, can_remove_quadruple, generate_quadruple, generate_quadruple_with,
     remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
+pub use record::VertexMove;
 pub use triple::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
     cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,

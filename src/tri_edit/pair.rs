@@ -15,6 +15,7 @@
 //! ```
 //! Opposite directions (`d` and `d + 3 mod 6`) undo each other up to isomorphism.
 
+use super::record::{apply_one, map_only, turn};
 use super::{apex, interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
@@ -135,11 +136,10 @@ fn plan(map: &Map, p: Vert, q: Vert, dir: Direction) -> Result<(TriOp, Vert, Ver
         }
         Direction::SplitLeft | Direction::SplitRight => {
             // Clockwise around q from q -> p: xL, n5, n4, n3, n2, xR.
-            let turn = |k: usize| (0..k).fold(t, |x, _| map.rotate_cw(x));
             let (d1, d2, b) = if dir == Direction::SplitLeft {
-                (t, turn(3), map.dest(turn(3)))
+                (t, turn(map, t, 3), map.dest(turn(map, t, 3)))
             } else {
-                (turn(4), t, map.dest(turn(4)))
+                (turn(map, t, 4), t, map.dest(turn(map, t, 4)))
             };
             (TriOp::SplitVertex(d1, d2), q, b)
         }
@@ -201,15 +201,7 @@ pub fn move_pair(
     q: Vert,
     dir: Direction,
 ) -> Result<PairMove, TriEditError> {
-    let (op, np, nq) = plan(map, p, q, dir)?;
-    let record = op.apply(map)?;
-    Ok(PairMove {
-        from: (p, q),
-        to: (np, nq),
-        direction: dir,
-        op,
-        record,
-    })
+    map_only(|none| move_pair_with(map, none, p, q, dir))
 }
 
 /// [`move_pair`] on a map and its per-vertex data (see [`TriOp::apply_with`]: a collapse
@@ -241,14 +233,13 @@ pub fn move_pair_with<A: VertexAttributes>(
     dir: Direction,
 ) -> Result<Edited<PairMove, A>, TriEditError> {
     let (op, np, nq) = plan(map, p, q, dir)?;
-    let edit = op.apply_with(map, attrs)?;
-    Ok(edit.map_record(|record| PairMove {
+    apply_one(map, attrs, op, |op, record| PairMove {
         from: (p, q),
         to: (np, nq),
         direction: dir,
         op,
         record,
-    }))
+    })
 }
 
 /// Record of a [`move_pair`]: where the pair was and is, the graph operation, and what the

@@ -28,12 +28,14 @@
 //! `m` and `q` around `p`: 1 (`m-q` an edge), flip `m-q`, the v7 ends at the far apex;
 //! 2 (one vertex `x` between), collapse `p` into `x`, which becomes the v7 (5 + 6 - 4).
 
-use super::generate::{remove_pair, remove_pair_with, Moved, V5Move};
-use super::{apex, interior_of_valence, regular, TriEditError};
+use super::generate::{remove_pair_with, Moved};
+use super::record::{apply_one, created, map_only, tri_apex, turn, VertexMove};
+use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
+use alloc::vec::Vec;
 
 /// The graph operation of a v7 movement with 5-7 generation (see the module table).
 ///
@@ -54,14 +56,6 @@ impl Via7 {
     ///
     /// See [`Via7`] for an example.
     pub const ALL: [Via7; 2] = [Via7::Flip, Via7::Split];
-}
-
-fn turn(map: &Map, d: Dart, k: usize) -> Dart {
-    (0..k).fold(d, |x, _| map.rotate_cw(x))
-}
-
-fn tri_apex(map: &Map, d: Dart) -> Result<Vert, TriEditError> {
-    apex(map, d).ok_or(TriEditError::Refused(Refusal::WrongDegree))
 }
 
 /// The operation, the two new v7 (first, second) and the new v5 (`None`: created).
@@ -126,9 +120,7 @@ pub fn generate_pair_v7(
     via: Via7,
     moved: Moved,
 ) -> Result<V7Move, TriEditError> {
-    let (op, sevens, five) = plan_generation(map, d, via)?;
-    let record = op.apply(map)?;
-    Ok(generation_record(op, record, sevens, five, moved))
+    map_only(|none| generate_pair_v7_with(map, none, d, via, moved))
 }
 
 /// [`generate_pair_v7`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
@@ -142,15 +134,9 @@ pub fn generate_pair_v7_with<A: VertexAttributes>(
     moved: Moved,
 ) -> Result<Edited<V7Move, A>, TriEditError> {
     let (op, sevens, five) = plan_generation(map, d, via)?;
-    let edit = op.apply_with(map, attrs)?;
-    Ok(edit.map_record(|r| generation_record(op, r, sevens, five, moved)))
-}
-
-fn created(record: &TriRecord) -> Option<Vert> {
-    match record {
-        TriRecord::SplitVertex(s) => Some(s.created()),
-        _ => None,
-    }
+    apply_one(map, attrs, op, |op, r| {
+        generation_record(op, r, sevens, five, moved)
+    })
 }
 
 fn generation_record(
@@ -234,14 +220,7 @@ pub fn can_remove_pair_v7(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), Tr
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 pub fn remove_pair_v7(map: &mut Map, m: Vert, p: Vert, q: Vert) -> Result<V7Move, TriEditError> {
-    let (op, to) = plan_removal(map, m, p, q)?;
-    let record = op.apply(map)?;
-    Ok(V7Move {
-        moved: to,
-        pair: None,
-        op,
-        record,
-    })
+    map_only(|none| remove_pair_v7_with(map, none, m, p, q))
 }
 
 /// [`remove_pair_v7`] on a map and its per-vertex data.
@@ -255,87 +234,40 @@ pub fn remove_pair_v7_with<A: VertexAttributes>(
     q: Vert,
 ) -> Result<Edited<V7Move, A>, TriEditError> {
     let (op, to) = plan_removal(map, m, p, q)?;
-    let edit = op.apply_with(map, attrs)?;
-    Ok(edit.map_record(|record| V7Move {
+    apply_one(map, attrs, op, |op, record| V7Move {
         moved: to,
         pair: None,
         op,
         record,
-    }))
+    })
 }
 
-/// Record of a [`generate_pair_v7`] or a [`remove_pair_v7`].
+/// Record of a [`generate_pair_v7`] or a [`remove_pair_v7`] (the record of every lone
+/// vertex's movement, [`VertexMove`]).
 ///
 /// See [`generate_pair_v7`] for an example.
-#[derive(Clone, Copy, Debug)]
-pub struct V7Move {
-    moved: Vert,
-    pair: Option<(Vert, Vert)>,
-    op: TriOp,
-    record: TriRecord,
-}
+pub type V7Move = VertexMove;
 
-impl V7Move {
-    /// Where the moved v7 is now.
-    ///
-    /// See [`generate_pair_v7`] for an example.
-    pub fn moved(&self) -> Vert {
-        self.moved
-    }
-
-    /// The generated pair (v5, v7); `None` after a removal.
-    ///
-    /// See [`generate_pair_v7`] for an example.
-    pub fn pair(&self) -> Option<(Vert, Vert)> {
-        self.pair
-    }
-
-    /// The graph operation applied.
-    ///
-    /// See [`generate_pair_v7`] for an example.
-    pub fn op(&self) -> TriOp {
-        self.op
-    }
-
-    /// The graph operator's record.
-    ///
-    /// See [`generate_pair_v7`] for an example.
-    pub fn record(&self) -> &TriRecord {
-        &self.record
-    }
-
-    /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
-    ///
-    /// See [`generate_pair_v7`] for an example.
-    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        self.record.undo(map)
-    }
-}
-
-impl Undo for V7Move {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        V7Move::undo(self, map)
-    }
-}
-
-/// The roles of a 5-5-7 or 5-7-7 triple: the vertex that moves (the first of its type in
-/// the order given, or the second when the first cannot), and the pair that goes.
-fn triple_plan(map: &Map, three: &[Vert]) -> Result<Triple, TriEditError> {
+/// The interior v5 and the interior v7 among three live vertices, each in the order given.
+fn kinds(map: &Map, three: &[Vert]) -> Result<(Vec<Vert>, Vec<Vert>), TriEditError> {
     let &[a, b, c] = three else {
         return Err(TriEditError::NotAPair);
     };
     if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
         return Err(TriEditError::DeadHandle);
     }
-    let val = |v: Vert| {
-        if map.is_boundary_vertex(v) {
-            0
-        } else {
-            map.valence(v)
-        }
+    let of = |k| {
+        [a, b, c]
+            .into_iter()
+            .filter(move |&v| interior_of_valence(map, v, k))
     };
-    let fives: alloc::vec::Vec<Vert> = [a, b, c].into_iter().filter(|&v| val(v) == 5).collect();
-    let sevens: alloc::vec::Vec<Vert> = [a, b, c].into_iter().filter(|&v| val(v) == 7).collect();
+    Ok((of(5).collect(), of(7).collect()))
+}
+
+/// The roles of a 5-5-7 or 5-7-7 triple: the vertex that moves (the first of its type in
+/// the order given, or the second when the first cannot), and the pair that goes.
+fn triple_plan(map: &Map, three: &[Vert]) -> Result<Triple, TriEditError> {
+    let (fives, sevens) = kinds(map, three)?;
     let (options, kind) = match (fives.as_slice(), sevens.as_slice()) {
         (&[x, y], &[q]) => ([(x, y, q), (y, x, q)], 5),
         (&[p], &[x, y]) => ([(x, p, y), (y, p, x)], 7),
@@ -396,12 +328,7 @@ pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> 
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 pub fn cancel_triple(map: &mut Map, three: &[Vert]) -> Result<TripleEdit, TriEditError> {
-    let t = triple_plan(map, three)?;
-    Ok(if t.kind == 5 {
-        TripleEdit::Five(remove_pair(map, t.m, t.p, t.q)?)
-    } else {
-        TripleEdit::Seven(remove_pair_v7(map, t.m, t.p, t.q)?)
-    })
+    map_only(|none| cancel_triple_with(map, none, three))
 }
 
 /// [`cancel_triple`] on a map and its per-vertex data.
@@ -426,40 +353,40 @@ pub fn cancel_triple_with<A: VertexAttributes>(
 #[derive(Clone, Copy, Debug)]
 pub enum TripleEdit {
     /// A 5-5-7 triple cancelled by a v5 movement with 5-7 removal.
-    Five(V5Move),
+    Five(VertexMove),
     /// A 5-7-7 triple cancelled by a v7 movement with 5-7 removal.
-    Seven(V7Move),
+    Seven(VertexMove),
 }
 
 impl TripleEdit {
+    /// The removal applied, whichever the triple's kind.
+    ///
+    /// See [`cancel_triple`] for an example.
+    pub fn removal(&self) -> &VertexMove {
+        match self {
+            TripleEdit::Five(m) | TripleEdit::Seven(m) => m,
+        }
+    }
+
     /// The one irregular vertex left (the v5 or the v7 that moved).
     ///
     /// See [`cancel_triple`] for an example.
     pub fn remaining(&self) -> Vert {
-        match self {
-            TripleEdit::Five(m) => m.moved(),
-            TripleEdit::Seven(m) => m.moved(),
-        }
+        self.removal().moved()
     }
 
     /// The graph operation applied.
     ///
     /// See [`cancel_triple`] for an example.
     pub fn op(&self) -> TriOp {
-        match self {
-            TripleEdit::Five(m) => m.op(),
-            TripleEdit::Seven(m) => m.op(),
-        }
+        self.removal().op()
     }
 
     /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
     ///
     /// See [`cancel_triple`] for an example.
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        match self {
-            TripleEdit::Five(m) => m.undo(map),
-            TripleEdit::Seven(m) => m.undo(map),
-        }
+        self.removal().undo(map)
     }
 }
 
@@ -473,22 +400,7 @@ impl Undo for TripleEdit {
 /// moves must bring next to the third: for 5-5-7 the v7 (to touch the other v5), for 5-7-7
 /// the v5 (to touch the other v7). `(p, q, third, v7_leads)`.
 fn far_plan(map: &Map, three: &[Vert]) -> Result<(Vert, Vert, Vert, bool), TriEditError> {
-    let &[a, b, c] = three else {
-        return Err(TriEditError::NotAPair);
-    };
-    if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
-        return Err(TriEditError::DeadHandle);
-    }
-    let val = |v: Vert| {
-        if map.is_boundary_vertex(v) {
-            0
-        } else {
-            map.valence(v)
-        }
-    };
-    let of = |k| [a, b, c].into_iter().filter(move |&v| val(v) == k);
-    let (fives, sevens): (alloc::vec::Vec<Vert>, alloc::vec::Vec<Vert>) =
-        (of(5).collect(), of(7).collect());
+    let (fives, sevens) = kinds(map, three)?;
     let adjacent = |x: Vert, y: Vert| map.dart_between(x, y).is_some();
     match (fives.as_slice(), sevens.as_slice()) {
         (&[x, y], &[q]) => {
@@ -560,8 +472,7 @@ pub fn cancel_triple_along(
     three: &[Vert],
     max_steps: usize,
 ) -> Result<TripleCancel, TriEditError> {
-    cancel_triple_along_with(map, &mut super::types::NoData, three, max_steps)
-        .map(|e| e.into_parts().0)
+    map_only(|none| cancel_triple_along_with(map, none, three, max_steps))
 }
 
 /// [`cancel_triple_along`] on a map and its per-vertex data (one journal for every step).

@@ -13,17 +13,13 @@
 //!   3 + 3 = 6, `b`, `c` gain one. Three v5 around a triangle: split one of them with an
 //!   empty moved arc between the other two (a new v3 inside the triangle).
 
+use super::record::{map_only, turn};
 use super::{interior_of_valence, regular, TriEditError};
-use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, Journal, Rule, VertexAttributes};
+use crate::map::{Map, Vert};
+use crate::mesh::{Edited, Journal, VertexAttributes};
 use crate::ops::tri::{can_split_vertex, TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
-
-/// `d` turned clockwise `k` times around its origin.
-fn turn(map: &Map, d: Dart, k: usize) -> Dart {
-    (0..k).fold(d, |x, _| map.rotate_cw(x))
-}
 
 /// The vertices other than a new one whose valence `op` changes, read before it applies.
 fn involved(map: &Map, op: TriOp) -> [Option<Vert>; 4] {
@@ -86,24 +82,6 @@ pub(super) fn run_with<A: VertexAttributes>(
                 return Err(e);
             }
         }
-    }
-}
-
-/// No per-vertex data: the map-only edits run through [`run_with`] with it.
-pub(super) struct NoData;
-
-impl VertexAttributes for NoData {
-    type Value = ();
-    type Extent = ();
-    fn extent(&self) {}
-    fn shrink_to(&mut self, _: ()) {}
-    fn cover(&mut self, _: usize) {}
-    fn value(&self, _: Vert) -> Option<()> {
-        None
-    }
-    fn set_value(&mut self, _: Vert, _: ()) {}
-    fn place(&self, _: &Map, _: Rule) -> Option<()> {
-        None
     }
 }
 
@@ -188,7 +166,7 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 /// assert_eq!(map, before);
 /// ```
 pub fn split_type(map: &mut Map, v: Vert) -> Result<TypeEdit, TriEditError> {
-    split_type_with(map, &mut NoData, v).map(|e| e.into_parts().0)
+    map_only(|none| split_type_with(map, none, v))
 }
 
 /// [`split_type`] on a map and its per-vertex data: each step places its vertex by its
@@ -255,7 +233,7 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 pub fn aggregate_type(map: &mut Map, v5s: &[Vert]) -> Result<TypeEdit, TriEditError> {
-    aggregate_type_with(map, &mut NoData, v5s).map(|e| e.into_parts().0)
+    map_only(|none| aggregate_type_with(map, none, v5s))
 }
 
 /// [`aggregate_type`] on a map and its per-vertex data (the new vertex placed inside its

@@ -1,0 +1,227 @@
+//! Composite movement of a pair of irregular vertices that need not be adjacent (Sec. 7.1):
+//! a 5-7 pair (7.1.1) and the 5-5 and 7-7 pairs (7.1.2), all by the same three-step
+//! pipeline.
+//!
+//! With `s` the vertex the pipeline starts at and `o` the pair's other vertex:
+//! 1. `s` moves one step by the atomic movement with 5-7 generation
+//!    ([`super::generate_pair`] at a v5, [`super::generate_pair_v7`] at a v7): `s` is now at
+//!    `s'`, and a new adjacent 5-7 pair `(p, q)` sits next to it;
+//! 2. the pair `(p, q)` walks by atomic 5-7 movements towards `o` until it touches it;
+//! 3. the triple `(o, p, q)` cancels by the atomic movement with 5-7 removal, `o` being the
+//!    vertex that moves: `o` is now at `o'` and the pair `(p, q)` is gone.
+//!
+//! Steps 2 and 3 are [`super::cancel_triple_along`] on `[o, p, q]` (a 5-5-7 triple when `o`
+//! is a v5, a 5-7-7 triple when it is a v7). The pair `(s, o)` has become `(s', o')` with
+//! the same valences; the rest of the mesh keeps its valences.
+//!
+//! ```text
+//!   s(5) . . . . . o(7)        s'(5) p(5)-q(7) . o(7)      s'(5) . . . . . o'(7)
+//!   |                    1.     \    /             2., 3.   (s', o') = (s, o) shifted
+//!   s -> s' generates (p, q)     (p, q) walks to o, then o moves and (p, q) goes
+//! ```
+
+use super::generate::{generate_pair_with, Moved, Via};
+use super::record::{map_only, VertexMove};
+use super::triple::{cancel_triple_along_with, generate_pair_v7_with, TripleCancel, Via7};
+use super::{interior_of_valence, TriEditError};
+use crate::map::{Dart, Map, Vert};
+use crate::mesh::{Edited, VertexAttributes};
+use crate::ops::{Refusal, Undo};
+
+/// The first step of the pipeline: the atomic generation at the starting vertex, a v5
+/// ([`Via`]) or a v7 ([`Via7`]).
+///
+/// ```
+/// use zipmesh::tri_edit::{Start, Via, Via7};
+/// assert_ne!(Start::Five(Via::Flip), Start::Seven(Via7::Flip));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Start {
+    /// The starting vertex is a v5 and moves by [`super::generate_pair`] with this operation.
+    Five(Via),
+    /// The starting vertex is a v7 and moves by [`super::generate_pair_v7`].
+    Seven(Via7),
+}
+
+impl Start {
+    /// Every configuration for a starting vertex of valence `k` (5 or 7; none otherwise).
+    ///
+    /// ```
+    /// use zipmesh::tri_edit::Start;
+    /// assert_eq!((Start::all(5).len(), Start::all(7).len(), Start::all(6).len()), (3, 2, 0));
+    /// ```
+    pub fn all(k: usize) -> &'static [Start] {
+        match k {
+            5 => &[
+                Start::Five(Via::Flip),
+                Start::Five(Via::Collapse),
+                Start::Five(Via::Split),
+            ],
+            7 => &[Start::Seven(Via7::Flip), Start::Seven(Via7::Split)],
+            _ => &[],
+        }
+    }
+
+    fn valence(self) -> usize {
+        match self {
+            Start::Five(_) => 5,
+            Start::Seven(_) => 7,
+        }
+    }
+}
+
+/// The kinds of the two vertices: `s` (the start) and `o`, each an interior v5 or v7, and
+/// distinct.
+fn check_pair(map: &Map, s: Vert, o: Vert, start: Start) -> Result<(), TriEditError> {
+    if !map.is_live_vertex(s) || !map.is_live_vertex(o) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let kind = |v| interior_of_valence(map, v, 5) || interior_of_valence(map, v, 7);
+    if s == o || !kind(o) || !interior_of_valence(map, s, start.valence()) {
+        return Err(TriEditError::NotAPair);
+    }
+    Ok(())
+}
+
+/// Checks whether [`move_far_pair`] applies, without changing anything. The walk's
+/// directions depend on where each step leaves the pair, so this runs the pipeline on a
+/// copy (O(map) per step).
+///
+/// See [`move_far_pair`] for an example.
+pub fn can_move_far_pair(
+    map: &Map,
+    d: Dart,
+    start: Start,
+    moved: Moved,
+    other: Vert,
+    max_steps: usize,
+) -> Result<(), TriEditError> {
+    let mut probe = map.clone();
+    move_far_pair(&mut probe, d, start, moved, other, max_steps).map(|_| ())
+}
+
+/// Moves the pair of the irregular vertices `origin(d)` and `other` (a 5-7, 5-5 or 7-7
+/// pair, adjacent or not) by the pipeline of Sec. 7.1 (module docs): `origin(d)` moves one
+/// step along `d` by `start` (`moved` says which new vertex is read as the moved one, see
+/// [`Moved`]), the 5-7 pair generated walks to `other` in at most `max_steps` atomic 5-7
+/// movements, and `other` moves by the 5-7 removal. Afterwards [`FarPairMove::pair`] is
+/// `(origin(d)'s vertex, other's vertex)` with the valences they had.
+///
+/// All or nothing: on any refusal every step is undone and the map is `==` to before.
+/// Refusals: [`TriEditError::DeadHandle`]; [`TriEditError::NotAPair`] when `origin(d)` is
+/// not an interior vertex of `start`'s valence, or `other` not an interior v5 or v7; the
+/// generation's and the walk's refusals ([`TriEditError::Irregular`] when the walk finds no
+/// step closer or runs out of steps).
+///
+/// ```
+/// use zipmesh::tri_edit::{generate_pair, move_far_pair, Moved, Start, Via};
+/// use zipmesh::{gen, Vert};
+/// // A level-3 geodesic sphere: twelve lone v5, far apart; two of them are a 5-5 pair.
+/// let mut map = gen::geodesic_sphere(3);
+/// let fives: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+/// let (s, o) = (fives[0], fives[1]);
+/// let before = map.clone();
+/// let found = map.vertex_darts(s).collect::<Vec<_>>().into_iter().find_map(|d| {
+///     move_far_pair(&mut map, d, Start::Five(Via::Flip), Moved::First, o, 64).ok()
+/// });
+/// let m = found.expect("some direction moves the pair");
+/// let (a, b) = m.pair();
+/// assert_eq!((map.valence(a), map.valence(b)), (5, 5));
+/// m.undo(&mut map).unwrap();
+/// assert_eq!(map, before);
+/// # let _ = generate_pair;
+/// ```
+pub fn move_far_pair(
+    map: &mut Map,
+    d: Dart,
+    start: Start,
+    moved: Moved,
+    other: Vert,
+    max_steps: usize,
+) -> Result<FarPairMove, TriEditError> {
+    map_only(|none| move_far_pair_with(map, none, d, start, moved, other, max_steps))
+}
+
+/// [`move_far_pair`] on a map and its per-vertex data (one journal for every step).
+///
+/// See [`move_far_pair`]; the undo of the result is `undo_with` (map and data `==`).
+pub fn move_far_pair_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    d: Dart,
+    start: Start,
+    moved: Moved,
+    other: Vert,
+    max_steps: usize,
+) -> Result<Edited<FarPairMove, A>, TriEditError> {
+    if !map.is_live_dart(d) {
+        return Err(TriEditError::DeadHandle);
+    }
+    check_pair(map, map.origin(d), other, start)?;
+    let first = match start {
+        Start::Five(via) => generate_pair_with(map, attrs, d, via, moved)?,
+        Start::Seven(via) => generate_pair_v7_with(map, attrs, d, via, moved)?,
+    };
+    let (generation, mut journal) = first.into_parts();
+    let (p, q) = generation.pair().ok_or(TriEditError::NotAPair)?;
+    match cancel_triple_along_with(map, attrs, &[other, p, q], max_steps) {
+        Ok(e) => {
+            let (walk, j) = e.into_parts();
+            journal.absorb(j);
+            Ok(Edited::new(FarPairMove { generation, walk }, journal))
+        }
+        Err(e) => {
+            // A fresh record of this map: its undo does not refuse.
+            let _ = generation.undo(map);
+            journal.rewind(attrs);
+            Err(e)
+        }
+    }
+}
+
+/// Record of a [`move_far_pair`]: the generation at the starting vertex, then the walk and
+/// the cancellation at the other.
+///
+/// See [`move_far_pair`] for an example.
+#[derive(Clone, Debug)]
+pub struct FarPairMove {
+    generation: VertexMove,
+    walk: TripleCancel,
+}
+
+impl FarPairMove {
+    /// The pair after the move: where the starting vertex and the other vertex are now.
+    ///
+    /// See [`move_far_pair`] for an example.
+    pub fn pair(&self) -> (Vert, Vert) {
+        (self.generation.moved(), self.walk.remaining())
+    }
+
+    /// Step 1: the starting vertex's movement with 5-7 generation.
+    ///
+    /// See [`move_far_pair`] for an example.
+    pub fn generation(&self) -> &VertexMove {
+        &self.generation
+    }
+
+    /// Steps 2 and 3: the generated pair's walk and the cancellation at the other vertex.
+    ///
+    /// See [`move_far_pair`] for an example.
+    pub fn walk(&self) -> &TripleCancel {
+        &self.walk
+    }
+
+    /// Undoes the three steps in reverse (`==`), or refuses with [`Refusal::StaleRecord`].
+    ///
+    /// See [`move_far_pair`] for an example.
+    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.walk.undo(map)?;
+        self.generation.undo(map)
+    }
+}
+
+impl Undo for FarPairMove {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        FarPairMove::undo(self, map)
+    }
+}
