@@ -22,11 +22,15 @@
 
 use super::generate::{generate_pair_with, Moved, Via};
 use super::record::{map_only, VertexMove};
-use super::triple::{cancel_triple_along_with, generate_pair_v7_with, TripleCancel, Via7};
+use super::triple::{
+    cancel_triple_along_with, distance, generate_pair_v7_with, TripleCancel, Via7,
+};
 use super::{interior_of_valence, TriEditError};
+use crate::invariants::canonical::canonical_hash;
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::{Refusal, Undo};
+use alloc::vec::Vec;
 
 /// The first step of the pipeline: the atomic generation at the starting vertex, a v5
 /// ([`Via`]) or a v7 ([`Via7`]).
@@ -177,6 +181,89 @@ pub fn move_far_pair_with<A: VertexAttributes>(
             Err(e)
         }
     }
+}
+
+/// How a composite move in one direction starts: the dart at the starting vertex, the
+/// generation and its reading (the arguments of [`move_far_pair`]).
+pub type FarStart = (Dart, Start, Moved);
+
+/// The reference dart at `s`: towards the neighbour nearest `o` (graph distance); of two
+/// such neighbours next to each other, the one clockwise first, so that the choice does
+/// not depend on the numbering.
+fn reference(map: &Map, s: Vert, o: Vert) -> Dart {
+    let darts: Vec<Dart> = map.vertex_darts(s).collect();
+    let dist: Vec<usize> = darts
+        .iter()
+        .map(|&d| distance(map, map.dest(d), o))
+        .collect();
+    let best = dist.iter().copied().min().unwrap_or(0);
+    let k = darts.len();
+    // A nearest neighbour whose clockwise predecessor (counter-clockwise successor) is not.
+    let ccw_next = |i: usize| {
+        let c = map.rotate_ccw(darts[i]);
+        darts.iter().position(|&x| x == c).unwrap_or(i)
+    };
+    (0..k)
+        .find(|&i| dist[i] == best && dist[ccw_next(i)] != best)
+        .or_else(|| (0..k).find(|&i| dist[i] == best))
+        .map_or(map.vertex_dart(s), |i| darts[i])
+}
+
+/// The six directions of Sec. 7.1 for the pair `(s, o)`, each as the first pipeline start
+/// that realises it: every start at `s` ([`Start::all`], both readings) is tried on a copy,
+/// in the order: darts counter-clockwise from the reference dart (towards the neighbour of
+/// `s` nearest `o`), then [`Start::all`]'s order, then `First` before `Second`; starts
+/// whose results are isomorphic are one direction, numbered by its first start. The paper
+/// says there are six; fewer are returned when starts refuse (an irregular vertex or a
+/// boundary nearby). Costs one pipeline and one canonical code per start.
+///
+/// ```
+/// use zipmesh::tri_edit::far_pair_directions;
+/// use zipmesh::{gen, Vert};
+/// let map = gen::geodesic_sphere(2);
+/// let fives: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+/// let dirs = far_pair_directions(&map, fives[0], fives[1], 64).unwrap();
+/// assert!(dirs.len() <= 6);
+/// ```
+pub fn far_pair_directions(
+    map: &Map,
+    s: Vert,
+    o: Vert,
+    max_steps: usize,
+) -> Result<Vec<FarStart>, TriEditError> {
+    if !map.is_live_vertex(s) || !map.is_live_vertex(o) {
+        return Err(TriEditError::DeadHandle);
+    }
+    let kind = if interior_of_valence(map, s, 5) { 5 } else { 7 };
+    check_pair(
+        map,
+        s,
+        o,
+        Start::all(kind)
+            .first()
+            .copied()
+            .ok_or(TriEditError::NotAPair)?,
+    )?;
+    let r = reference(map, s, o);
+    let mut seen = Vec::new();
+    let mut found = Vec::new();
+    let mut d = r;
+    for _ in 0..map.valence(s) {
+        for &start in Start::all(kind) {
+            for moved in [Moved::First, Moved::Second] {
+                let mut probe = map.clone();
+                if move_far_pair(&mut probe, d, start, moved, o, max_steps).is_ok() {
+                    let h = canonical_hash(&probe);
+                    if !seen.contains(&h) {
+                        seen.push(h);
+                        found.push((d, start, moved));
+                    }
+                }
+            }
+        }
+        d = map.rotate_ccw(d);
+    }
+    Ok(found)
 }
 
 /// Record of a [`move_far_pair`]: the generation at the starting vertex, then the walk and

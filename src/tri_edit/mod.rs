@@ -67,7 +67,10 @@ mod record;
 mod triple;
 mod types;
 
-pub use composite::{can_move_far_pair, move_far_pair, move_far_pair_with, FarPairMove, Start};
+pub use composite::{
+    can_move_far_pair, far_pair_directions, move_far_pair, move_far_pair_with, FarPairMove,
+    FarStart, Start,
+};
 pub use generate::{
     can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
     remove_pair_with, Moved, V5Move, Via,

@@ -421,7 +421,7 @@ fn far_plan(map: &Map, three: &[Vert]) -> Result<(Vert, Vert, Vert, bool), TriEd
 }
 
 /// Graph distance from `from` to `to` (`usize::MAX` when apart), by breadth-first search.
-fn distance(map: &Map, from: Vert, to: Vert) -> usize {
+pub(super) fn distance(map: &Map, from: Vert, to: Vert) -> usize {
     let mut seen = alloc::collections::BTreeMap::new();
     seen.insert(from, 0usize);
     let mut queue = alloc::collections::VecDeque::from([from]);
