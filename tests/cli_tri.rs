@@ -460,3 +460,94 @@ fn tri_cancel_far_triple() {
     assert_eq!((fives(&input), fives(&done)), (13, 12));
     assert!(positions_lost(&input, &done) <= 2 * (walked as usize + 1));
 }
+
+/// The sorted valences of the irregular interior vertices.
+fn irregular_multiset(m: &Mesh) -> Vec<usize> {
+    let mut v: Vec<usize> = common::tri::irregular(&m.map)
+        .into_iter()
+        .map(|(_, k)| k)
+        .collect();
+    v.sort();
+    v
+}
+
+/// `tri-move` of pairs that are not adjacent (Sec. 7.1): a 5-7 pair at distance 2 (both
+/// orders) and a 5-5 pair of a geodesic sphere, every direction: the report's pair has the
+/// given valences in OUT, the 5-7 pair keeps its distance, the irregular multiset is the
+/// input's, the counts add up to the graph operations the positions account for, and the
+/// printed undo (when one is found) gives back the input up to isomorphism.
+#[test]
+fn tri_move_composite_pairs() {
+    use common::tri::{distance, far_five_seven};
+    let dir = temp_dir("tri-move-far");
+    let (map, p, q) = far_five_seven();
+    let five_seven = {
+        let mut map = map;
+        let c = map.compact();
+        let at = |v: Vert| c.vertices[v.index()].unwrap().index() as u32;
+        let (p, q) = (at(p), at(q));
+        (write(&dir, "far57.obj", map), p, q)
+    };
+    let sphere = geodesic_sphere(2);
+    let fives: Vec<u32> = (0..sphere.vertex_slots() as u32)
+        .filter(|&v| sphere.valence(Vert::new(v)) == 5)
+        .collect();
+    let near = *fives[1..]
+        .iter()
+        .min_by_key(|&&w| distance(&sphere, Vert::new(fives[0]), Vert::new(w)))
+        .unwrap();
+    let five_five = (write(&dir, "s55.obj", sphere), fives[0], near);
+    let (mut undone, mut tried) = (0, 0);
+    for (file, a, b) in [
+        five_seven.clone(),
+        (five_seven.0, five_seven.2, five_seven.1),
+        five_five,
+    ] {
+        let input = read(&file);
+        let want = [a, b].map(|x| input.map.valence(Vert::new(x)));
+        let d0 = distance(&input.map, Vert::new(a), Vert::new(b));
+        for d in 0..6u32 {
+            tried += 1;
+            let out = dir.join(format!("f{a}-{d}.obj"));
+            let (pair, dd) = (format!("{a},{b}"), d.to_string());
+            let v = report(
+                &["tri-move", s(&file), "--pair", &pair, "--direction", &dd],
+                &out,
+            );
+            let moved = read(&out);
+            moved.map.check().unwrap();
+            let np = numbers(&v["pair"]);
+            let (x, y) = (Vert::new(np[0]), Vert::new(np[1]));
+            assert_eq!([moved.map.valence(x), moved.map.valence(y)], want, "{v}");
+            if want[0] != want[1] {
+                assert_eq!(distance(&moved.map, x, y), d0, "a 5-7 move translates");
+            }
+            assert_eq!(irregular_multiset(&moved), irregular_multiset(&input));
+            let ops: u64 = ["flips", "collapses", "splits"]
+                .map(|k| v[k].as_u64().unwrap())
+                .iter()
+                .sum();
+            assert!(ops >= 2, "a generation and a removal at least: {v}");
+            assert!(positions_lost(&input, &moved) <= 2 * ops as usize, "{v}");
+            let undo = &v["undo"];
+            if undo.is_null() {
+                continue;
+            }
+            let back = dir.join(format!("fu{a}-{d}.obj"));
+            let args = [
+                "tri-move",
+                s(&out),
+                "--pair",
+                &join(&numbers(&undo["pair"])),
+                "--direction",
+                &undo["direction"].to_string(),
+            ];
+            let o = zipmesh_to(&args, &back);
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(is_isomorphic(&read(&back).map, &input.map), "{a} {d}");
+            undone += 1;
+        }
+    }
+    eprintln!("composite tri-move: {undone} of {tried} found an undo");
+    assert!(undone > 0);
+}

@@ -15,19 +15,21 @@ use crate::tri_edit::{
     can_move_pair, can_split_type, cancel_triple, generate_pair, generate_pair_v7,
     generate_quadruple, move_pair, split_type, Direction, Moved, Quadruple, TripleEdit, Via, Via7,
 };
+use crate::tri_edit::{can_move_far_pair, move_far_pair, Start};
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 
 /// The semantic triangle edits' properties: `tri-pair-move` (atomic 5-7 movement in a
 /// random direction), `tri-pair-generate` (v5 and v7 movement with 5-7 generation),
-/// `tri-triple-cancel` (5-5-7 and 5-7-7 triples), `tri-quadruple` (5-5-7-7 generation) and
+/// `tri-triple-cancel` (5-5-7 and 5-7-7 triples), `tri-quadruple` (5-5-7-7 generation),
+/// `tri-far-pair-move` (composite movement of a pair that need not be adjacent) and
 /// `tri-type` (type splitting).
 ///
 /// ```
 /// use zipmesh::campaign::{self, tri_edit_properties, Config};
 /// let props = tri_edit_properties();
-/// assert_eq!(props.len(), 5);
+/// assert_eq!(props.len(), 6);
 /// let report = campaign::run(&Config { cases: 6, max_faces: 300, ..Config::default() }, &props);
 /// assert!(report.passed());
 /// ```
@@ -52,6 +54,11 @@ pub fn tri_edit_properties() -> Vec<Property> {
             "tri-quadruple",
             "5-5-7-7 generation at a regular vertex: multiset + {5, 5, 7, 7}; exact undo",
             quadruple
+        ),
+        Property::new(
+            "tri-far-pair-move",
+            "composite move of a 5-7, 5-5 or 7-7 pair (Sec. 7.1 pipeline): the pair's valences at its new vertices, multiset unchanged; exact undo",
+            far_pair_move
         ),
         Property::new(
             "tri-type",
@@ -263,6 +270,50 @@ fn type_split(case: &Case) -> Outcome {
                 return Err(format!("v{k}: left {:?}", vals(after, s.vertices())));
             }
             same_multiset(before, after, &want, &[k])
+        })
+    })
+}
+
+/// The walk's bound in `tri-far-pair-move` (each step clones the map to pick a direction).
+const FAR_STEPS: usize = 12;
+
+fn far_pair_move(case: &Case) -> Outcome {
+    let map = &case.mesh.map;
+    let odd: Vec<Vert> = map
+        .vertices()
+        .filter(|&v| matches!(interior(map, v), Some(5 | 7)))
+        .collect();
+    let mut sites = vertex_sites(case, 26, |k| k == 5 || k == 7);
+    sites.truncate(SITES / 4);
+    run(case, 26, sites, |before, work, d, rng| {
+        if odd.len() < 2 {
+            return Ok(false);
+        }
+        let s = before.origin(d);
+        // The other vertex: one of the nearest few odd vertices, or any.
+        let o = odd[rng.below(odd.len())];
+        let starts = Start::all(before.valence(s));
+        if starts.is_empty() {
+            return Ok(false);
+        }
+        let start = starts[rng.below(starts.len())];
+        let moved = if rng.below(2) == 0 {
+            Moved::First
+        } else {
+            Moved::Second
+        };
+        let want = vals(before, &[s, o]);
+        let can = can_move_far_pair(before, d, start, moved, o, FAR_STEPS);
+        let result = move_far_pair(work, d, start, moved, o, FAR_STEPS);
+        settle(before, work, can, result, |after, m| {
+            let (a, b) = m.pair();
+            if vals(after, &[a, b]) != want {
+                return Err(format!(
+                    "{start:?}: the pair has valences {:?}, expected {want:?}",
+                    vals(after, &[a, b])
+                ));
+            }
+            same_multiset(before, after, &[], &[])
         })
     })
 }

@@ -5,6 +5,7 @@
 pub mod cli;
 #[cfg(feature = "render")]
 pub mod svg;
+pub mod tri;
 
 use zipmesh::invariants::{irregular_valences, irregular_vertices, MeshKind};
 use zipmesh::ops::quad;

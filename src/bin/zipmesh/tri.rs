@@ -14,9 +14,10 @@ use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
 use zipmesh::tri_edit::{
     aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
-    cancel_triple_along_with, generate_pair, generate_pair_v7, generate_pair_v7_with,
-    generate_pair_with, generate_quadruple_with, move_pair_with, remove_quadruple_with,
-    split_type_with, Direction, Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
+    cancel_triple_along_with, far_pair_directions, generate_pair, generate_pair_v7,
+    generate_pair_v7_with, generate_pair_with, generate_quadruple_with, move_far_pair,
+    move_far_pair_with, move_pair_with, remove_quadruple_with, split_type_with, Direction,
+    FarStart, Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
 };
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
@@ -45,11 +46,13 @@ pub struct Files {
 pub struct MoveArgs {
     #[command(flatten)]
     files: Files,
-    /// The adjacent 5-7 pair: two 0-based vertex numbers, a v5 and a v7 (either order).
+    /// The pair: two 0-based vertex numbers, interior v5 or v7. An adjacent 5-7 pair (either
+    /// order) moves by atomic moves; a 5-7 pair that is not adjacent, a 5-5 or a 7-7 pair by
+    /// the composite moves of Sec. 7.1 (docs/tri-edit.md).
     #[arg(long, value_delimiter = ',', num_args = 1, required = true)]
     pair: Vec<u32>,
-    /// The direction, 0 to 5, counter-clockwise; 0 is just left of the edge v5 -> v7
-    /// (docs/tri-edit.md).
+    /// The direction, 0 to 5, counter-clockwise; for an adjacent 5-7 pair 0 is just left of
+    /// the edge v5 -> v7; for a composite move the numbering of docs/tri-edit.md.
     #[arg(long, value_parser = clap::value_parser!(u8).range(0..6))]
     direction: u8,
     /// How many steps to move (each a flip, a collapse or a split).
@@ -298,52 +301,160 @@ fn list(v: &[Option<u32>]) -> String {
         .join(",")
 }
 
-/// Runs `zipmesh tri-move`: an adjacent 5-7 pair moved `--steps` times in `--direction`.
+/// Runs `zipmesh tri-move`: an adjacent 5-7 pair moved `--steps` times in `--direction`
+/// by atomic moves; any other pair of interior v5 / v7 (a 5-7 pair that is not adjacent,
+/// a 5-5 or a 7-7 pair) by the composite moves of Sec. 7.1.
 pub fn run_move(args: MoveArgs) -> Result<ExitCode, InputError> {
     let f = &args.files;
-    let mut mesh = load(f)?;
+    let mesh = load(f)?;
     let given = verts(f, &mesh.map, "--pair", &args.pair, Some(2))?;
-    let swapped = mesh.map.valence(given[0]) == 7 && mesh.map.valence(given[1]) == 5;
-    let (mut p, mut q) = if swapped {
-        (given[1], given[0])
-    } else {
-        (given[0], given[1])
+    let (a, b) = (given[0], given[1]);
+    let map = &mesh.map;
+    let adjacent_57 = map.dart_between(a, b).is_some() && {
+        let mut v = [map.valence(a), map.valence(b)];
+        v.sort_unstable();
+        v == [5, 7]
     };
+    if adjacent_57 {
+        move_adjacent(&args, mesh, a, b)
+    } else {
+        move_far(&args, mesh, a, b)
+    }
+}
+
+/// The refusal of step `step` in words.
+fn step_refused(args: &MoveArgs, step: u32, why: String) -> InputError {
+    err(format_args!(
+        "{}: --pair {},{} --direction {}: step {step} of {} refused: {why}",
+        args.files.file.display(),
+        args.pair[0],
+        args.pair[1],
+        args.direction,
+        args.steps,
+    ))
+}
+
+fn move_adjacent(
+    args: &MoveArgs,
+    mut mesh: Mesh,
+    a: Vert,
+    b: Vert,
+) -> Result<ExitCode, InputError> {
+    let swapped = mesh.map.valence(a) == 7;
+    let (mut p, mut q) = if swapped { (b, a) } else { (a, b) };
     let dir = Direction::from_index(args.direction.into()).unwrap_or(Direction::SplitLeft);
     let mut ops = Ops::default();
     for step in 1..=args.steps {
-        let e = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir).map_err(|e| {
-            err(format_args!(
-                "{}: --pair {},{} --direction {}: step {step} of {} refused: {}",
-                f.file.display(),
-                args.pair[0],
-                args.pair[1],
-                args.direction,
-                args.steps,
-                why(e)
-            ))
-        })?;
+        let e = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir)
+            .map_err(|e| step_refused(args, step, why(e)))?;
         ops.add(e.record().record());
         (p, q) = (e.record().p(), e.record().q());
     }
-    let back = dir.opposite().index();
+    let back = Some(dir.opposite().index());
+    let (first, second) = if swapped { (q, p) } else { (p, q) };
+    finish_move(args, mesh, &ops, (first, second), back)
+}
+
+/// The composite move of Sec. 7.1: direction `D` is the `D`-th of
+/// `far_pair_directions` at the pipeline's start (the v5 of a 5-7 pair, the first vertex
+/// of a 5-5 or 7-7 pair).
+fn move_far(args: &MoveArgs, mut mesh: Mesh, a: Vert, b: Vert) -> Result<ExitCode, InputError> {
+    let original = mesh.map.clone();
+    let swapped = mesh.map.valence(a) == 7 && mesh.map.valence(b) == 5;
+    let (mut s, mut o) = if swapped { (b, a) } else { (a, b) };
+    let mut ops = Ops::default();
+    for step in 1..=args.steps {
+        let start = far_start(&mesh.map, s, o, args.direction.into())
+            .map_err(|e| step_refused(args, step, e))?;
+        let (d, how, moved) = start;
+        let e = move_far_pair_with(
+            &mut mesh.map,
+            &mut mesh.positions,
+            d,
+            how,
+            moved,
+            o,
+            MAX_WALK,
+        )
+        .map_err(|e| step_refused(args, step, why(e)))?;
+        let r = e.record();
+        ops.add(r.generation().record());
+        r.walk().moves().iter().for_each(|m| ops.add(m.record()));
+        ops.add(r.walk().cancellation().removal().record());
+        (s, o) = r.pair();
+    }
+    let back = far_undo(&mesh.map, &original, s, o, args.steps);
+    let pair = if swapped { (o, s) } else { (s, o) };
+    finish_move(args, mesh, &ops, pair, back)
+}
+
+/// The start of the composite move in direction `dir` at `s`, or why there is none.
+fn far_start(map: &Map, s: Vert, o: Vert, dir: usize) -> Result<FarStart, String> {
+    let dirs = far_pair_directions(map, s, o, MAX_WALK).map_err(|e| match e {
+        TriEditError::NotAPair => "not a pair of interior v5 / v7 vertices (a 5-7, 5-5 or \
+                                   7-7 pair)"
+            .to_string(),
+        e => why(e),
+    })?;
+    dirs.get(dir).copied().ok_or_else(|| {
+        format!(
+            "only {} of the six composite directions apply here (an irregular vertex or \
+             the boundary in the way)",
+            dirs.len()
+        )
+    })
+}
+
+/// The direction whose `steps` composite moves take the edited map back to the input (up
+/// to isomorphism), found by trying each; `None` when none does.
+fn far_undo(edited: &Map, original: &Map, s: Vert, o: Vert, steps: u32) -> Option<usize> {
+    (0..6).find(|&dir| {
+        let mut m = edited.clone();
+        let (mut s, mut o) = (s, o);
+        for _ in 0..steps {
+            let Ok((d, how, moved)) = far_start(&m, s, o, dir) else {
+                return false;
+            };
+            let Ok(e) = move_far_pair(&mut m, d, how, moved, o, MAX_WALK) else {
+                return false;
+            };
+            (s, o) = e.pair();
+        }
+        is_isomorphic(&m, original)
+    })
+}
+
+/// Writes OUT and reports a pair move: the pair's new numbers in the order given and the
+/// `tri-move` that undoes it (`null` when none was found).
+fn finish_move(
+    args: &MoveArgs,
+    mesh: Mesh,
+    ops: &Ops,
+    pair: (Vert, Vert),
+    back: Option<usize>,
+) -> Result<ExitCode, InputError> {
+    let f = &args.files;
     let steps = args.steps;
-    finish(f, mesh, &ops, |c| {
-        let (np, nq) = (renumber(c, p), renumber(c, q));
-        let pair = if swapped { [nq, np] } else { [np, nq] };
+    finish(f, mesh, ops, |c| {
+        let pair = [renumber(c, pair.0), renumber(c, pair.1)];
+        let undo = back.map(|d| json!({"pair": pair, "direction": d, "steps": steps}));
         let value = json!({
             "pair": pair,
             "direction": args.direction,
             "steps": steps,
-            "undo": {"pair": pair, "direction": back, "steps": steps},
+            "undo": undo,
         });
-        let text = format!(
-            "the pair is at {}\nundo: zipmesh tri-move {} --pair {} --direction {back} --steps {steps} -o UNDONE",
-            list(&pair),
-            f.output.display(),
-            list(&pair)
-        );
-        (value, text)
+        let undo_text = back.map_or("undo: none found (keep the input)".to_string(), |d| {
+            format!(
+                "undo: zipmesh tri-move {} --pair {} --direction {d} --steps {steps} -o UNDONE",
+                f.output.display(),
+                list(&pair)
+            )
+        });
+        (
+            value,
+            format!("the pair is at {}\n{undo_text}", list(&pair)),
+        )
     })
 }
 
