@@ -25,8 +25,8 @@ pub fn distance(map: &Map, a: Vert, b: Vert) -> usize {
         let dv = seen[&v];
         for d in map.vertex_darts(v) {
             let w = map.dest(d);
-            if !seen.contains_key(&w) {
-                seen.insert(w, dv + 1);
+            if let std::collections::hash_map::Entry::Vacant(e) = seen.entry(w) {
+                e.insert(dv + 1);
                 queue.push_back(w);
             }
         }
