@@ -549,5 +549,8 @@ fn tri_move_composite_pairs() {
         }
     }
     eprintln!("composite tri-move: {undone} of {tried} found an undo");
-    assert_eq!(undone, tried, "every composite move has an undo among the six directions");
+    assert_eq!(
+        undone, tried,
+        "every composite move has an undo among the six directions"
+    );
 }

@@ -277,21 +277,39 @@ fn type_split(case: &Case) -> Outcome {
 /// The walk's bound in `tri-far-pair-move` (each step clones the map to pick a direction).
 const FAR_STEPS: usize = 12;
 
+/// The interior v5 and v7 nearest `s` (breadth-first, at most `radius` edges away, `s`
+/// itself left out), nearest first.
+fn odd_near(map: &Map, s: Vert, radius: usize) -> Vec<Vert> {
+    let mut seen = alloc::collections::BTreeSet::from([s]);
+    let (mut ring, mut found) = (alloc::vec![s], Vec::new());
+    for _ in 0..radius {
+        let mut next = Vec::new();
+        for &v in &ring {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                if seen.insert(w) {
+                    next.push(w);
+                    if matches!(interior(map, w), Some(5 | 7)) {
+                        found.push(w);
+                    }
+                }
+            }
+        }
+        ring = next;
+    }
+    found
+}
+
 fn far_pair_move(case: &Case) -> Outcome {
-    let map = &case.mesh.map;
-    let odd: Vec<Vert> = map
-        .vertices()
-        .filter(|&v| matches!(interior(map, v), Some(5 | 7)))
-        .collect();
-    let mut sites = vertex_sites(case, 26, |k| k == 5 || k == 7);
-    sites.truncate(SITES / 4);
+    let sites = vertex_sites(case, 26, |k| k == 5 || k == 7);
     run(case, 26, sites, |before, work, d, rng| {
-        if odd.len() < 2 {
+        let s = before.origin(d);
+        // The other vertex: one of the three v5 / v7 nearest s.
+        let near = odd_near(before, s, 6);
+        if near.is_empty() {
             return Ok(false);
         }
-        let s = before.origin(d);
-        // The other vertex: one of the nearest few odd vertices, or any.
-        let o = odd[rng.below(odd.len())];
+        let o = near[rng.below(near.len().min(3))];
         let starts = Start::all(before.valence(s));
         if starts.is_empty() {
             return Ok(false);

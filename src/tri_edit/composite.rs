@@ -188,8 +188,8 @@ pub fn move_far_pair_with<A: VertexAttributes>(
 pub type FarStart = (Dart, Start, Moved);
 
 /// The reference dart at `s`: towards the neighbour nearest `o` (graph distance); of two
-/// such neighbours next to each other, the one clockwise first, so that the choice does
-/// not depend on the numbering.
+/// such neighbours next to each other, the later counter-clockwise, so that the choice
+/// does not depend on the numbering.
 fn reference(map: &Map, s: Vert, o: Vert) -> Dart {
     let darts: Vec<Dart> = map.vertex_darts(s).collect();
     let dist: Vec<usize> = darts
