@@ -13,7 +13,6 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 use zipmesh::gen::{cone_disk, geodesic_sphere, subdivided_bipyramid};
 use zipmesh::invariants::canonical::is_isomorphic;
-use zipmesh::ops::tri;
 use zipmesh::tri_edit::{move_pair, Direction};
 use zipmesh::{gen, io, Map, Mesh, Vert};
 
@@ -55,6 +54,28 @@ fn generate_from_undo(file: &Path, u: &Value, out: &Path) {
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
+/// Runs the `tri-move` that a report's `undo` (`pair`, `direction`, `steps`) names, on
+/// `file` into `out`; it must succeed.
+fn run_move_undo(file: &Path, undo: &Value, out: &Path) {
+    let (pair, d, k) = (
+        join(&numbers(&undo["pair"])),
+        undo["direction"].to_string(),
+        undo["steps"].to_string(),
+    );
+    let args = [
+        "tri-move",
+        s(file),
+        "--pair",
+        &pair,
+        "--direction",
+        &d,
+        "--steps",
+        &k,
+    ];
+    let o = zipmesh_to(&args, out);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// Distinct, irregular positions, so that "unchanged" compares real bits.
 fn with_positions(mut map: Map) -> Mesh {
     map.compact();
@@ -81,17 +102,7 @@ fn write(dir: &Path, name: &str, map: Map) -> PathBuf {
 /// three steps away from the other: a 5-7 pair in a regular neighbourhood. Returns the
 /// file and the pair's numbers in it (v5, v7).
 fn lone_pair_file(dir: &Path) -> (PathBuf, u32, u32) {
-    let n = 14;
-    let tris: Vec<[u32; 3]> = gen::torus_quads(n, n)
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    let mut map = Map::from_polygons(n * n, &tris).unwrap();
-    let d = map
-        .dart_between(Vert::new(0), Vert::new(n as u32 + 1))
-        .unwrap();
-    tri::flip_edge(&mut map, d).unwrap();
-    let (mut p, mut q) = (Vert::new(0), Vert::new(1));
+    let (mut map, (mut p, mut q)) = common::tri::flipped_torus(14);
     for _ in 0..3 {
         let m = move_pair(&mut map, p, q, Direction::SplitRight).unwrap();
         (p, q) = (m.p(), m.q());
@@ -185,20 +196,7 @@ fn tri_move_reports_and_undoes() {
                 let undo = &v["undo"];
                 assert_eq!(undo["direction"], (d + 3) % 6);
                 let back = dir.join(format!("u{d}-{steps}-{a}.obj"));
-                let o = zipmesh_to(
-                    &[
-                        "tri-move",
-                        s(&out),
-                        "--pair",
-                        &join(&numbers(&undo["pair"])),
-                        "--direction",
-                        &undo["direction"].to_string(),
-                        "--steps",
-                        &undo["steps"].to_string(),
-                    ],
-                    &back,
-                );
-                assert!(o.status.success(), "{}", stderr(&o));
+                run_move_undo(&out, undo, &back);
                 assert!(is_isomorphic(&read(&back).map, &input.map), "{d} x {steps}");
             }
         }
@@ -534,16 +532,7 @@ fn tri_move_composite_pairs() {
                 continue;
             }
             let back = dir.join(format!("fu{a}-{d}.obj"));
-            let args = [
-                "tri-move",
-                s(&out),
-                "--pair",
-                &join(&numbers(&undo["pair"])),
-                "--direction",
-                &undo["direction"].to_string(),
-            ];
-            let o = zipmesh_to(&args, &back);
-            assert!(o.status.success(), "{}", stderr(&o));
+            run_move_undo(&out, undo, &back);
             assert!(is_isomorphic(&read(&back).map, &input.map), "{a} {d}");
             undone += 1;
         }
