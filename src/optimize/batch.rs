@@ -10,6 +10,7 @@ use glam::DVec3;
 use super::constraints::Constraints;
 use super::defect::{singularities, Singularity};
 use super::score::{Bfs, Scorer};
+use super::BatchStats;
 use crate::qzip::{Path, Qzip, Tag, ZipReport};
 use crate::rng::Rng;
 use crate::{Mesh, Vert};
@@ -38,7 +39,7 @@ pub(crate) struct Candidate {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct BatchRun {
     pub(crate) qzips: usize,
-    pub(crate) candidates_tried: usize,
+    pub(crate) stats: BatchStats,
     pub(crate) paths: Vec<Vec<DVec3>>,
     /// Vertices near what the batch's Q-zips changed (for smoothing).
     pub(crate) scar: Vec<Vert>,
@@ -145,7 +146,7 @@ impl Batcher<'_> {
         s: Vert,
         defects: &[i64],
         total: f64,
-        tried: &mut usize,
+        stats: &mut BatchStats,
     ) -> Option<Candidate> {
         let mut best: Option<Candidate> = None;
         let _ = total;
@@ -153,13 +154,11 @@ impl Batcher<'_> {
             let Ok(path) = self.qzip.sketch(&mesh.map, s, t) else {
                 continue;
             };
-            let window = self.window(mesh, path.vertices().iter().copied());
-            let before = self.scorer.local(mesh, &window);
+            let before_window = self.window(mesh, path.vertices().iter().copied());
             for tag in TAGS {
                 let Some(z) = self.apply(mesh, &path, tag) else {
                     continue;
                 };
-                *tried += 1;
                 let saved = self.relax(mesh, z.record());
                 let r = z.record();
                 let seeds = path
@@ -171,18 +170,26 @@ impl Batcher<'_> {
                     .scar_faces()
                     .iter()
                     .map(|&f| mesh.map.origin(mesh.map.face_dart(f)));
-                let window = self.window(
+                let after_window = self.window(
                     mesh,
                     seeds
                         .chain(scar)
                         .filter(|&v| mesh.map.is_live_vertex(v))
                         .collect::<Vec<_>>(),
                 );
-                let delta = self.scorer.local(mesh, &window) - before;
+                // Both sides are read on the same vertex handles (the union of the two
+                // windows): a split lengthens distances and a collapse shortens them, so
+                // two separate 6-edge windows would cover less after a split and more
+                // after a collapse, and bias the ranking towards splits.
+                let window = union(&before_window, &after_window);
+                let after = self.scorer.local(mesh, &window);
+                let faces = z.record().vertex_delta();
                 for (v, p) in saved.into_iter().rev() {
                     mesh.positions[v.index()] = p;
                 }
                 let _ = z.undo(mesh);
+                let delta = after - self.scorer.local(mesh, &window);
+                stats.tried(faces, delta < -self.eps);
                 if delta < -self.eps && best.is_none_or(|b| delta < b.delta) {
                     best = Some(Candidate {
                         from: s,
@@ -217,7 +224,7 @@ impl Batcher<'_> {
         }
         let mut candidates: Vec<Candidate> = Vec::new();
         for &s in &order[..sample] {
-            let found = self.best_candidate(mesh, s, &defects, *total, &mut out.candidates_tried);
+            let found = self.best_candidate(mesh, s, &defects, *total, &mut out.stats);
             candidates.extend(found);
         }
         // Most negative first; ties keep sampling order (a stable sort).
@@ -278,6 +285,7 @@ impl Batcher<'_> {
             let _ = z.undo(mesh);
             return;
         }
+        out.stats.executed(z.record().vertex_delta());
         *total = after;
         out.qzips += 1;
         out.paths.push(points);
@@ -289,6 +297,14 @@ impl Batcher<'_> {
         out.scar.extend(region);
         self.refresh_constraints(mesh);
     }
+}
+
+/// The sorted union of two vertex sets.
+fn union(a: &[Vert], b: &[Vert]) -> Vec<Vert> {
+    let mut u: Vec<Vert> = a.iter().chain(b).copied().collect();
+    u.sort_unstable();
+    u.dedup();
+    u
 }
 
 /// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved
@@ -317,3 +333,4 @@ fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Vert> {
     out.dedup();
     out
 }
+
