@@ -1,5 +1,6 @@
 //! The runs of docs/results.md: `cargo run --release --example optimize_results`.
 //! Each row: mesh, counts before and after, batches, Q-zips, seconds, face count change.
+//! `ZIPMESH_WEIGHTS=name=w,...` changes weights; `ZIPMESH_TRACE=1` prints each batch's stats.
 use std::time::Instant;
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
@@ -26,7 +27,16 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
     let c = constraints(&mesh);
     let check = c.clone();
     let t = Instant::now();
-    let out = optimize(&mut mesh, c, options(), |_| {});
+    let trace = std::env::var_os("ZIPMESH_TRACE").is_some();
+    let out = optimize(&mut mesh, c, options(), |b| {
+        if trace {
+            let c = b.counts;
+            eprintln!(
+                "{name} batch {}: {} Q-zips, v3/v5/v6+ {}/{}/{}, faces {}, {:?}",
+                b.batch, b.qzips, c.v3, c.v5, c.v6plus, c.faces, b.stats
+            );
+        }
+    });
     assert!(check.holds(&mesh), "{name}: a constraint broke");
     let secs = t.elapsed().as_secs_f64();
     let Ok(out) = out else {

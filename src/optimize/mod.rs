@@ -36,7 +36,7 @@ use crate::{Mesh, Vert};
 /// smoothing. Start from [`OptimizeOptions::default`] and chain the setters.
 ///
 /// The default weights: count 1, electric 0.1, isotropy 0.002, sizing 0.002, separatrix
-/// 0.05, faces 0 (see `docs/optimize.md` for why the count dominates and how the weights
+/// 0.05, faces 0.01 (see `docs/optimize.md` for why the count dominates and how the weights
 /// were chosen). A weight of 0 switches a term off.
 ///
 /// ```
@@ -82,7 +82,7 @@ impl Default for OptimizeOptions {
                 (0.002, Box::new(Isotropy)),
                 (0.002, Box::new(Sizing)),
                 (0.05, Box::new(Separatrix::default())),
-                (0.0, Box::new(FaceBudget)),
+                (0.01, Box::new(FaceBudget)),
             ],
         }
     }
