@@ -121,7 +121,7 @@ fn main() {
             (weights[2], Box::new(Isotropy)),
             (weights[3], Box::new(Sizing)),
             (weights[4], Box::new(Separatrix::default())),
-            (weights[5], Box::new(FaceBudget)),
+            (weights[5], Box::new(FaceBudget::default())),
         ],
         area: mean_area(&mesh),
         faces: input_faces,
@@ -136,6 +136,8 @@ fn main() {
     let base = terms.parts(&mesh);
     let (mut no_path, mut refused, mut ok, mut cancel, mut cancel_wins) = (0, 0, 0, 0, 0);
     let mut blocker = [0usize; 6];
+    let mut lowering = 0;
+    let mut best: Option<(f64, Vec<f64>)> = None;
     let mut opposite_dist = Vec::new();
     for s in &sing {
         let ts = targets(&mesh, s.vertex, &defect);
@@ -158,6 +160,13 @@ fn main() {
                     continue;
                 };
                 ok += 1;
+                let p = terms.parts(&mesh);
+                let d: Vec<f64> = p.iter().zip(&base).map(|(a, b)| a - b).collect();
+                let total: f64 = d.iter().sum();
+                lowering += usize::from(total < 0.0);
+                if best.as_ref().is_none_or(|(t, _)| total < *t) {
+                    best = Some((total, d));
+                }
                 let after = SingularityCounts::of(&mesh).singularities();
                 if after < c.singularities() {
                     cancel += 1;
@@ -188,6 +197,15 @@ fn main() {
         "candidates: {no_path} pairs without a path, {refused} movements refused, {ok} applied, \
          {cancel} cancel, {cancel_wins} of them lower the score (no relaxation)"
     );
+    println!("{lowering} applied movements lower the whole-mesh score (before relaxation)");
+    if let Some((t, d)) = best {
+        let parts: Vec<String> = names
+            .iter()
+            .zip(&d)
+            .map(|(n, x)| format!("{n} {x:+.4}"))
+            .collect();
+        println!("best movement: {t:+.4} = {}", parts.join(", "));
+    }
     for (n, b) in names.iter().zip(blocker) {
         if b > 0 {
             println!("  cancelling movements lost mostly to {n}: {b}");

@@ -5,9 +5,13 @@ use std::time::Instant;
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
 
-/// The options: 40 batches, with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
+/// The options: 40 batches (or `ZIPMESH_BATCHES`), with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
 fn options() -> OptimizeOptions {
-    let mut o = OptimizeOptions::default().batches(40);
+    let batches = std::env::var("ZIPMESH_BATCHES")
+        .ok()
+        .and_then(|b| b.parse().ok())
+        .unwrap_or(40);
+    let mut o = OptimizeOptions::default().batches(batches);
     if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
         for pair in w.split(',').filter(|p| !p.is_empty()) {
             if let Some((n, x)) = pair.split_once('=') {

@@ -24,7 +24,9 @@ use glam::DVec3;
 
 pub use constraints::{ConstraintError, Constraints};
 pub use defect::{defect, ideal_boundary_valence, singularities, vertex_angle, Singularity};
-pub use score::{Context, Count, Electric, FaceBudget, Isotropy, ScoreTerm, Separatrix, Sizing};
+pub use score::{
+    Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
+};
 pub use smooth::{smooth, spring_stiffness, Surface};
 
 use crate::invariants::{Counts, MeshKind};
@@ -82,7 +84,7 @@ impl Default for OptimizeOptions {
                 (0.002, Box::new(Isotropy)),
                 (0.002, Box::new(Sizing)),
                 (0.05, Box::new(Separatrix::default())),
-                (0.01, Box::new(FaceBudget)),
+                (0.01, Box::new(FaceBudget::default())),
             ],
         }
     }
