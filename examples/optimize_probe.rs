@@ -57,6 +57,7 @@ impl Terms {
             target_area: self.area,
             target_faces: self.faces,
             faces: None,
+            walls: true,
         };
         self.terms
             .iter_mut()

@@ -378,7 +378,7 @@ mod tests {
         ];
         let mut b = Batcher {
             qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
-            scorer: Scorer { terms, features: Vec::new(), target_area: 0.05, target_faces: 300 },
+            scorer: Scorer { terms, features: Vec::new(), target_area: 0.05, target_faces: 300, walls: false },
             constraints: Constraints::default(),
             locked: Vec::new(),
             bfs: Bfs::default(),

@@ -396,6 +396,8 @@ pub fn optimize(
         features: Vec::new(),
         target_area: mean_face_area(mesh),
         target_faces: input_faces,
+        walls: mesh.map.vertices().any(|v| mesh.map.is_boundary_vertex(v))
+            || constraints.feature_vertices().next().is_some(),
     };
     let before = Counts::of(&mesh.map);
     let mut b = batch::Batcher {

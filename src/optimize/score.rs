@@ -33,6 +33,9 @@ pub struct Context<'a> {
     /// When set, the faces whose terms are summed (a window around a candidate);
     /// `singularities` is then the window's too.
     pub faces: Option<&'a [crate::Face]>,
+    /// Whether the mesh may have boundary or feature vertices; `false` lets [`Electric`]
+    /// skip its search for a wall (on a closed mesh without features it never finds one).
+    pub walls: bool,
 }
 
 impl Context<'_> {
@@ -100,7 +103,7 @@ pub trait ScoreTerm: core::fmt::Debug {
 /// use zipmesh::{gen, optimize::{singularities, Context, Count, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert_eq!(Count.score(&ctx), 32.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -129,7 +132,7 @@ impl ScoreTerm for Count {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, FaceBudget, ScoreTerm}};
 /// let m = gen::grid(3, 3); // 9 faces
-/// let at = |f0| FaceBudget::default().score(&Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: f0, faces: None });
+/// let at = |f0| FaceBudget::default().score(&Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: f0, faces: None, walls: true });
 /// assert_eq!(at(9), 0.0);
 /// assert_eq!(at(100), 91.0 + 100.0 * 86.0); // 91 faces off, 86 of them past 5 % of 100
 /// ```
@@ -241,7 +244,7 @@ impl Bfs {
 /// use zipmesh::{gen, optimize::{singularities, Context, Electric, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// // Each v5 is one edge from a v3: attraction wins.
 /// assert!(Electric::default().score(&ctx) < 0.0);
 /// ```
@@ -318,7 +321,8 @@ impl ScoreTerm for Electric {
         let mut total = 0.0;
         for s in ctx.singularities {
             let q = s.charge();
-            let (mut found, mut wall) = (0, s.boundary);
+            // No wall to find: as if found, so the search stops at the third singularity.
+            let (mut found, mut wall) = (0, s.boundary || !ctx.walls);
             let (bw, br) = (self.boundary_weight, self.boundary_radius);
             let (pot, radius) = (self.potential, self.radius);
             self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
@@ -349,7 +353,7 @@ impl ScoreTerm for Electric {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Isotropy, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert_eq!(Isotropy.score(&ctx), 0.0); // unit squares
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -385,7 +389,7 @@ impl ScoreTerm for Isotropy {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Sizing, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None });
+/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None, walls: true });
 /// assert_eq!(at(1.0), 0.0);
 /// assert!(at(2.0) > 0.0);
 /// ```
@@ -418,7 +422,7 @@ impl ScoreTerm for Sizing {
 /// use zipmesh::{gen, optimize::{singularities, Context, Separatrix, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(2);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert!(Separatrix::default().score(&ctx) >= 0.0);
 /// ```
 #[derive(Clone, Debug)]
@@ -506,6 +510,8 @@ pub(crate) struct Scorer {
     pub(crate) features: Vec<bool>,
     pub(crate) target_area: f64,
     pub(crate) target_faces: usize,
+    /// Whether the mesh has a boundary or features ([`Context::walls`]).
+    pub(crate) walls: bool,
 }
 
 impl Scorer {
@@ -519,6 +525,7 @@ impl Scorer {
             target_area: self.target_area,
             target_faces: self.target_faces,
             faces: None,
+            walls: self.walls,
         };
         let mut parts = vec![0.0; self.terms.len()];
         let mut total = 0.0;
@@ -559,6 +566,7 @@ impl Scorer {
             target_area: self.target_area,
             target_faces: self.target_faces,
             faces: Some(&faces),
+            walls: self.walls,
         };
         self.terms
             .iter_mut()
