@@ -127,7 +127,14 @@ fn main() {
         area: mean_area(&mesh),
         faces: input_faces,
     };
-    let names = ["count", "electric", "isotropy", "sizing", "separatrix", "faces"];
+    let names = [
+        "count",
+        "electric",
+        "isotropy",
+        "sizing",
+        "separatrix",
+        "faces",
+    ];
     let sing = singularities(&mesh);
     let mut defect = vec![0i64; mesh.map.vertex_slots()];
     for s in &sing {
@@ -176,9 +183,7 @@ fn main() {
                     if d.iter().sum::<f64>() < 0.0 {
                         cancel_wins += 1;
                     } else {
-                        let worst = (1..6)
-                            .max_by(|&i, &j| d[i].total_cmp(&d[j]))
-                            .unwrap_or(0);
+                        let worst = (1..6).max_by(|&i, &j| d[i].total_cmp(&d[j])).unwrap_or(0);
                         blocker[worst] += 1;
                     }
                 }

@@ -5,13 +5,17 @@ use std::time::Instant;
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
 
-/// The options: 40 batches (or `ZIPMESH_BATCHES`), with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
+/// The options: 40 batches (or `ZIPMESH_BATCHES`), seed 0 (or `ZIPMESH_SEED`), with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
 fn options() -> OptimizeOptions {
     let batches = std::env::var("ZIPMESH_BATCHES")
         .ok()
         .and_then(|b| b.parse().ok())
         .unwrap_or(40);
-    let mut o = OptimizeOptions::default().batches(batches);
+    let seed = std::env::var("ZIPMESH_SEED")
+        .ok()
+        .and_then(|b| b.parse().ok())
+        .unwrap_or(0);
+    let mut o = OptimizeOptions::default().batches(batches).seed(seed);
     if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
         for pair in w.split(',').filter(|p| !p.is_empty()) {
             if let Some((n, x)) = pair.split_once('=') {
@@ -59,11 +63,14 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
     );
 }
 
-/// The rows by name: (short name, label, how to make the mesh).
-fn inputs() -> Vec<(String, String, Box<dyn Fn() -> Option<Mesh>>)> {
+/// A row: its short name, its label, how to make its mesh.
+type Input = (String, String, Box<dyn Fn() -> Option<Mesh>>);
+
+/// The rows by name.
+fn inputs() -> Vec<Input> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
     let file = move |f: &str| io::read_mesh(format!("{dir}/{f}")).ok().map(|m| m.0);
-    let mut rows: Vec<(String, String, Box<dyn Fn() -> Option<Mesh>>)> = Vec::new();
+    let mut rows: Vec<Input> = Vec::new();
     for g in [2, 3, 4] {
         rows.push((
             format!("genus{g}"),
