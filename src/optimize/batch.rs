@@ -145,19 +145,11 @@ impl Batcher<'_> {
         }
     }
 
-    /// Tries one movement along `path`: applies it, relaxes its scar, reads the score on
-    /// the union of `before_window` (the window of the path before) and the window after,
-    /// undoes it. Returns the score change and the face change, or `None` if the movement
-    /// is not realizable or breaks a constraint.
-    fn try_candidate(
-        &mut self,
-        mesh: &mut Mesh,
-        path: &Path,
-        before_window: &[(Vert, u32)],
-        tag: Tag,
-    ) -> Option<(f64, isize)> {
+    /// The window of `path` after the movement `tag` (applied and undone; the relaxation
+    /// moves no edge, so it is left out), or `None` if the movement is not realizable or
+    /// breaks a constraint.
+    fn window_after(&mut self, mesh: &mut Mesh, path: &Path, tag: Tag) -> Option<Vec<(Vert, u32)>> {
         let z = self.apply(mesh, path, tag)?;
-        let saved = self.relax(mesh, z.record());
         let r = z.record();
         let map = &mesh.map;
         let seeds: Vec<Vert> = path
@@ -168,20 +160,60 @@ impl Batcher<'_> {
             .chain(r.scar_faces().iter().map(|&f| map.origin(map.face_dart(f))))
             .filter(|&v| map.is_live_vertex(v))
             .collect();
-        let after_window = self.window(mesh, seeds);
-        // Both sides are read on the same vertex handles (the union of the two windows): a
-        // split lengthens distances and a collapse shortens them, so two separate 6-edge
-        // windows cover less after a split and more after a collapse, and biased the
-        // ranking towards splits (docs/optimize.md, "Scoring a candidate").
-        let window = union(before_window, &after_window);
-        let after = self.scorer.local(mesh, &window);
+        let w = self.window(mesh, seeds);
+        // An exact undo of an edit just made cannot be refused.
+        let _ = z.undo(mesh);
+        Some(w)
+    }
+
+    /// The score over `window` after the movement `tag` and its scar's relaxation (then
+    /// undone), and the movement's face change.
+    fn score_after(
+        &mut self,
+        mesh: &mut Mesh,
+        path: &Path,
+        tag: Tag,
+        window: &[(Vert, u32)],
+    ) -> Option<(f64, isize)> {
+        let z = self.apply(mesh, path, tag)?;
+        let saved = self.relax(mesh, z.record());
+        let after = self.scorer.local(mesh, window);
         let faces = z.record().vertex_delta();
         for (v, p) in saved.into_iter().rev() {
             mesh.positions[v.index()] = p;
         }
-        // An exact undo of an edit just made cannot be refused.
         let _ = z.undo(mesh);
-        Some((after - self.scorer.local(mesh, &window), faces))
+        Some((after, faces))
+    }
+
+    /// Tries the four movements along `path` ([`TAGS`] order): for each, the score change
+    /// and the face change, or `None` if it is not realizable or breaks a constraint.
+    ///
+    /// All of them are read on one window, the union of the path's window before and of
+    /// every movement's window after: a split lengthens distances and a collapse shortens
+    /// them, so separate windows before and after covered less after a split and more after
+    /// a collapse, and biased the ranking towards splits (docs/optimize.md, "Scoring a
+    /// candidate"). One window for the four also scores the mesh before only once.
+    fn try_path(&mut self, mesh: &mut Mesh, path: &Path) -> [Option<(f64, isize)>; 4] {
+        let mut window = self.window(mesh, path.vertices().iter().copied());
+        let mut ok = [false; 4];
+        for (i, tag) in TAGS.into_iter().enumerate() {
+            if let Some(w) = self.window_after(mesh, path, tag) {
+                window = union(&window, &w);
+                ok[i] = true;
+            }
+        }
+        let mut out = [None; 4];
+        if !ok.iter().any(|&x| x) {
+            return out;
+        }
+        for (i, tag) in TAGS.into_iter().enumerate() {
+            if ok[i] {
+                out[i] = self.score_after(mesh, path, tag, &window);
+            }
+        }
+        let before = self.scorer.local(mesh, &window);
+        out.map(|x| x.map(|(after, faces)| (after - before, faces)))
     }
 
     /// The best of the 24 candidates of `s` (score change, most negative first), if any
@@ -198,10 +230,8 @@ impl Batcher<'_> {
             let Ok(path) = self.qzip.sketch(&mesh.map, s, t) else {
                 continue;
             };
-            let before_window = self.window(mesh, path.vertices().iter().copied());
-            for tag in TAGS {
-                let Some((delta, faces)) = self.try_candidate(mesh, &path, &before_window, tag)
-                else {
+            for (tag, tried) in TAGS.into_iter().zip(self.try_path(mesh, &path)) {
+                let Some((delta, faces)) = tried else {
                     continue;
                 };
                 stats.tried(faces, delta < -self.eps);
@@ -231,7 +261,7 @@ impl Batcher<'_> {
         for s in &sing {
             defects[s.vertex.index()] = s.defect;
         }
-                let mut order: Vec<Vert> = sing.iter().map(|s| s.vertex).collect();
+        let mut order: Vec<Vert> = sing.iter().map(|s| s.vertex).collect();
         // Half, as the paper; all of them once few are left, where a half-sample often
         // misses the one improving candidate and idle batches end the run early.
         let sample = if order.len() <= FULL_SAMPLE {
@@ -355,7 +385,6 @@ fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Vert> {
     out
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -378,7 +407,13 @@ mod tests {
         ];
         let mut b = Batcher {
             qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
-            scorer: Scorer { terms, features: Vec::new(), target_area: 0.05, target_faces: 300, walls: false },
+            scorer: Scorer {
+                terms,
+                features: Vec::new(),
+                target_area: 0.05,
+                target_faces: 300,
+                walls: false,
+            },
             constraints: Constraints::default(),
             locked: Vec::new(),
             bfs: Bfs::default(),
@@ -397,13 +432,13 @@ mod tests {
                 let Ok(path) = b.qzip.sketch(&mesh.map, s.vertex, t) else {
                     continue;
                 };
-                let w = b.window(&mesh, path.vertices().iter().copied());
-                for tag in TAGS {
-                    let before = mesh.clone();
-                    let Some((delta, faces)) = b.try_candidate(&mut mesh, &path, &w, tag) else {
+                let before = mesh.clone();
+                let tried = b.try_path(&mut mesh, &path);
+                assert_eq!(mesh, before, "a candidate was not undone exactly");
+                for (tag, tried) in TAGS.into_iter().zip(tried) {
+                    let Some((delta, faces)) = tried else {
                         continue;
                     };
-                    assert_eq!(mesh, before, "the candidate was not undone exactly");
                     let z = b.apply(&mut mesh, &path, tag).unwrap();
                     let saved = b.relax(&mut mesh, z.record());
                     let exact_after = b.scorer.score(&mesh).0;
@@ -412,13 +447,19 @@ mod tests {
                     }
                     z.undo(&mut mesh).unwrap();
                     let exact = exact_after - b.scorer.score(&mesh).0;
-                    assert!((delta - exact).abs() < 1e-6 * (1.0 + exact.abs()), "{delta} vs {exact}");
+                    assert!(
+                        (delta - exact).abs() < 1e-6 * (1.0 + exact.abs()),
+                        "{delta} vs {exact}"
+                    );
                     checked += 1;
                     adding += usize::from(faces > 0);
                     removing += usize::from(faces < 0);
                 }
             }
         }
-        assert!(checked > 50 && adding > 5 && removing > 5, "{checked} {adding} {removing}");
+        assert!(
+            checked > 50 && adding > 5 && removing > 5,
+            "{checked} {adding} {removing}"
+        );
     }
 }
