@@ -1,12 +1,21 @@
 //! The runs of docs/results.md: `cargo run --release --example optimize_results`.
 //! Each row: mesh, counts before and after, batches, Q-zips, seconds, face count change.
+//! `ZIPMESH_WEIGHTS=name=w,...` changes weights; `ZIPMESH_TRACE=1` prints each batch's stats.
 use std::time::Instant;
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
 
-/// The options: 40 batches, with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
+/// The options: 40 batches (or `ZIPMESH_BATCHES`), seed 0 (or `ZIPMESH_SEED`), with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
 fn options() -> OptimizeOptions {
-    let mut o = OptimizeOptions::default().batches(40);
+    let batches = std::env::var("ZIPMESH_BATCHES")
+        .ok()
+        .and_then(|b| b.parse().ok())
+        .unwrap_or(40);
+    let seed = std::env::var("ZIPMESH_SEED")
+        .ok()
+        .and_then(|b| b.parse().ok())
+        .unwrap_or(0);
+    let mut o = OptimizeOptions::default().batches(batches).seed(seed);
     if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
         for pair in w.split(',').filter(|p| !p.is_empty()) {
             if let Some((n, x)) = pair.split_once('=') {
@@ -26,7 +35,16 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
     let c = constraints(&mesh);
     let check = c.clone();
     let t = Instant::now();
-    let out = optimize(&mut mesh, c, options(), |_| {});
+    let trace = std::env::var_os("ZIPMESH_TRACE").is_some();
+    let out = optimize(&mut mesh, c, options(), |b| {
+        if trace {
+            let c = b.counts;
+            eprintln!(
+                "{name} batch {}: {} Q-zips, v3/v5/v6+ {}/{}/{}, faces {}, {:?}",
+                b.batch, b.qzips, c.v3, c.v5, c.v6plus, c.faces, b.stats
+            );
+        }
+    });
     assert!(check.holds(&mesh), "{name}: a constraint broke");
     let secs = t.elapsed().as_secs_f64();
     let Ok(out) = out else {
@@ -45,68 +63,66 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
     );
 }
 
+/// A row: its short name, its label, how to make its mesh.
+type Input = (String, String, Box<dyn Fn() -> Option<Mesh>>);
+
+/// The rows by name.
+fn inputs() -> Vec<Input> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    let file = move |f: &str| io::read_mesh(format!("{dir}/{f}")).ok().map(|m| m.0);
+    let mut rows: Vec<Input> = Vec::new();
+    for g in [2, 3, 4] {
+        rows.push((
+            format!("genus{g}"),
+            format!("CC of random triangle mesh, genus {g}, ~300 tris"),
+            Box::new(move || Some(gen::catmull_clark(&gen::random_triangle(300, g, 0, 1)))),
+        ));
+    }
+    for (short, f) in [
+        ("spot", "quad/spot_quadrangulated.obj"),
+        ("blub", "quad/blub_quadrangulated.obj"),
+        ("cubespikes", "quad/cubespikes.obj"),
+        ("torus", "quad/osd_catmark_torus.obj"),
+        ("tet", "quad/osd_catmark_toroidal_tet.obj"),
+        ("helmet", "quad/osd_catmark_helmet.obj"),
+    ] {
+        rows.push((short.into(), f.into(), Box::new(move || file(f))));
+    }
+    for (short, f) in [
+        ("tritorus", "tri/torus.obj"),
+        ("disk", "tri/circle_disk.obj"),
+        ("spottri", "tri/spot_triangulated.obj"),
+    ] {
+        rows.push((
+            short.into(),
+            format!("CC of {f}"),
+            Box::new(move || file(f).map(|m| gen::catmull_clark(&m))),
+        ));
+    }
+    rows
+}
+
+/// No argument: every row but the 17,568-quad Spot; a row's short name (or several, or
+/// `constraints`, or `all`): those rows.
 fn main() {
-    let only = std::env::args().nth(1).unwrap_or_default();
-    if only == "genus3" {
-        row(
-            "genus 3",
-            gen::catmull_clark(&gen::random_triangle(300, 3, 0, 1)),
-        );
-        return;
-    }
-    if only == "disk" {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
-        let m = io::read_mesh(format!("{dir}/tri/circle_disk.obj"))
-            .unwrap()
-            .0;
-        row("CC of tri/circle_disk.obj", gen::catmull_clark(&m));
-        return;
-    }
-    if only == "constraints" {
-        constraint_rows();
-        return;
-    }
-    if only == "spot" {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
-        row(
-            "spot",
-            io::read_mesh(format!("{dir}/quad/spot_quadrangulated.obj"))
-                .unwrap()
-                .0,
-        );
-        return;
-    }
+    let args: Vec<String> = std::env::args().skip(1).collect();
     println!("| mesh | before v2/v3/v5/v6+ (total) boundary defects | after | batches | Q-zips | seconds (per batch) | faces |");
     println!("|---|---|---|---|---|---|---|");
-    for g in [2, 3, 4] {
-        row(
-            &format!("CC of random triangle mesh, genus {g}, ~{} tris", 300),
-            gen::catmull_clark(&gen::random_triangle(300, g, 0, 1)),
-        );
-    }
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
-    for f in [
-        "quad/spot_quadrangulated.obj",
-        "quad/blub_quadrangulated.obj",
-        "quad/cubespikes.obj",
-        "quad/osd_catmark_torus.obj",
-        "quad/osd_catmark_toroidal_tet.obj",
-        "quad/osd_catmark_helmet.obj",
-    ] {
-        match io::read_mesh(format!("{dir}/{f}")) {
-            Ok((m, _)) => row(f, m),
-            Err(e) => println!("| {f} | {e} |"),
+    for (short, label, make) in inputs() {
+        let wanted = if args.is_empty() {
+            short != "spottri"
+        } else {
+            args.iter().any(|a| *a == short || a == "all")
+        };
+        if wanted {
+            match make() {
+                Some(m) => row(&label, m),
+                None => println!("| {label} | unreadable | | | | | |"),
+            }
         }
     }
-    for f in [
-        "tri/torus.obj",
-        "tri/spot_triangulated.obj",
-        "tri/circle_disk.obj",
-    ] {
-        match io::read_mesh(format!("{dir}/{f}")) {
-            Ok((m, _)) => row(&format!("CC of {f}"), gen::catmull_clark(&m)),
-            Err(e) => println!("| {f} | {e} |"),
-        }
+    if args.iter().any(|a| a == "constraints" || a == "all") || args.is_empty() {
+        constraint_rows();
     }
 }
 

@@ -62,6 +62,12 @@ fn json_counts_match_a_recount_of_out() {
         assert_eq!(b["batch"], i + 1);
         let paths = b["paths"].as_array().unwrap();
         assert_eq!(paths.len() as u64, b["qzips"].as_u64().unwrap());
+        if i > 0 {
+            // The executed Q-zips' face change is the batch's (smoothing changes no face).
+            let faces = |x: &Value| x["faces"].as_i64().unwrap();
+            let change = faces(b) - faces(&batches[i - 1]);
+            assert_eq!(b["face_change"].as_i64(), Some(change), "batch {}", i + 1);
+        }
     }
     assert!(v["seconds"].as_f64().unwrap() >= 0.0);
 }

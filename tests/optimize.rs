@@ -116,7 +116,9 @@ proptest! {
 }
 
 /// On a genus-3 mesh after one Catmull-Clark step (the paper's robustness test, Fig. 17, at
-/// a small size) the batches remove most singularities.
+/// a small size) the batches remove at least the paper's 55 % of the singularities (it
+/// reports 55-90 % on real meshes) while the face count stays within 10 % of the input's
+/// (the goal of issue 12), and Gauss-Bonnet still holds.
 #[test]
 fn removes_most_singularities_of_a_subdivided_genus_3_mesh() {
     let mut mesh = subdivided(300, 3, 0, 1);
@@ -124,10 +126,35 @@ fn removes_most_singularities_of_a_subdivided_genus_3_mesh() {
     let out = run(&mut mesh, Constraints::default(), 40, 0);
     let after = out.final_counts;
     assert!(
-        after.singularities() * 2 < before.singularities(),
+        after.singularities() * 100 <= before.singularities() * 45,
         "{before:?} -> {after:?}"
     );
+    assert!(
+        after.faces.abs_diff(before.faces) * 10 <= before.faces,
+        "faces {} -> {}",
+        before.faces,
+        after.faces
+    );
     assert!(gauss_bonnet(&mesh.map, MeshKind::Quad).holds());
+}
+
+/// Each batch's stats add up: every candidate is counted once by the sign of its face
+/// change, the executed Q-zips are the batch's, and their face change is the batch's change
+/// of the face count (the smoothing changes no face).
+#[test]
+fn batch_stats_account_for_the_face_change() {
+    let mut mesh = subdivided(200, 2, 0, 4);
+    let out = run(&mut mesh, Constraints::default(), 6, 1);
+    let mut faces = out.batches[0].counts.faces as isize - out.batches[0].stats.face_change;
+    for b in &out.batches {
+        let s = b.stats;
+        assert_eq!(s.candidates, b.candidates);
+        assert_eq!(s.candidates, s.removing.0 + s.keeping.0 + s.adding.0);
+        assert!(s.removing.1 <= s.removing.0 && s.adding.1 <= s.adding.0);
+        assert_eq!(b.qzips, s.executed.0 + s.executed.1 + s.executed.2);
+        faces += s.face_change;
+        assert_eq!(faces, b.counts.faces as isize, "batch {}", b.batch);
+    }
 }
 
 /// A mesh without singularities is left as it is (no batch finds a candidate).

@@ -2,8 +2,8 @@
 //! triangle mesh, or a random quad mesh), with a fuzzer-chosen seed, batch count, smoothing
 //! switch and a few protected faces and feature edges. The library must never panic; the
 //! oracle: a valid pure-quad map with the input's Euler characteristic, boundary loops and
-//! components, a score that never rises, counts that match a recount, and the constraints
-//! holding.
+//! components, a score that never rises, counts that match a recount, batch stats whose
+//! face change is the batch's, and the constraints holding.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -61,9 +61,13 @@ fuzz_target!(|data: &[u8]| {
     );
     assert!(mesh.map.faces().all(|f| mesh.map.degree(f) == 4));
     let mut last = out.initial_score;
-    for b in &out.batches {
+    for (i, b) in out.batches.iter().enumerate() {
         assert!(b.score <= last, "the score rose");
         last = b.score;
+        if let Some(prev) = i.checked_sub(1).map(|j| &out.batches[j]) {
+            let change = b.counts.faces as isize - prev.counts.faces as isize;
+            assert_eq!(change, b.stats.face_change, "the stats miss a face change");
+        }
     }
     assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
     assert!(check.holds(&mesh), "a constraint broke");

@@ -24,7 +24,9 @@ use glam::DVec3;
 
 pub use constraints::{ConstraintError, Constraints};
 pub use defect::{defect, ideal_boundary_valence, singularities, vertex_angle, Singularity};
-pub use score::{Context, Count, Electric, FaceBudget, Isotropy, ScoreTerm, Separatrix, Sizing};
+pub use score::{
+    Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
+};
 pub use smooth::{smooth, spring_stiffness, Surface};
 
 use crate::invariants::{Counts, MeshKind};
@@ -36,7 +38,7 @@ use crate::{Mesh, Vert};
 /// smoothing. Start from [`OptimizeOptions::default`] and chain the setters.
 ///
 /// The default weights: count 1, electric 0.1, isotropy 0.002, sizing 0.002, separatrix
-/// 0.05, faces 0 (see `docs/optimize.md` for why the count dominates and how the weights
+/// 0.05, faces 0.01 (see `docs/optimize.md` for why the count dominates and how the weights
 /// were chosen). A weight of 0 switches a term off.
 ///
 /// ```
@@ -82,7 +84,7 @@ impl Default for OptimizeOptions {
                 (0.002, Box::new(Isotropy)),
                 (0.002, Box::new(Sizing)),
                 (0.05, Box::new(Separatrix::default())),
-                (0.0, Box::new(FaceBudget)),
+                (0.01, Box::new(FaceBudget::default())),
             ],
         }
     }
@@ -204,6 +206,57 @@ impl SingularityCounts {
     }
 }
 
+/// Where a batch's face changes came from: its candidates by sign of their face change
+/// (a Q-zip changes the face count by its splits minus its collapses, plus its clean-up),
+/// those that the window estimate ranked as improving, and the executed ones.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+/// let mut mesh = gen::catmull_clark(&gen::random_triangle(60, 1, 0, 3));
+/// let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().batches(2), |_| {}).unwrap();
+/// let s = out.batches[0].stats;
+/// assert_eq!(s.candidates, s.removing.0 + s.keeping.0 + s.adding.0);
+/// assert_eq!(out.batches[0].qzips, s.executed.0 + s.executed.1 + s.executed.2);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct BatchStats {
+    /// Candidates tried (applied, scored, undone).
+    pub candidates: usize,
+    /// Candidates that removed faces: (tried, ranked improving).
+    pub removing: (usize, usize),
+    /// Candidates that kept the face count: (tried, ranked improving).
+    pub keeping: (usize, usize),
+    /// Candidates that added faces: (tried, ranked improving).
+    pub adding: (usize, usize),
+    /// Executed Q-zips that removed, kept and added faces.
+    pub executed: (usize, usize, usize),
+    /// The executed Q-zips' total face change.
+    pub face_change: isize,
+}
+
+impl BatchStats {
+    fn tried(&mut self, faces: isize, improving: bool) {
+        self.candidates += 1;
+        let slot = match faces.signum() {
+            -1 => &mut self.removing,
+            0 => &mut self.keeping,
+            _ => &mut self.adding,
+        };
+        slot.0 += 1;
+        slot.1 += usize::from(improving);
+    }
+
+    fn executed(&mut self, faces: isize) {
+        match faces.signum() {
+            -1 => self.executed.0 += 1,
+            0 => self.executed.1 += 1,
+            _ => self.executed.2 += 1,
+        }
+        self.face_change += faces;
+    }
+}
+
 /// What one batch did.
 ///
 /// See [`optimize`] for an example.
@@ -216,6 +269,8 @@ pub struct BatchReport {
     pub qzips: usize,
     /// Candidate surgeries applied, scored and undone.
     pub candidates: usize,
+    /// How the candidates and the executed Q-zips changed the face count.
+    pub stats: BatchStats,
     /// The counts after the batch (and its smoothing).
     pub counts: SingularityCounts,
     /// The total score after the batch.
@@ -325,6 +380,7 @@ pub fn optimize(
         return Err(OptimizeError::ConstraintsBroken);
     }
     let input = SingularityCounts::of(mesh);
+    let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
     let mut preprocessed = false;
     if options.preprocess {
@@ -339,7 +395,9 @@ pub fn optimize(
         terms: options.terms,
         features: Vec::new(),
         target_area: mean_face_area(mesh),
-        target_faces: mesh.map.num_faces(),
+        target_faces: input_faces,
+        walls: mesh.map.vertices().any(|v| mesh.map.is_boundary_vertex(v))
+            || constraints.feature_vertices().next().is_some(),
     };
     let before = Counts::of(&mesh.map);
     let mut b = batch::Batcher {
@@ -372,7 +430,8 @@ pub fn optimize(
         let report = BatchReport {
             batch: i,
             qzips: run.qzips,
-            candidates: run.candidates_tried,
+            candidates: run.stats.candidates,
+            stats: run.stats,
             counts: SingularityCounts::of(mesh),
             score: total,
             smoothed,

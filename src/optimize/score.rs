@@ -28,11 +28,14 @@ pub struct Context<'a> {
     pub features: &'a [bool],
     /// The mean face area of the input: the size the sizing term aims for.
     pub target_area: f64,
-    /// The input's face count (after preprocessing): what [`FaceBudget`] keeps.
+    /// The input's face count (before preprocessing): what [`FaceBudget`] keeps.
     pub target_faces: usize,
     /// When set, the faces whose terms are summed (a window around a candidate);
     /// `singularities` is then the window's too.
     pub faces: Option<&'a [crate::Face]>,
+    /// Whether the mesh may have boundary or feature vertices; `false` lets [`Electric`]
+    /// skip its search for a wall (on a closed mesh without features it never finds one).
+    pub walls: bool,
 }
 
 impl Context<'_> {
@@ -100,7 +103,7 @@ pub trait ScoreTerm: core::fmt::Debug {
 /// use zipmesh::{gen, optimize::{singularities, Context, Count, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert_eq!(Count.score(&ctx), 32.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -118,26 +121,46 @@ impl ScoreTerm for Count {
     }
 }
 
-/// The face budget: `|F - F0|`, the change of the face count from the input's. Not a term of
-/// the paper (see `docs/optimize.md`): a Q-zip that cancels singularities by long strips of
-/// splits adds quads, and this keeps the overall density where the input had it. Whole-mesh
-/// and O(1), also in a window.
+/// The face budget: `|F - F0| + steepness * max(0, |F - F0| - tolerance * F0)`, the change
+/// of the face count from the input's, much steeper outside a band of `tolerance` (a
+/// fraction of `F0`). Not a term of the paper (see `docs/optimize.md`): inside the band
+/// it prefers, among cancelling Q-zips, the ones that keep the density (at weight 0.01 a
+/// face costs 0.01, a cancelled pair gains 2); outside it a face costs as much as a
+/// singularity (at the default steepness 100), so the count stays near the input's. Whole-
+/// mesh and O(1), also in a window.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::{Context, FaceBudget, ScoreTerm}};
-/// let m = gen::grid(3, 3);
-/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 5, faces: None };
-/// assert_eq!(FaceBudget.score(&ctx), 4.0);
+/// let m = gen::grid(3, 3); // 9 faces
+/// let at = |f0| FaceBudget::default().score(&Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: f0, faces: None, walls: true });
+/// assert_eq!(at(9), 0.0);
+/// assert_eq!(at(100), 91.0 + 100.0 * 86.0); // 91 faces off, 86 of them past 5 % of 100
 /// ```
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FaceBudget;
+#[derive(Clone, Copy, Debug)]
+pub struct FaceBudget {
+    /// The band (a fraction of the input's face count) inside which a face costs 1.
+    pub tolerance: f64,
+    /// What a face costs on top outside the band.
+    pub steepness: f64,
+}
+
+impl Default for FaceBudget {
+    fn default() -> Self {
+        FaceBudget {
+            tolerance: 0.05,
+            steepness: 100.0,
+        }
+    }
+}
 
 impl ScoreTerm for FaceBudget {
     fn name(&self) -> &str {
         "faces"
     }
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
-        ctx.mesh.map.num_faces().abs_diff(ctx.target_faces) as f64
+        let off = ctx.mesh.map.num_faces().abs_diff(ctx.target_faces) as f64;
+        let band = self.tolerance * ctx.target_faces as f64;
+        off + self.steepness * (off - band).max(0.0)
     }
 }
 
@@ -221,7 +244,7 @@ impl Bfs {
 /// use zipmesh::{gen, optimize::{singularities, Context, Electric, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(1);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// // Each v5 is one edge from a v3: attraction wins.
 /// assert!(Electric::default().score(&ctx) < 0.0);
 /// ```
@@ -233,7 +256,48 @@ pub struct Electric {
     pub boundary_weight: f64,
     /// How far (edges) a singularity looks for the boundary or a feature.
     pub boundary_radius: u32,
+    /// How a pair's energy falls with distance.
+    pub potential: Potential,
     bfs: Bfs,
+}
+
+/// The pair potential of [`Electric`], for charges `q`, `q'` at graph distance `d`.
+///
+/// ```
+/// use zipmesh::optimize::Potential;
+/// // Unlike charges attract: the energy rises with the distance, for both potentials.
+/// for p in [Potential::Inverse, Potential::Log] {
+///     assert!(p.energy(1.0, -1.0, 3, 16) < p.energy(1.0, -1.0, 4, 16));
+/// }
+/// // The logarithm reaches 0 at the search radius, so no pair gains by leaving it.
+/// assert_eq!(Potential::Log.energy(1.0, -1.0, 16, 16), 0.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Potential {
+    /// The paper's "sum of the inverse of these signed distances": `q q' / d`. Its pull on
+    /// a pair `d` edges apart falls as `1 / d^2`.
+    Inverse,
+    /// The potential of charges in the plane (2D Coulomb): `-q q' ln(d / R)`, `R` the
+    /// search radius, 0 from `R` on. Its pull falls only as `1 / d`, so far pairs still
+    /// attract (`docs/optimize.md`).
+    Log,
+}
+
+impl Potential {
+    /// The energy of charges `q`, `p` at distance `d` (at least 1) with search radius `r`.
+    ///
+    /// See [`Potential`] for an example.
+    pub fn energy(self, q: f64, p: f64, d: u32, r: u32) -> f64 {
+        let d = d.max(1) as f64;
+        match self {
+            Potential::Inverse => q * p / d,
+            Potential::Log => {
+                let x = libm::log(d / r.max(1) as f64);
+                -q * p * x.min(0.0)
+            }
+        }
+    }
 }
 
 impl Default for Electric {
@@ -242,6 +306,7 @@ impl Default for Electric {
             radius: 16,
             boundary_weight: 0.5,
             boundary_radius: 4,
+            potential: Potential::Inverse,
             bfs: Bfs::default(),
         }
     }
@@ -256,8 +321,10 @@ impl ScoreTerm for Electric {
         let mut total = 0.0;
         for s in ctx.singularities {
             let q = s.charge();
-            let (mut found, mut wall) = (0, s.boundary);
+            // No wall to find: as if found, so the search stops at the third singularity.
+            let (mut found, mut wall) = (0, s.boundary || !ctx.walls);
             let (bw, br) = (self.boundary_weight, self.boundary_radius);
+            let (pot, radius) = (self.potential, self.radius);
             self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
                 if d == 0 {
                     return true;
@@ -265,7 +332,7 @@ impl ScoreTerm for Electric {
                 let dv = super::defect::defect(ctx.mesh, v);
                 if dv != 0 && found < 3 {
                     found += 1;
-                    total += q * (-(dv as f64)) / d as f64;
+                    total += pot.energy(q, -(dv as f64), d, radius);
                 }
                 if !wall && d <= br && (map.is_boundary_vertex(v) || ctx.is_feature(v)) {
                     wall = true;
@@ -286,7 +353,7 @@ impl ScoreTerm for Electric {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Isotropy, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert_eq!(Isotropy.score(&ctx), 0.0); // unit squares
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
@@ -322,7 +389,7 @@ impl ScoreTerm for Isotropy {
 /// ```
 /// use zipmesh::{gen, optimize::{Context, Sizing, ScoreTerm}};
 /// let m = gen::grid(3, 3);
-/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None });
+/// let at = |t| Sizing.score(&Context { mesh: &m, singularities: &[], features: &[], target_area: t, target_faces: 0, faces: None, walls: true });
 /// assert_eq!(at(1.0), 0.0);
 /// assert!(at(2.0) > 0.0);
 /// ```
@@ -355,7 +422,7 @@ impl ScoreTerm for Sizing {
 /// use zipmesh::{gen, optimize::{singularities, Context, Separatrix, ScoreTerm}};
 /// let m = gen::subdivided_icosahedron(2);
 /// let s = singularities(&m);
-/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None };
+/// let ctx = Context { mesh: &m, singularities: &s, features: &[], target_area: 1.0, target_faces: 0, faces: None, walls: true };
 /// assert!(Separatrix::default().score(&ctx) >= 0.0);
 /// ```
 #[derive(Clone, Debug)]
@@ -443,6 +510,8 @@ pub(crate) struct Scorer {
     pub(crate) features: Vec<bool>,
     pub(crate) target_area: f64,
     pub(crate) target_faces: usize,
+    /// Whether the mesh has a boundary or features ([`Context::walls`]).
+    pub(crate) walls: bool,
 }
 
 impl Scorer {
@@ -456,6 +525,7 @@ impl Scorer {
             target_area: self.target_area,
             target_faces: self.target_faces,
             faces: None,
+            walls: self.walls,
         };
         let mut parts = vec![0.0; self.terms.len()];
         let mut total = 0.0;
@@ -468,13 +538,13 @@ impl Scorer {
         (total, parts)
     }
 
-    /// The weighted sum of the terms over a window: its singularities and the faces at its
-    /// vertices.
-    pub(crate) fn local(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
+    /// The weighted sum of the terms over a window (vertices with their distance from the
+    /// edit): its singularities and the faces at its vertices.
+    pub(crate) fn local(&mut self, mesh: &Mesh, window: &[(Vert, u32)]) -> f64 {
         let map = &mesh.map;
         let s: Vec<Singularity> = window
             .iter()
-            .filter_map(|&v| {
+            .filter_map(|&(v, _)| {
                 let d = super::defect::defect(mesh, v);
                 (d != 0).then(|| Singularity {
                     vertex: v,
@@ -485,7 +555,7 @@ impl Scorer {
             .collect();
         let mut faces: Vec<crate::Face> = window
             .iter()
-            .flat_map(|&v| map.vertex_darts(v).filter_map(|d| map.face(d)))
+            .flat_map(|&(v, _)| map.vertex_darts(v).filter_map(|d| map.face(d)))
             .collect();
         faces.sort_unstable();
         faces.dedup();
@@ -496,6 +566,7 @@ impl Scorer {
             target_area: self.target_area,
             target_faces: self.target_faces,
             faces: Some(&faces),
+            walls: self.walls,
         };
         self.terms
             .iter_mut()

@@ -188,6 +188,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         row.insert("batch".into(), json!(b.batch));
         row.insert("qzips".into(), json!(b.qzips));
         row.insert("candidates".into(), json!(b.candidates));
+        row.insert("face_change".into(), json!(b.stats.face_change));
         row.insert("score".into(), json!(b.score));
         row.insert("smoothed".into(), json!(b.smoothed));
         row.insert("seconds".into(), json!(last.elapsed().as_secs_f64()));
