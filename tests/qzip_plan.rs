@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use std::collections::{HashSet, VecDeque};
 use zipmesh::qzip::{
-    plan, sketch, validate_path, PlanError, SketchError, SketchOptions, Tag, Turn,
+    plan, sketch, validate_path, PlanError, Side, SketchError, SketchOptions, Tag, Turn,
 };
 use zipmesh::{gen, Dart, Edge, Face, Map, Vert};
 
@@ -775,4 +775,95 @@ proptest! {
             }
         }
     }
+}
+
+/// What the plan, its parts and its errors print: one line per vertex with the tag, the turn
+/// and the count that gave it, in the words of Sec. 2.6.
+#[test]
+fn plans_and_their_parts_read_as_the_paper_words_them() {
+    let n = 10u32;
+    let map = gen::torus_grid(n as usize, n as usize).map;
+    // East, east, north: straight at (1, 0), a left turn at (2, 0) (one quad on the left).
+    let vs = [tv(n, 0, 0), tv(n, 1, 0), tv(n, 2, 0), tv(n, 2, 1)];
+    let p = plan(&map, &given(&map, &vs), Tag::LS).unwrap();
+    let lines: Vec<String> = p.to_string().lines().map(String::from).collect();
+    let want = [
+        format!("vertex {}: LS (start)", vs[0].index()),
+        format!(
+            "vertex {}: LS (straight, 2 quads on the left)",
+            vs[1].index()
+        ),
+        format!("vertex {}: RC (left, 1 quad on the left)", vs[2].index()),
+        format!("vertex {}: RC (end)", vs[3].index()),
+    ];
+    assert_eq!(lines, want);
+    let words = [
+        (Turn::Left.to_string(), "left"),
+        (Turn::Straight.to_string(), "straight"),
+        (Turn::Right.to_string(), "right"),
+        (Side::Left.to_string(), "left"),
+        (Side::Right.to_string(), "right"),
+    ];
+    for (got, want) in words {
+        assert_eq!(got, want);
+    }
+    let e = "up".parse::<Tag>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "unknown move \"up\": expected LS, RS, LC or RC"
+    );
+}
+
+/// Sec. 2.6's counting rule for every count on both sides, and quarter turns of the compass
+/// as repeated single turns.
+#[test]
+fn turns_from_counts_and_compass_quarter_turns() {
+    for side in [Side::Left, Side::Right] {
+        let (toward, away) = match side {
+            Side::Left => (Turn::Left, Turn::Right),
+            Side::Right => (Turn::Right, Turn::Left),
+        };
+        assert_eq!(Turn::from_count(side, 0), None);
+        assert_eq!(Turn::from_count(side, 1), Some(toward));
+        assert_eq!(Turn::from_count(side, 2), Some(Turn::Straight));
+        for k in 3..8 {
+            assert_eq!(
+                Turn::from_count(side, k),
+                Some(away),
+                "{k} quads on the {side}"
+            );
+        }
+    }
+    for t in Tag::CCW {
+        let (mut ccw, mut cw) = (t, t);
+        for k in 0..9 {
+            assert_eq!(t.turned(k), ccw, "{t} turned {k}");
+            assert_eq!(t.turned(-k), cw, "{t} turned -{k}");
+            ccw = ccw.ccw();
+            cw = cw.cw();
+        }
+    }
+}
+
+/// A path whose edge is still live and still ends where the path says, but no longer starts
+/// there (a collapse moved its origin), is stale.
+#[test]
+fn a_path_whose_edge_moved_its_origin_is_refused() {
+    let mut map = gen::torus_grid(8, 8).map;
+    let r = zipmesh::ops::quad::collapse_quad(&mut map.clone(), Dart::new(0)).unwrap();
+    let c = r.removed();
+    // An edge of the removed corner to a vertex outside the collapsed quad.
+    let quad: Vec<Vert> = map.face_darts(r.face()).map(|d| map.origin(d)).collect();
+    let out = map
+        .vertex_darts(c)
+        .find(|&d| !quad.contains(&map.dest(d)))
+        .unwrap();
+    let path = given(&map, &[c, map.dest(out)]);
+    zipmesh::ops::quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
+    assert!(map.is_live_dart(out) && map.dest(out) == path.vertices()[1]);
+    assert_ne!(map.origin(out), c);
+    assert_eq!(
+        plan(&map, &path, Tag::LS),
+        Err(PlanError::StalePath { index: 0 })
+    );
 }

@@ -251,16 +251,7 @@ impl QuadSplit {
 }
 
 fn plan_merge(map: &Map, d: Dart) -> Result<[Dart; 5], Refusal> {
-    if !map.is_live_dart(d) {
-        return Err(Refusal::DeadHandle);
-    }
-    let (f1, f2) = (map.face(d), map.face(d.twin()));
-    let (Some(f1), Some(f2)) = (f1, f2) else {
-        return Err(Refusal::Boundary);
-    };
-    if f1 == f2 {
-        return Err(Refusal::SameFace);
-    }
+    crate::ops::two_faces(map, d)?;
     let a = triangle(map, d)?;
     let b = triangle(map, d.twin())?;
     if a.bb == b.bb {
@@ -401,16 +392,7 @@ impl VertexChanges for TriangleMerge {
 }
 
 fn plan_collapse_base(map: &Map, d: Dart) -> Result<(Tri, Tri), Refusal> {
-    if !map.is_live_dart(d) {
-        return Err(Refusal::DeadHandle);
-    }
-    let (f1, f2) = (map.face(d), map.face(d.twin()));
-    let (Some(f1), Some(f2)) = (f1, f2) else {
-        return Err(Refusal::Boundary);
-    };
-    if f1 == f2 {
-        return Err(Refusal::SameFace);
-    }
+    crate::ops::two_faces(map, d)?;
     // As tip darts: the triangle of d from its third corner, and the other likewise.
     let a = triangle(map, map.prev(d))?;
     let b = triangle(map, map.prev(d.twin()))?;

@@ -350,3 +350,162 @@ pub(crate) fn cw_steps(map: &Map, from: crate::map::Dart, to: crate::map::Dart) 
     }
     k
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+    use crate::map::Dart;
+    use crate::ops::quad::QuadOp;
+    use alloc::string::ToString;
+
+    /// A record that claims whatever vertices it is given.
+    struct Claim(Option<Vert>, Option<Vert>);
+
+    impl VertexChanges for Claim {
+        fn created_vertex(&self) -> Option<Vert> {
+            self.0
+        }
+        fn removed_vertex(&self) -> Option<Vert> {
+            self.1
+        }
+    }
+
+    /// The map before and after `op` on a 5 x 5 torus, its effect and its record's claim.
+    fn applied(op: QuadOp) -> (Map, Map, Effect, Claim) {
+        let mut map = gen::torus_grid(5, 5).map;
+        let before = map.clone();
+        let effect = op.effect(&map).unwrap();
+        let r = op.apply(&mut map).unwrap();
+        let claim = Claim(r.created_vertex(), r.removed_vertex());
+        (before, map, effect, claim)
+    }
+
+    #[test]
+    fn the_deleted_vertex_must_be_the_effects() {
+        let (before, after, effect, claim) = applied(QuadOp::Collapse(Dart::new(0)));
+        assert_eq!(effect.check(&before, &after, &claim), Ok(()));
+        let c = claim.1.unwrap();
+        let other = Vert::new(if c.index() == 0 { 1 } else { 0 });
+        for (created, removed) in [(None, Some(other)), (None, None), (Some(c), Some(c))] {
+            assert_eq!(
+                effect.check(&before, &after, &Claim(created, removed)),
+                Err(EffectMismatch::Record { created, removed })
+            );
+        }
+    }
+
+    #[test]
+    fn the_created_vertex_must_be_new_and_the_effects() {
+        let (before, after, effect, claim) = applied(QuadOp::InsertDoublet(Dart::new(0)));
+        assert_eq!(effect.check(&before, &after, &claim), Ok(()));
+        let old = Vert::new(0);
+        for (created, removed) in [(None, None), (Some(old), None), (claim.0, Some(old))] {
+            assert_eq!(
+                effect.check(&before, &after, &Claim(created, removed)),
+                Err(EffectMismatch::Record { created, removed })
+            );
+        }
+    }
+
+    #[test]
+    fn every_vertex_is_deleted_kept_or_new_as_the_effect_says() {
+        let (before, after, effect, claim) = applied(QuadOp::Collapse(Dart::new(0)));
+        let c = claim.1.unwrap();
+        let none = Claim(None, None);
+        let survive = Effect::new([0, 0, 0], 4).removes(c);
+        let e = survive.check(&before, &before, &Claim(None, Some(c)));
+        assert_eq!(e, Err(EffectMismatch::Survived(c)));
+        // The collapse's effect without its deletion: the deleted vertex was one to keep.
+        let mut delete = effect.clone();
+        delete.removed = None;
+        assert_eq!(
+            delete.check(&before, &after, &none),
+            Err(EffectMismatch::Deleted(c))
+        );
+        // Compacting moves the vertex above the hole into it: a vertex no record made.
+        let mut moved = after.clone();
+        moved.compact();
+        let same = Effect::new([0, 0, 0], 4);
+        assert_eq!(
+            same.check(&after, &moved, &none),
+            Err(EffectMismatch::Appeared(c))
+        );
+    }
+
+    #[test]
+    fn valences_are_the_named_ones_and_otherwise_kept() {
+        let map = gen::torus_grid(5, 5).map;
+        let v = Vert::new(7);
+        let raised = Effect::new([0, 0, 0], 4).change(&map, v, "the raised vertex", 1);
+        let want = EffectMismatch::Valence {
+            vertex: v,
+            role: "the raised vertex",
+            got: 4,
+            want: 5,
+        };
+        assert_eq!(raised.check(&map, &map, &Claim(None, None)), Err(want));
+        // The collapse's counts and deletion without its valence changes.
+        let (before, after, effect, claim) = applied(QuadOp::Collapse(Dart::new(0)));
+        let bare = Effect::new(effect.deltas(), 4).removes(claim.1.unwrap());
+        let Err(EffectMismatch::Valence { role, got, .. }) = bare.check(&before, &after, &claim)
+        else {
+            panic!("the merged vertex's valence went unnoticed");
+        };
+        assert_eq!((role, got != 4), ("an uninvolved vertex", true));
+    }
+
+    #[test]
+    fn new_faces_have_the_familys_degree() {
+        let (before, after, mut effect, claim) = applied(QuadOp::InsertDoublet(Dart::new(0)));
+        effect.face_degree = 3;
+        let Err(EffectMismatch::FaceDegree { got, want, face }) =
+            effect.check(&before, &after, &claim)
+        else {
+            panic!("a quad passed as a new triangle");
+        };
+        assert_eq!((got, want), (4, 3));
+        assert!(!before.is_live_face(face) && after.is_live_face(face));
+    }
+
+    #[test]
+    fn mismatches_name_what_differs() {
+        let v = Vert::new(3);
+        let cases = [
+            (EffectMismatch::Deleted(v), "vertex 3 was deleted"),
+            (
+                EffectMismatch::Survived(v),
+                "vertex 3 should be deleted but is live",
+            ),
+            (
+                EffectMismatch::Appeared(v),
+                "vertex 3 is new but not the record's",
+            ),
+            (
+                EffectMismatch::Valence {
+                    vertex: v,
+                    role: "the kept vertex",
+                    got: 5,
+                    want: 6,
+                },
+                "the kept vertex (vertex 3) has valence 5, documented 6",
+            ),
+            (
+                EffectMismatch::FaceDegree {
+                    face: Face::new(2),
+                    got: 5,
+                    want: 4,
+                },
+                "face 2 has degree 5, documented 4",
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+        }
+        let r = EffectMismatch::Record {
+            created: Some(v),
+            removed: None,
+        };
+        assert!(r.to_string().contains("created Some(v3)"), "{r}");
+    }
+}

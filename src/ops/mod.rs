@@ -137,3 +137,23 @@ pub trait Undo {
     /// Restores the map as it was before the operation (see the record's own `undo`).
     fn undo(&self, map: &mut crate::map::Map) -> Result<(), Refusal>;
 }
+
+/// The faces on the two sides of the edge of `d`, which must be live, interior and between
+/// two different faces: the rule every edge-pair operator (rotation, the quad-dominant
+/// collisions) starts with. Refuses with [`Refusal::DeadHandle`], [`Refusal::Boundary`] or
+/// [`Refusal::SameFace`].
+pub(crate) fn two_faces(
+    map: &crate::map::Map,
+    d: crate::map::Dart,
+) -> Result<(crate::map::Face, crate::map::Face), Refusal> {
+    if !map.is_live_dart(d) {
+        return Err(Refusal::DeadHandle);
+    }
+    let (Some(f), Some(g)) = (map.face(d), map.face(d.twin())) else {
+        return Err(Refusal::Boundary);
+    };
+    if f == g {
+        return Err(Refusal::SameFace);
+    }
+    Ok((f, g))
+}

@@ -207,3 +207,77 @@ fn tail_fits<T: Copy>(slots: &[T], appended: u8, len: usize, index: impl Fn(T) -
     }
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+
+    /// A torus with two edges, a vertex and a face freed as one record's slots.
+    fn freed() -> (Map, Slots) {
+        let mut map = gen::torus_grid(4, 4).map;
+        let s = Slots::deleted(&[Dart(0), Dart(6)], Vert(2), &[Face(1)]);
+        s.free(&mut map);
+        (map, s)
+    }
+
+    #[test]
+    fn freed_slots_are_on_top_until_anything_else_is() {
+        let (map, s) = freed();
+        assert!(s.on_free_lists(&map));
+        // One more slot of any kind on top, or one of the record's taken off, hides them.
+        let edits: [fn(&mut Map); 6] = [
+            |m| m.free_edges.push(9),
+            |m| m.free_verts.push(9),
+            |m| m.free_faces.push(9),
+            |m| m.free_edges.truncate(1),
+            |m| m.free_faces.clear(),
+            |m| m.free_edges.swap(0, 1),
+        ];
+        for (i, edit) in edits.iter().enumerate() {
+            let mut m = map.clone();
+            edit(&mut m);
+            assert!(!s.on_free_lists(&m), "edit {i} went unnoticed");
+            let before = m.clone();
+            assert_eq!(s.reclaim(&mut m), Err(Refusal::StaleRecord), "edit {i}");
+            assert_eq!(m, before, "edit {i}: a refused reclaim changed the map");
+        }
+    }
+
+    #[test]
+    fn reclaim_takes_exactly_the_record_off_the_lists() {
+        let (mut map, s) = freed();
+        map.free_edges.insert(0, 11);
+        let lists = |m: &Map| {
+            (
+                m.free_edges.clone(),
+                m.free_verts.clone(),
+                m.free_faces.clone(),
+            )
+        };
+        assert_eq!(s.reclaim(&mut map), Ok(()));
+        assert_eq!(lists(&map), (alloc::vec![11], alloc::vec![], alloc::vec![]));
+    }
+
+    #[test]
+    fn allocated_slots_release_to_the_map_before() {
+        for (edges, faces) in [(3, 2), (2, 1), (1, 0)] {
+            // Reused slots (a freed record on the lists) and appended ones.
+            for reuse in [false, true] {
+                let (mut map, _) = freed();
+                if !reuse {
+                    map = gen::torus_grid(4, 4).map;
+                }
+                let before = map.clone();
+                let s = Slots::alloc(&mut map, edges, faces);
+                assert!(s.releasable(&map));
+                let mut grown = map.clone();
+                grown.alloc_vert();
+                // A vertex appended after the record's own appended one hides it.
+                assert_eq!(s.releasable(&grown), reuse);
+                s.release(&mut map);
+                assert_eq!(map, before, "{edges} edges, {faces} faces, reuse {reuse}");
+            }
+        }
+    }
+}

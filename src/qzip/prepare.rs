@@ -665,3 +665,55 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     }
     Ok(s)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+    use crate::qzip::{plan, sketch, SketchOptions, Tag};
+    use alloc::string::ToString;
+
+    /// The simplicity test finds a repeat in short lists (scanned) and long ones (sorted).
+    #[test]
+    fn repeated_vertices_are_found_at_every_length() {
+        for n in [2u32, 5, 24, 25, 200] {
+            let mut v: Vec<Vert> = (0..n).map(|i| Vert::new(3 * i)).collect();
+            assert_eq!(repeated(&v), None, "{n} distinct");
+            v.push(Vert::new(3 * (n / 2)));
+            assert_eq!(
+                repeated(&v),
+                Some(Vert::new(3 * (n / 2))),
+                "{n} and a repeat"
+            );
+        }
+        assert_eq!(repeated(&[]), None);
+    }
+
+    /// A surgery prints its rules, one line per vertex, and ends with the end vertex.
+    #[test]
+    fn surgery_reads_one_line_per_vertex_ending_at_the_end() {
+        let map = gen::subdivided_icosahedron(2).map;
+        let (v5, v3) = (Vert::new(0), Vert::new(42));
+        let path = sketch(&map, v5, v3, &SketchOptions::default()).unwrap();
+        let s = prepare(&map, &plan(&map, &path, Tag::LC).unwrap()).unwrap();
+        let text = s.to_string();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(
+            lines[0],
+            alloc::format!("{}; {}", s.start_rule(), s.end_rule())
+        );
+        assert_eq!(lines.len(), s.steps().len() + 1);
+        let last = s.steps()[s.steps().len() - 1].vertex;
+        assert_eq!(
+            lines[lines.len() - 1],
+            alloc::format!("vertex {}: end", last.index())
+        );
+        for (line, step) in lines[1..lines.len() - 1].iter().zip(s.steps()) {
+            let op = step.op.map_or("no-op".to_string(), |t| t.to_string());
+            assert_eq!(
+                *line,
+                alloc::format!("vertex {}: {op}", step.vertex.index())
+            );
+        }
+    }
+}

@@ -43,16 +43,8 @@ pub(super) struct RotationPlan {
 }
 
 fn plan_rotation(map: &Map, h: Dart, dir: Rotation) -> Result<RotationPlan, Refusal> {
-    if !map.is_live_dart(h) {
-        return Err(Refusal::DeadHandle);
-    }
+    crate::ops::two_faces(map, h)?;
     let t = h.twin();
-    if map.face(h).is_none() || map.face(t).is_none() {
-        return Err(Refusal::Boundary);
-    }
-    if map.face(h) == map.face(t) {
-        return Err(Refusal::SameFace);
-    }
     let hq = quad_of(map, h)?;
     let tq = quad_of(map, t)?;
     let o = |d: Dart| map.origin(d);

@@ -888,7 +888,7 @@ struct Restored {
 }
 
 /// Whether `x` is a dead dart slot of this map.
-fn is_dead(map: &Map, x: Dart) -> bool {
+pub(super) fn is_dead(map: &Map, x: Dart) -> bool {
     x.index() < map.dart_slots() && !map.is_live_dart(x)
 }
 

@@ -619,6 +619,19 @@ fn stack_and_fallback_link_tests_agree() {
     }
     assert!(chain.valence(Vert(61)) > 16);
     maps.push(chain);
+    // Random closed maps of up to 12 darts: multi-edges and loops, where a moved dart's end
+    // can also be a kept dart's (the shared-neighbour rule).
+    let mut rng = crate::rng::Rng::new(5);
+    while maps.len() < 1_500 {
+        let n = 2 * rng.range(1, 7);
+        let mut next: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            next.swap(i, rng.below(i + 1));
+        }
+        if let Ok(m) = Map::from_permutation(&next, &vec![false; n]) {
+            maps.push(m);
+        }
+    }
     let mut compared = 0;
     for m in &maps {
         for h in m.darts() {
@@ -913,4 +926,35 @@ fn edge_collapse_undo_guard_pinned() {
         "restored face records",
     ]);
     assert_eq!(got, want);
+}
+
+/// Reports name each operator as its documentation does (one name per operator).
+#[test]
+fn operator_names() {
+    let d = Dart(0);
+    let names = [
+        TriOp::Flip(d),
+        TriOp::Collapse(d),
+        TriOp::SplitVertex(d, d),
+        TriOp::SplitEdge(d),
+    ]
+    .map(TriOp::name);
+    assert_eq!(names, ["flip", "collapse", "vertex split", "edge split"]);
+}
+
+/// A record's dart is a dead slot only inside the arrays: a slot past their end (the
+/// arrays were cut) is no slot at all, and the undo must not take it for a freed one.
+#[test]
+fn dead_slots_lie_inside_the_arrays() {
+    let mut m = tri_grid(3);
+    let h = m
+        .darts()
+        .find(|&h| can_collapse_edge(&m, h).is_ok())
+        .unwrap();
+    collapse_edge(&mut m, h).unwrap();
+    let end = m.dart_slots() as u32;
+    assert!(super::collapse::is_dead(&m, h));
+    assert!(!super::collapse::is_dead(&m, Dart(end)));
+    let live = m.darts().next().unwrap();
+    assert!(!super::collapse::is_dead(&m, live));
 }
