@@ -218,3 +218,55 @@ proptest::proptest! {
         proptest::prop_assert_eq!(canonical_hash(&x), canonical_hash(&y));
     }
 }
+
+/// At a boundary vertex the start turn goes round through quads only: from east to west
+/// (2, 0) on a grid's bottom row turns counter-clockwise over the two quads above, never
+/// through the boundary below.
+#[test]
+fn start_turns_never_cross_the_boundary() {
+    let map = gen::grid(4, 4).map;
+    let v = |i: u32, j: u32| Vert::new(5 * j + i);
+    let o = SketchOptions::default();
+    let edge = |to: Vert| validate_path(&map, v(2, 0), to, &[v(2, 0), to], &o);
+    let (east, west, north) = (
+        edge(v(3, 0)).unwrap(),
+        edge(v(1, 0)).unwrap(),
+        edge(v(2, 1)).unwrap(),
+    );
+    assert_eq!(start_turn(&map, &east, &west), Some(2));
+    assert_eq!(start_turn(&map, &west, &east), Some(-2));
+    assert_eq!(start_turn(&map, &east, &north), Some(1));
+    assert_eq!(start_turn(&map, &west, &north), Some(-1));
+}
+
+/// Every listed sweep keeps to the stated conditions: its two new corners are regular,
+/// interior and off the path, and it is the path with one edge replaced by three.
+#[test]
+fn one_quad_sweeps_add_only_regular_corners_off_the_path() {
+    let mut listed = 0;
+    let s = SketchOptions::default();
+    for (map, pairs) in [(ico_cc(1), 30usize), (gen::torus_grid(8, 8).map, 0)] {
+        let mut paths: Vec<Path> = pairs_within(&map, 6).into_iter().take(pairs).collect();
+        // Paths between regular vertices too (on the torus, the only kind).
+        for k in 1..6u32 {
+            paths.extend(sketch(&map, Vert::new(0), Vert::new(9 * k), &s).ok());
+            paths.extend(sketch(&map, Vert::new(9 * k), Vert::new(0), &s).ok());
+        }
+        for p in &paths {
+            for (i, q) in one_quad_sweeps(&map, p) {
+                let (pv, qv) = (p.vertices(), q.vertices());
+                assert_eq!(qv.len(), pv.len() + 2);
+                assert_eq!((&qv[..=i], &qv[i + 3..]), (&pv[..=i], &pv[i + 1..]));
+                for c in [qv[i + 1], qv[i + 2]] {
+                    assert!(!pv.contains(&c), "sweep {i} puts {c:?} on the path twice");
+                    assert!(
+                        is_regular_interior(&map, MeshKind::Quad, c),
+                        "{c:?} irregular"
+                    );
+                }
+                listed += 1;
+            }
+        }
+    }
+    assert!(listed >= 20, "only {listed} sweeps listed");
+}
