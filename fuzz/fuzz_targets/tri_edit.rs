@@ -70,7 +70,11 @@ fuzz_target!(|data: &[u8]| {
             let d = darts[(k >> 1) % darts.len()];
             let starts = Start::all(map.valence(s));
             let how = starts[(k >> 4) % starts.len()];
-            let moved = if k & 2 == 0 { Moved::First } else { Moved::Second };
+            let moved = if k & 2 == 0 {
+                Moved::First
+            } else {
+                Moved::Second
+            };
             let want = (map.valence(s), map.valence(o));
             let can = can_move_far_pair(&map, d, how, moved, o, 16);
             match move_far_pair(&mut map, d, how, moved, o, 16) {
@@ -97,5 +101,8 @@ fuzz_target!(|data: &[u8]| {
         };
         assert_eq!(r, Ok(()));
     }
-    assert!(map == start, "undoing everything did not give the start back");
+    assert!(
+        map == start,
+        "undoing everything did not give the start back"
+    );
 });
