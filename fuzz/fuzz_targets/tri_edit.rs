@@ -14,8 +14,8 @@ use zipmesh::tri_edit::{
 use zipmesh::{gen, Map, Vert};
 
 enum Done {
-    Atomic(PairMove),
-    Composite(FarPairMove),
+    Atomic(Box<PairMove>),
+    Composite(Box<FarPairMove>),
 }
 
 fn irregular(map: &Map) -> Vec<usize> {
@@ -62,7 +62,7 @@ fuzz_target!(|data: &[u8]| {
                 Ok(m) => {
                     assert_eq!(can, Ok(()));
                     assert_eq!((map.valence(m.p()), map.valence(m.q())), (5, 7));
-                    done.push(Done::Atomic(m));
+                    done.push(Done::Atomic(Box::new(m)));
                 }
             }
         } else {
@@ -87,7 +87,7 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(can, Ok(()));
                     let (x, y) = m.pair();
                     assert_eq!((map.valence(x), map.valence(y)), want);
-                    done.push(Done::Composite(m));
+                    done.push(Done::Composite(Box::new(m)));
                 }
             }
         }
