@@ -275,3 +275,46 @@ fn paths_touching_the_boundary() {
     );
     eprintln!("boundary: {touching} paths touch it, {done} movements done");
 }
+
+/// With cancellation allowed, every movement the grid guard refuses as
+/// `NotGridPreserving` is done instead: a valid map, the report's two vertices live, and an
+/// exact undo. When the singularities cancelled and no vertex carries them any more, both
+/// report vertices are one touched vertex (the fallback), which must happen on crowded
+/// clusters.
+#[test]
+fn cancellation_does_what_the_guard_refuses() {
+    use zipmesh::qzip::ZipError;
+    let map = torus_with_splits(16, &[3 * 16 + 3, 4 * 16 + 5, 9 * 16 + 10]);
+    let (mut refused, mut fallback) = (0, 0);
+    for path in pairs_within(&map, 100) {
+        for tag in Tag::CCW {
+            let mut guarded = map.clone();
+            let err = Qzip::new().zip_along(&mut guarded, &path, tag);
+            if !matches!(
+                err,
+                Err(QzipError::Execute(ZipError::NotGridPreserving { .. }))
+            ) {
+                continue;
+            }
+            refused += 1;
+            let mut m = map.clone();
+            let r = Qzip::new()
+                .allow_cancellation(true)
+                .zip_along(&mut m, &path, tag)
+                .unwrap_or_else(|e| panic!("cancellation refused what the guard did: {e}"));
+            assert!(m.check().is_ok());
+            assert!(m.is_live_vertex(r.moved_from()) && m.is_live_vertex(r.moved_to()));
+            fallback += usize::from(r.moved_from() == r.moved_to());
+            r.undo(&mut m).unwrap();
+            assert_eq!(m, map);
+        }
+    }
+    assert!(
+        refused >= 10,
+        "only {refused} movements changed the singularities"
+    );
+    assert!(
+        fallback >= 1,
+        "no cancellation fell back ({refused} refused)"
+    );
+}

@@ -96,7 +96,8 @@ pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
             }
             let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
             let (ni, nj) = if left { (x, y) } else { (y, x) };
-            if v.contains(&ni) || v.contains(&nj) || !regular(ni) || !regular(nj) {
+            // A corner already on the path is refused by `validate_path` below (no vertex twice).
+            if !regular(ni) || !regular(nj) {
                 continue;
             }
             if (i > 0 && !regular(v[i])) || (i + 2 < v.len() && !regular(v[i + 1])) {

@@ -716,4 +716,104 @@ mod tests {
             );
         }
     }
+
+    /// A draft along the vertices `v` of `map` (consecutive ones joined), edge `i` with hand
+    /// `hands[i]`, vertex 0 a no-op.
+    fn draft(map: &Map, v: &[Vert], hands: &[Tag]) -> Draft {
+        let darts = v
+            .windows(2)
+            .map(|w| map.dart_between(w[0], w[1]).unwrap())
+            .collect();
+        let mut noops = alloc::vec![false; hands.len()];
+        noops[0] = true;
+        Draft {
+            vertices: v.to_vec(),
+            darts,
+            hands: hands.to_vec(),
+            noops,
+        }
+    }
+
+    /// The vertices straight on from `d` (through regular vertices) until the walk closes.
+    fn straight_cycle(map: &Map, d: crate::Dart) -> Vec<Vert> {
+        let (mut out, mut d) = (alloc::vec![map.origin(d)], d);
+        while map.dest(d) != out[0] {
+            out.push(map.dest(d));
+            d = map.rotate_cw(map.rotate_cw(d.twin()));
+        }
+        out
+    }
+
+    const HANDS: [Tag; 6] = [Tag::LS, Tag::RS, Tag::LC, Tag::RC, Tag::RS, Tag::LC];
+
+    /// Cutting a closed walk keeps vertex i's no-op flag and the hand and dart of the edge
+    /// leaving the walk; one that ends the path leaves vertex i last, with no edge.
+    #[test]
+    fn cutting_a_closed_walk_keeps_the_flag_and_the_leaving_edge() {
+        let map = gen::grid(5, 5).map;
+        let [a, b, c, d, e] = [7u32, 8, 14, 13, 6].map(Vert::new);
+        // a -> b -> c -> d -> a is one quad; e follows.
+        for i in [0usize, 1] {
+            let mut v = alloc::vec![e; i];
+            v.extend([a, b, c, d, a, e]);
+            let hands = &HANDS[..v.len() - 1];
+            let mut dr = draft(&map, &v, hands);
+            let keep = dr.darts[i + 4];
+            dr.cut_closed_walk(i, 4);
+            let mut want = alloc::vec![e; i];
+            want.extend([a, e]);
+            assert_eq!(dr.vertices, want, "walk at {i}");
+            assert_eq!(dr.darts.len(), i + 1);
+            assert_eq!(dr.darts[i], keep);
+            assert_eq!(dr.hands, [&hands[..i], &hands[i + 4..]].concat());
+            let mut noops = alloc::vec![false; i + 1];
+            noops[0] = true;
+            assert_eq!(dr.noops, noops, "walk at {i}");
+        }
+        // The walk ends the path: a is last and its flag goes with its edge.
+        let v = [e, a, b, c, d, a].to_vec();
+        let mut dr = draft(&map, &v, &HANDS[..5]);
+        dr.cut_closed_walk(1, 4);
+        assert_eq!(dr.vertices, [e, a]);
+        assert_eq!((dr.darts.len(), dr.hands.len()), (1, 1));
+        assert_eq!(dr.noops, [true]);
+    }
+
+    /// A path that goes round one quad to the end is shortened across it; three edges whose
+    /// ends are joined without bounding a quad (a straight wrap of a thin torus) are kept.
+    #[test]
+    fn only_a_round_quad_end_is_shortened() {
+        let map = gen::grid(5, 5).map;
+        let [a, b, c, e] = [7u32, 8, 14, 13].map(Vert::new);
+        let mut dr = draft(&map, &[a, b, c, e], &HANDS[..3]);
+        dr.noops[0] = false;
+        dr.shorten_round_quad_end(&map);
+        assert_eq!(dr.vertices, [a, e]);
+        assert_eq!(dr.darts, [map.dart_between(a, e).unwrap()]);
+        assert_eq!(
+            (dr.hands.as_slice(), dr.noops.as_slice()),
+            (&HANDS[1..2], &[false][..])
+        );
+        // A no-op first vertex keeps its edge.
+        let mut dr = draft(&map, &[a, b, c, e], &HANDS[..3]);
+        dr.shorten_round_quad_end(&map);
+        assert_eq!(dr.vertices.len(), 4);
+        let torus = gen::torus_grid(4, 8).map;
+        let d = (0..4)
+            .map(|k| {
+                let mut d = torus.vertex_dart(Vert::new(0));
+                for _ in 0..k {
+                    d = torus.rotate_cw(d);
+                }
+                d
+            })
+            .find(|&d| straight_cycle(&torus, d).len() == 4)
+            .unwrap();
+        let row = straight_cycle(&torus, d);
+        let mut dr = draft(&torus, &row, &HANDS[..3]);
+        dr.noops[0] = false;
+        dr.shorten_round_quad_end(&torus);
+        assert_eq!(dr.vertices, row);
+        assert_eq!(dr.hands.len(), 3);
+    }
 }

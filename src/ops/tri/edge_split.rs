@@ -263,8 +263,9 @@ impl EdgeSplit {
             // before the records had accessors): kept so.
             .check("a side has a triangle", || self.has_l() || self.has_r())
             .check("darts live", || live(h) && live(n) && live(self.old_vb))
+            // n is live, so its origin is a live vertex: m needs no range check.
             .check("m is the origin of n and twin(h)", || {
-                m.index() < map.vertex_slots() && map.origin(n) == m && map.origin(t) == m
+                map.origin(n) == m && map.origin(t) == m
             })
             .check("left triangles", || self.left_fits(map))
             .check("right triangles", || self.right_fits(map))
