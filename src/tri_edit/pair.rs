@@ -15,12 +15,12 @@
 //! ```
 //! Opposite directions (`d` and `d + 3 mod 6`) undo each other up to isomorphism.
 
-use super::record::{apply_one, map_only, turn};
+use super::record::{apply_one, map_only, one_operation, turn};
 use super::{apex, interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
-use crate::ops::{Refusal, Undo};
+use crate::ops::Refusal;
 
 /// One of the six directions of an atomic 5-7 movement, counter-clockwise from `p -> q`
 /// (see the module diagram and `docs/tri-edit.md`).
@@ -283,32 +283,6 @@ impl PairMove {
     pub fn direction(&self) -> Direction {
         self.direction
     }
-
-    /// The graph operation applied.
-    ///
-    /// See the module example in [`crate::tri_edit`].
-    pub fn op(&self) -> TriOp {
-        self.op
-    }
-
-    /// The graph operator's record.
-    ///
-    /// See the module example in [`crate::tri_edit`].
-    pub fn record(&self) -> &TriRecord {
-        &self.record
-    }
-
-    /// Restores the map as it was before the move (`==`), or refuses with
-    /// [`Refusal::StaleRecord`] and the map unchanged.
-    ///
-    /// See the module example in [`crate::tri_edit`].
-    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        self.record.undo(map)
-    }
 }
 
-impl Undo for PairMove {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        PairMove::undo(self, map)
-    }
-}
+one_operation!(PairMove, "the module example in [`crate::tri_edit`]");

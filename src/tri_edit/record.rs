@@ -6,7 +6,7 @@ use super::{apex, TriEditError};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, Rule, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
-use crate::ops::{Refusal, Undo};
+use crate::ops::Refusal;
 
 /// `d` turned clockwise `k` times around its origin.
 pub(super) fn turn(map: &Map, d: Dart, k: usize) -> Dart {
@@ -64,6 +64,43 @@ pub(super) fn map_only<R>(
     edit(&mut NoData).map(|e| e.into_parts().0)
 }
 
+/// The accessors and the undo of a record made of one graph operation (fields `op` and
+/// `record`), written once for every such record; `$example` names where the example is.
+macro_rules! one_operation {
+    ($record:ty, $example:literal) => {
+        impl $record {
+            /// The graph operation applied.
+            ///
+            #[doc = concat!("See ", $example, " for an example.")]
+            pub fn op(&self) -> crate::ops::tri::TriOp {
+                self.op
+            }
+
+            /// The graph operator's record.
+            ///
+            #[doc = concat!("See ", $example, " for an example.")]
+            pub fn record(&self) -> &crate::ops::tri::TriRecord {
+                &self.record
+            }
+
+            /// Restores the map as it was before the edit (`==`), or refuses with
+            /// [`crate::ops::Refusal::StaleRecord`] and the map unchanged.
+            ///
+            #[doc = concat!("See ", $example, " for an example.")]
+            pub fn undo(&self, map: &mut crate::Map) -> Result<(), crate::ops::Refusal> {
+                self.record.undo(map)
+            }
+        }
+
+        impl crate::ops::Undo for $record {
+            fn undo(&self, map: &mut crate::Map) -> Result<(), crate::ops::Refusal> {
+                <$record>::undo(self, map)
+            }
+        }
+    };
+}
+pub(super) use one_operation;
+
 /// Record of a lone irregular vertex's movement with 5-7 generation or removal: the v5 of
 /// [`super::generate_pair`] / [`super::remove_pair`] ([`super::V5Move`]) or the v7 of
 /// [`super::generate_pair_v7`] / [`super::remove_pair_v7`] ([`super::V7Move`]).
@@ -91,31 +128,6 @@ impl VertexMove {
     pub fn pair(&self) -> Option<(Vert, Vert)> {
         self.pair
     }
-
-    /// The graph operation applied.
-    ///
-    /// See [`super::generate_pair`] for an example.
-    pub fn op(&self) -> TriOp {
-        self.op
-    }
-
-    /// The graph operator's record.
-    ///
-    /// See [`super::generate_pair`] for an example.
-    pub fn record(&self) -> &TriRecord {
-        &self.record
-    }
-
-    /// Restores the map exactly, or refuses with [`Refusal::StaleRecord`].
-    ///
-    /// See [`super::generate_pair`] for an example.
-    pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        self.record.undo(map)
-    }
 }
 
-impl Undo for VertexMove {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        VertexMove::undo(self, map)
-    }
-}
+one_operation!(VertexMove, "[`super::generate_pair`]");
