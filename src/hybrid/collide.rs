@@ -251,7 +251,7 @@ impl QuadSplit {
 }
 
 fn plan_merge(map: &Map, d: Dart) -> Result<[Dart; 5], Refusal> {
-    crate::ops::two_faces(map, d)?;
+    crate::ops::check_two_faces(map, d)?;
     let a = triangle(map, d)?;
     let b = triangle(map, d.twin())?;
     if a.bb == b.bb {
@@ -392,7 +392,7 @@ impl VertexChanges for TriangleMerge {
 }
 
 fn plan_collapse_base(map: &Map, d: Dart) -> Result<(Tri, Tri), Refusal> {
-    crate::ops::two_faces(map, d)?;
+    crate::ops::check_two_faces(map, d)?;
     // As tip darts: the triangle of d from its third corner, and the other likewise.
     let a = triangle(map, map.prev(d))?;
     let b = triangle(map, map.prev(d.twin()))?;

@@ -138,14 +138,10 @@ pub trait Undo {
     fn undo(&self, map: &mut crate::map::Map) -> Result<(), Refusal>;
 }
 
-/// The faces on the two sides of the edge of `d`, which must be live, interior and between
-/// two different faces: the rule every edge-pair operator (rotation, the quad-dominant
-/// collisions) starts with. Refuses with [`Refusal::DeadHandle`], [`Refusal::Boundary`] or
-/// [`Refusal::SameFace`].
-pub(crate) fn two_faces(
-    map: &crate::map::Map,
-    d: crate::map::Dart,
-) -> Result<(crate::map::Face, crate::map::Face), Refusal> {
+/// Checks that the edge of `d` is live, interior and between two different faces: the rule
+/// every edge-pair operator (rotation, the quad-dominant collisions) starts with. Refuses
+/// with [`Refusal::DeadHandle`], [`Refusal::Boundary`] or [`Refusal::SameFace`].
+pub(crate) fn check_two_faces(map: &crate::map::Map, d: crate::map::Dart) -> Result<(), Refusal> {
     if !map.is_live_dart(d) {
         return Err(Refusal::DeadHandle);
     }
@@ -155,5 +151,5 @@ pub(crate) fn two_faces(
     if f == g {
         return Err(Refusal::SameFace);
     }
-    Ok((f, g))
+    Ok(())
 }

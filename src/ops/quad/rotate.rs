@@ -43,7 +43,7 @@ pub(super) struct RotationPlan {
 }
 
 fn plan_rotation(map: &Map, h: Dart, dir: Rotation) -> Result<RotationPlan, Refusal> {
-    crate::ops::two_faces(map, h)?;
+    crate::ops::check_two_faces(map, h)?;
     let t = h.twin();
     let hq = quad_of(map, h)?;
     let tq = quad_of(map, t)?;
