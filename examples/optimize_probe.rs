@@ -127,14 +127,11 @@ fn main() {
         area: mean_area(&mesh),
         faces: input_faces,
     };
-    let names = [
-        "count",
-        "electric",
-        "isotropy",
-        "sizing",
-        "separatrix",
-        "faces",
-    ];
+    let names: Vec<String> = terms
+        .terms
+        .iter()
+        .map(|(_, t)| t.name().to_string())
+        .collect();
     let sing = singularities(&mesh);
     let mut defect = vec![0i64; mesh.map.vertex_slots()];
     for s in &sing {

@@ -121,6 +121,17 @@ fn bad_input_exits_2_without_out() {
         assert!(!out.exists(), "{c:?} left OUT");
         assert!(!stderr(&o).is_empty());
     }
+    // An unknown term's message names every term the library has.
+    let o = zipmesh(&["optimize", s(&inp), "--weight", "nope=1", "-o", "x.obj"]);
+    let defaults = zipmesh::optimize::OptimizeOptions::default();
+    for (_, t) in defaults.terms() {
+        assert!(
+            stderr(&o).contains(t.name()),
+            "{}: {}",
+            t.name(),
+            stderr(&o)
+        );
+    }
 }
 
 #[test]

@@ -52,19 +52,14 @@ pub struct OptimizeArgs {
 }
 
 fn parse_weight(s: &str) -> Result<(String, f64), String> {
-    const NAMES: [&str; 6] = [
-        "count",
-        "electric",
-        "isotropy",
-        "sizing",
-        "separatrix",
-        "faces",
-    ];
+    // The names come from the library's default terms, so a new term needs no edit here.
+    let defaults = zipmesh::optimize::OptimizeOptions::default();
+    let names: Vec<&str> = defaults.terms().iter().map(|(_, t)| t.name()).collect();
     let (name, w) = s.split_once('=').ok_or("expected NAME=W")?;
-    if !NAMES.contains(&name) {
+    if !names.contains(&name) {
         return Err(format!(
             "unknown term {name} (expected one of {})",
-            NAMES.join(", ")
+            names.join(", ")
         ));
     }
     match w.parse::<f64>() {
