@@ -6,6 +6,9 @@
 //! the worst triangle near the edit gets better on average. Bad input is refused with the
 //! mesh unchanged.
 
+mod common;
+
+use common::tri::{lattice, to_surface};
 use glam::DVec3;
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::CanonicalCode;
@@ -17,28 +20,6 @@ use zipmesh::tri_edit::{
     touched_vertices, Direction, RelaxError, Relaxed,
 };
 use zipmesh::{Map, Mesh, Vert};
-
-/// An `n x n` patch of the equilateral triangle lattice (edge 1) lifted onto the height
-/// field `bump * sin(0.4 x) cos(0.5 y)`.
-fn lattice(n: usize, bump: f64) -> Mesh {
-    let mut p = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let (x, y) = (i as f64 + j as f64 * 0.5, j as f64 * 3f64.sqrt() / 2.0);
-            p.push(DVec3::new(x, y, bump * (0.4 * x).sin() * (0.5 * y).cos()));
-        }
-    }
-    let mut tris = Vec::new();
-    for j in 0..n - 1 {
-        for i in 0..n - 1 {
-            let a = (j * n + i) as u32;
-            let (b, c) = (a + 1, a + n as u32);
-            tris.push([a, b, c]);
-            tris.push([b, c + 1, c]);
-        }
-    }
-    Mesh::from_polygons(p, &tris).unwrap().0
-}
 
 const N: usize = 14;
 
@@ -71,44 +52,6 @@ fn edited(seed: u64) -> (Mesh, Mesh) {
         }
     }
     (input, mesh)
-}
-
-/// The distance from `p` to the triangle `t`, by projection onto its plane and, outside,
-/// the nearest of its edges.
-fn to_triangle(p: DVec3, t: [DVec3; 3]) -> f64 {
-    let seg = |a: DVec3, b: DVec3| {
-        let ab = b - a;
-        let s = if ab.length_squared() > 0.0 {
-            ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        p.distance(a + ab * s)
-    };
-    let edges = seg(t[0], t[1]).min(seg(t[1], t[2])).min(seg(t[2], t[0]));
-    let n = (t[1] - t[0]).cross(t[2] - t[0]);
-    if n.length_squared() == 0.0 {
-        return edges;
-    }
-    let n = n.normalize();
-    let q = p - n * n.dot(p - t[0]);
-    let inside = (0..3).all(|k| (t[(k + 1) % 3] - t[k]).cross(q - t[k]).dot(n) >= 0.0);
-    if inside {
-        p.distance(q)
-    } else {
-        edges
-    }
-}
-
-/// The distance from `p` to the surface of `mesh`, by brute force over its triangles.
-fn to_surface(mesh: &Mesh, p: DVec3) -> f64 {
-    mesh.polygons()
-        .iter()
-        .map(|f| {
-            let c = |k: usize| mesh.positions[f[k] as usize];
-            to_triangle(p, [c(0), c(1), c(2)])
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The smallest angle (radians) of the triangles with a corner in `region`.
@@ -250,6 +193,9 @@ fn a_displaced_vertex_goes_back() {
     }
 }
 
+/// A change that makes a mesh bad input.
+type Spoil = fn(&mut Mesh);
+
 /// Dead vertices, non-finite or missing positions are refused with the mesh unchanged;
 /// an empty region, boundary vertices and a collapsed (all-degenerate) mesh move nothing.
 #[test]
@@ -257,16 +203,16 @@ fn bad_input_is_refused_and_degenerate_input_moves_nothing() {
     let (input, mesh) = edited(7);
     let s = Surface::new(&input);
     let region = region_of(&input, &mesh, 1);
-    let cases: [(Box<dyn Fn(&mut Mesh)>, RelaxError); 3] = [
+    let cases: [(Spoil, RelaxError); 3] = [
         (
-            Box::new(|m| m.positions[centre().index()].y = f64::NAN),
+            |m| m.positions[centre().index()].y = f64::NAN,
             RelaxError::NonFinite(centre()),
         ),
         (
-            Box::new(|m| m.positions.truncate(centre().index())),
+            |m| m.positions.truncate(centre().index()),
             RelaxError::NonFinite(centre()),
         ),
-        (Box::new(|_| ()), RelaxError::DeadHandle(Vert::new(9999))),
+        (|_| (), RelaxError::DeadHandle(Vert::new(9999))),
     ];
     for (spoil, want) in cases {
         let mut bad = mesh.clone();
