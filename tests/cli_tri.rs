@@ -623,6 +623,27 @@ fn tri_move_relax() {
             "{mode}: {moved_by_rings:?}"
         );
     }
+    // tri-generate and tri-cancel relax through the same code: a quadruple at a regular
+    // vertex far from the pair, relaxed, then cancelled and relaxed again.
+    let (gen_plain, gen_relaxed) = (dir.join("gen-plain.obj"), dir.join("gen-relaxed.obj"));
+    let g = ["tri-generate", s(&file), "--at", "40"];
+    let plain = report(&g, &gen_plain);
+    let v = report(&[&g[..], &["--relax", "local"]].concat(), &gen_relaxed);
+    assert_eq!(v["four"], plain["four"]);
+    assert_eq!(read(&gen_relaxed).map, read(&gen_plain).map);
+    assert!(v["relax"]["moved"].as_u64().unwrap() > 0, "{v}");
+    let four = join(&numbers(&v["four"]));
+    let c = [
+        "tri-cancel",
+        s(&gen_relaxed),
+        "--quadruple",
+        &four,
+        "--relax",
+        "global",
+    ];
+    let v = report(&c, &dir.join("cancelled.obj"));
+    let energy = |k: &str| v["relax"][k].as_f64().unwrap();
+    assert!(energy("energy_after") <= energy("energy_before"), "{v}");
     let out = dir.join("rings-alone.obj");
     let mut all = args.to_vec();
     all.extend(["--rings", "1"]);
