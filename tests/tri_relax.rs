@@ -118,6 +118,32 @@ proptest! {
     }
 }
 
+/// The mean change of the worst angle at the region (2 rings) over the edits of `seeds`.
+fn mean_gain(seeds: impl Iterator<Item = u64>, global: bool) -> f64 {
+    let (mut gain, mut n) = (0.0, 0);
+    for seed in seeds {
+        let (input, mut mesh) = edited(seed);
+        let region = region_of(&input, &mesh, 2);
+        let w0 = worst_angle(&mesh, &region);
+        relax(&mut mesh, &Surface::new(&input), &region, global);
+        gain += worst_angle(&mesh, &region) - w0;
+        n += 1;
+    }
+    gain / n as f64
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Over any 8 consecutive seeds' edits, relaxation of either kind raises the worst angle
+    /// at the region on average.
+    #[test]
+    fn relaxation_improves_quality_on_average(base in any::<u64>(), global in any::<bool>()) {
+        let gain = mean_gain((0..8).map(|k| base.wrapping_add(k)), global);
+        prop_assert!(gain > 0.0, "mean worst-angle change {gain} rad");
+    }
+}
+
 /// Over 40 generated edits, relaxation (each kind, 2 rings) raises the worst angle of the
 /// triangles at the region on average, and global relaxation lowers Eq. 5 on each edit.
 #[test]
