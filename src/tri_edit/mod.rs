@@ -48,7 +48,8 @@
 //!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]);
 //! * relaxation of the geometry after an edit (Sec. 8): [`relax_local`] (Turk-style, one
 //!   vertex at a time) and `relax_global` (Eq. 5 on tangent planes, sparse Cholesky; `std`
-//!   feature), on the region [`relax_region`] grows around [`touched_vertices`];
+//!   feature), on the region [`relax_region`] grows around [`touched_vertices`]; the
+//!   equations and our reading of them in [`relax`];
 //! * composite movement of a 5-7, 5-5 or 7-7 pair that need not be adjacent (Sec. 7.1):
 //!   [`move_far_pair`], the three-step pipeline of 7.1.1 (generation at one vertex, a walk
 //!   of the generated pair, removal at the other).
@@ -67,7 +68,7 @@ mod generate;
 mod pair;
 mod quadruple;
 mod record;
-mod relax;
+pub mod relax;
 mod triple;
 mod types;
 

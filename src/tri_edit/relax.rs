@@ -233,7 +233,7 @@ pub fn mean_edge_length(mesh: &Mesh) -> f64 {
 }
 
 /// Eq. 5 over the terms `(i, j)` with `v_i` or `v_j` in `region`, with edge length `d` and
-/// the targets of the current positions (see the module documentation).
+/// the targets of the current positions (see [the module](self)).
 ///
 /// ```
 /// use zipmesh::{gen, tri_edit::relax_energy, Vert};
@@ -397,7 +397,7 @@ fn finish(mesh: &mut Mesh, region: &[Vert], pos: &[DVec3]) -> usize {
     moved
 }
 
-/// Local relaxation (Turk-style, one vertex at a time; module documentation): `iterations`
+/// Local relaxation (Turk-style, one vertex at a time; see [the module](self)): `iterations`
 /// sweeps over the interior vertices of `region`, each moved to the centroid of its
 /// neighbours within its tangent plane and projected onto `surface`. Vertices outside the
 /// region keep their positions bit for bit; the map is not touched.
@@ -406,7 +406,7 @@ fn finish(mesh: &mut Mesh, region: &[Vert], pos: &[DVec3]) -> usize {
 /// [`RelaxError::DeadHandle`] or [`RelaxError::NonFinite`] for a region vertex (or a
 /// neighbour's position); the mesh is then unchanged.
 ///
-/// See the module documentation for an example.
+/// See [the module](self) for an example.
 pub fn relax_local(
     mesh: &mut Mesh,
     surface: &Surface,

@@ -22,7 +22,7 @@ const RIDGE: f64 = 1e-9;
 /// The fractions of a solved step tried, in order, until one lowers the energy.
 const SCALES: [f64; 3] = [1.0, 0.5, 0.25];
 
-/// Global relaxation (Eq. 5; module documentation of [`crate::tri_edit`]'s relaxation):
+/// Global relaxation (Eq. 5; see [`crate::tri_edit::relax`]):
 /// up to `iterations` solves, each minimising Eq. 5 with the interior vertices of `region`
 /// on their tangent planes, projecting them onto `surface` and recomputing the targets. A
 /// step that would raise the energy is halved twice, then relaxation stops, so
