@@ -122,6 +122,7 @@ impl std::error::Error for RelaxError {}
 ///
 /// See [`relax_local`] and [`relax_global`] for examples.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Relaxed {
     /// How many region vertices could move (live and interior, each counted once).
     pub movable: usize,
