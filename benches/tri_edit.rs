@@ -2,13 +2,18 @@
 //! tori of two sizes: an atomic 5-7 move, and a composite move (Sec. 7.1) of a 5-7 pair at
 //! distance 2, each applied and undone so the mesh stays the same. The composite move
 //! probes each walk step on a copy of the map, so its cost grows with the map's size.
+//! Relaxation (Sec. 8): local (10 sweeps) and global (5 solves) on regions of 1 to 8 rings
+//! around a flip in a bumpy lattice.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
+use glam::DVec3;
 use zipmesh::ops::tri;
+use zipmesh::optimize::Surface;
 use zipmesh::tri_edit::{
-    far_pair_directions, generate_pair_v7, move_far_pair, move_pair, Direction, Moved, Via7,
+    far_pair_directions, generate_pair_v7, move_far_pair, move_pair, relax_global, relax_local,
+    relax_region, touched_vertices, Direction, Moved, Via7,
 };
-use zipmesh::{Map, Vert};
+use zipmesh::{Map, Mesh, Vert};
 
 /// An `n x n` triangulated torus with one diagonal flipped and that flip's first pair moved
 /// 4 steps away; returns the map and that pair (v5, v7).
@@ -90,5 +95,64 @@ fn tri_edits(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, tri_edits);
+/// An `n x n` equilateral lattice on a bumpy height field and the same with a spoke of its
+/// centre flipped; returns both and the flip's four corners.
+fn bumpy_flip(n: usize) -> (Mesh, Mesh, Vec<Vert>) {
+    let mut p = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 + j as f64 * 0.5, j as f64 * 3f64.sqrt() / 2.0);
+            p.push(DVec3::new(x, y, 0.8 * (0.4 * x).sin() * (0.5 * y).cos()));
+        }
+    }
+    let mut tris = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = (j * n + i) as u32;
+            let (b, c) = (a + 1, a + n as u32);
+            tris.extend([[a, b, c], [b, c + 1, c]]);
+        }
+    }
+    let input = Mesh::from_polygons(p, &tris).expect("lattice").0;
+    let mut edited = input.clone();
+    let centre = Vert::new(((n / 2) * n + n / 2) as u32);
+    let d = edited.map.vertex_darts(centre).next().expect("spoke");
+    tri::flip_edge(&mut edited.map, d).expect("flip");
+    let touched = touched_vertices(&input.map, &edited.map);
+    (input, edited, touched)
+}
+
+fn relaxation(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tri_edit relaxation");
+    g.sample_size(10);
+    let (input, edited, touched) = bumpy_flip(64);
+    let surface = Surface::new(&input);
+    for rings in [1, 2, 4, 8] {
+        let region = relax_region(&edited.map, &touched, rings);
+        let n = region.len();
+        g.bench_function(
+            format!("local, 10 sweeps, {rings} rings ({n} vertices)"),
+            |b| {
+                b.iter_batched(
+                    || edited.clone(),
+                    |mut m| relax_local(&mut m, &surface, &region, 10).expect("relaxes"),
+                    BatchSize::SmallInput,
+                )
+            },
+        );
+        g.bench_function(
+            format!("global, 5 solves, {rings} rings ({n} vertices)"),
+            |b| {
+                b.iter_batched(
+                    || edited.clone(),
+                    |mut m| relax_global(&mut m, &surface, &region, 5).expect("relaxes"),
+                    BatchSize::SmallInput,
+                )
+            },
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(benches, tri_edits, relaxation);
 criterion_main!(benches);

@@ -543,3 +543,124 @@ fn tri_move_composite_pairs() {
         "every composite move has an undo among the six directions"
     );
 }
+
+/// A bumpy equilateral lattice with a spoke of its centre flipped: a file and the 5-7 pair
+/// (the centre, a v5, and a v7 next to it).
+fn bumpy_pair_file(dir: &Path) -> (PathBuf, u32, u32) {
+    let n = 12;
+    let mut mesh = common::tri::lattice(n, 0.8);
+    let c = Vert::new(((n / 2) * n + n / 2) as u32);
+    let d = mesh.map.vertex_darts(c).next().unwrap();
+    zipmesh::ops::tri::flip_edge(&mut mesh.map, d).unwrap();
+    let map = &mesh.map;
+    let mut ring = map.vertex_darts(c).map(|d| map.dest(d));
+    let q = ring.find(|&w| map.valence(w) == 7).unwrap();
+    let file = dir.join("bumpy.obj");
+    io::write_mesh(&file, &mesh).unwrap();
+    (file, c.index() as u32, q.index() as u32)
+}
+
+/// `--relax local|global`: OUT has the connectivity and report of the same edit without
+/// it; exactly the reported number of vertices move, each onto the input surface, fewer
+/// with fewer `--rings`; global relaxation does not raise Eq. 5. `--rings` alone is refused.
+#[test]
+fn tri_move_relax() {
+    let dir = temp_dir("tri-relax");
+    let (file, p, q) = bumpy_pair_file(&dir);
+    let input = read(&file);
+    let pair = format!("{p},{q}");
+    let plain_out = dir.join("plain.obj");
+    // The first direction that moves the pair away from the flip's other pair.
+    let dirs = ["0", "1", "2", "3", "4", "5"];
+    let tries = dirs.map(|d| ["tri-move", s(&file), "--pair", &pair, "--direction", d]);
+    let args = tries
+        .iter()
+        .find(|a| zipmesh_to(&a[..], &plain_out).status.success())
+        .expect("some direction applies")
+        .to_vec();
+    let plain = report(&args, &plain_out);
+    assert!(plain["relax"].is_null());
+    let plain_mesh = read(&plain_out);
+    let bits = |p: DVec3| p.to_array().map(f64::to_bits);
+    for mode in ["local", "global"] {
+        let mut moved_by_rings = Vec::new();
+        for rings in ["0", "3"] {
+            let out = dir.join(format!("{mode}-{rings}.obj"));
+            let mut all = args.to_vec();
+            all.extend(["--relax", mode, "--rings", rings]);
+            let v = report(&all, &out);
+            let relaxed = read(&out);
+            assert_eq!(
+                relaxed.map, plain_mesh.map,
+                "{mode}: the connectivity changed"
+            );
+            assert_eq!(v["pair"], plain["pair"]);
+            let r = &v["relax"];
+            assert_eq!(
+                (r["mode"].as_str(), r["rings"].to_string()),
+                (Some(mode), rings.into())
+            );
+            let changed: Vec<usize> = (0..relaxed.positions.len())
+                .filter(|&i| bits(relaxed.positions[i]) != bits(plain_mesh.positions[i]))
+                .collect();
+            assert_eq!(changed.len() as u64, r["moved"].as_u64().unwrap(), "{v}");
+            assert!(
+                !changed.is_empty(),
+                "{mode} --rings {rings} moved nothing: {v}"
+            );
+            for &i in &changed {
+                let d = common::tri::to_surface(&input, relaxed.positions[i]);
+                assert!(d < 1e-9, "{mode}: vertex {i} is {d} off the input surface");
+            }
+            let (e0, e1) = (r["energy_before"].as_f64(), r["energy_after"].as_f64());
+            if mode == "global" {
+                assert!(e1.unwrap() <= e0.unwrap(), "{v}");
+            }
+            moved_by_rings.push(changed.len());
+        }
+        assert!(
+            moved_by_rings[0] < moved_by_rings[1],
+            "{mode}: {moved_by_rings:?}"
+        );
+    }
+    // tri-generate and tri-cancel relax through the same code: a quadruple at a regular
+    // vertex far from the pair, relaxed, then cancelled and relaxed again.
+    let (gen_plain, gen_relaxed) = (dir.join("gen-plain.obj"), dir.join("gen-relaxed.obj"));
+    let g = ["tri-generate", s(&file), "--at", "40"];
+    let plain = report(&g, &gen_plain);
+    let v = report(&[&g[..], &["--relax", "local"]].concat(), &gen_relaxed);
+    assert_eq!(v["four"], plain["four"]);
+    assert_eq!(read(&gen_relaxed).map, read(&gen_plain).map);
+    assert!(v["relax"]["moved"].as_u64().unwrap() > 0, "{v}");
+    let four = join(&numbers(&v["four"]));
+    let c = [
+        "tri-cancel",
+        s(&gen_relaxed),
+        "--quadruple",
+        &four,
+        "--relax",
+        "global",
+    ];
+    let v = report(&c, &dir.join("cancelled.obj"));
+    let energy = |k: &str| v["relax"][k].as_f64().unwrap();
+    assert!(energy("energy_after") <= energy("energy_before"), "{v}");
+    let out = dir.join("rings-alone.obj");
+    let mut all = args.to_vec();
+    all.extend(["--rings", "1"]);
+    let o = zipmesh_to(&all, &out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = zipmesh_to(
+        &[
+            "tri-type",
+            s(&file),
+            "--split",
+            &p.to_string(),
+            "--relax",
+            "sideways",
+        ],
+        &out,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!out.exists());
+}

@@ -46,6 +46,10 @@
 //!   [`remove_pair_v7`] (the mirror of Fig. 7), and the cancellation of an adjacent 5-5-7
 //!   or 5-7-7 triple into one v5 or one v7, [`cancel_triple`] (Sec. 7.2; generation,
 //!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]);
+//! * relaxation of the geometry after an edit (Sec. 8): [`relax_local`] (Turk-style, one
+//!   vertex at a time) and `relax_global` (Eq. 5 on tangent planes, sparse Cholesky; `std`
+//!   feature), on the region [`relax_region`] grows around [`touched_vertices`]; the
+//!   equations and our reading of them in [`relax`];
 //! * composite movement of a 5-7, 5-5 or 7-7 pair that need not be adjacent (Sec. 7.1):
 //!   [`move_far_pair`], the three-step pipeline of 7.1.1 (generation at one vertex, a walk
 //!   of the generated pair, removal at the other).
@@ -64,6 +68,7 @@ mod generate;
 mod pair;
 mod quadruple;
 mod record;
+pub mod relax;
 mod triple;
 mod types;
 
@@ -81,6 +86,12 @@ pub use quadruple::{
     remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
 pub use record::VertexMove;
+#[cfg(feature = "std")]
+pub use relax::relax_global;
+pub use relax::{
+    mean_edge_length, relax_energy, relax_local, relax_region, touched_vertices, RelaxError,
+    Relaxed,
+};
 pub use triple::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
     cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,

@@ -1,10 +1,11 @@
 //! Triangle-mesh fixtures shared by the triangle editing tests.
 
+use glam::DVec3;
 use std::collections::BTreeSet;
 use zipmesh::gen;
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{generate_pair_v7, move_pair, Direction, Moved, Via7};
-use zipmesh::{Map, Vert};
+use zipmesh::{Map, Mesh, Vert};
 
 /// The irregular interior vertices and their valences, by handle.
 pub fn irregular(map: &Map) -> BTreeSet<(Vert, usize)> {
@@ -96,4 +97,64 @@ pub fn far_five_seven() -> (Map, Vert, Vert) {
         }
     }
     panic!("no far 5-7 pair found");
+}
+
+/// An `n x n` patch of the equilateral triangle lattice (edge 1) lifted onto the height
+/// field `bump * sin(0.4 x) cos(0.5 y)`.
+pub fn lattice(n: usize, bump: f64) -> Mesh {
+    let mut p = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 + j as f64 * 0.5, j as f64 * 3f64.sqrt() / 2.0);
+            p.push(DVec3::new(x, y, bump * (0.4 * x).sin() * (0.5 * y).cos()));
+        }
+    }
+    let mut tris = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = (j * n + i) as u32;
+            let (b, c) = (a + 1, a + n as u32);
+            tris.push([a, b, c]);
+            tris.push([b, c + 1, c]);
+        }
+    }
+    Mesh::from_polygons(p, &tris).unwrap().0
+}
+
+/// The distance from `p` to the triangle `t`, by projection onto its plane and, outside,
+/// the nearest of its edges.
+pub fn to_triangle(p: DVec3, t: [DVec3; 3]) -> f64 {
+    let seg = |a: DVec3, b: DVec3| {
+        let ab = b - a;
+        let s = if ab.length_squared() > 0.0 {
+            ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        p.distance(a + ab * s)
+    };
+    let edges = seg(t[0], t[1]).min(seg(t[1], t[2])).min(seg(t[2], t[0]));
+    let n = (t[1] - t[0]).cross(t[2] - t[0]);
+    if n.length_squared() == 0.0 {
+        return edges;
+    }
+    let n = n.normalize();
+    let q = p - n * n.dot(p - t[0]);
+    let inside = (0..3).all(|k| (t[(k + 1) % 3] - t[k]).cross(q - t[k]).dot(n) >= 0.0);
+    if inside {
+        p.distance(q)
+    } else {
+        edges
+    }
+}
+
+/// The distance from `p` to the surface of `mesh`, by brute force over its triangles.
+pub fn to_surface(mesh: &Mesh, p: DVec3) -> f64 {
+    mesh.polygons()
+        .iter()
+        .map(|f| {
+            let c = |k: usize| mesh.positions[f[k] as usize];
+            to_triangle(p, [c(0), c(1), c(2)])
+        })
+        .fold(f64::INFINITY, f64::min)
 }

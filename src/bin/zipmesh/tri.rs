@@ -4,7 +4,8 @@
 //! Same conventions as `zip`: 0-based vertex numbers of the file, OUT written compacted and
 //! atomically after the report, exit 2 and no OUT on bad input. Vertices the edit does not
 //! touch keep their positions bit for bit; a vertex an operator creates or moves is placed
-//! by its rule (`TriOp::apply_with`).
+//! by its rule (`TriOp::apply_with`). With `--relax local|global` the edit's neighbourhood
+//! is then relaxed on the input surface (Sec. 8, `tri_edit::relax_local` / `relax_global`).
 
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
@@ -12,12 +13,14 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
+use zipmesh::optimize::Surface;
 use zipmesh::tri_edit::{
     aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
     cancel_triple_along_with, far_pair_directions, generate_pair, generate_pair_v7,
     generate_pair_v7_with, generate_pair_with, generate_quadruple_with, move_far_pair,
-    move_far_pair_with, move_pair_with, remove_quadruple_with, split_type_with, Direction,
-    FarStart, Moved, Quadruple, TriEditError, TripleEdit, Via, Via7,
+    move_far_pair_with, move_pair_with, relax_global, relax_local, relax_region,
+    remove_quadruple_with, split_type_with, touched_vertices, Direction, FarStart, Moved,
+    Quadruple, Relaxed, TriEditError, TripleEdit, Via, Via7,
 };
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
@@ -27,6 +30,30 @@ use crate::qzip::InputError;
 /// The most atomic 5-7 moves `tri-cancel --triple` makes to bring a pair next to the
 /// third vertex (Sec. 7.2).
 const MAX_WALK: usize = 64;
+
+/// Sweeps of `--relax local`.
+const LOCAL_SWEEPS: usize = 10;
+
+/// Solves of `--relax global` (it stops earlier when Eq. 5 no longer decreases).
+const GLOBAL_SOLVES: usize = 5;
+
+/// How `--relax` moves the vertices near the edit (Sec. 8).
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Relax {
+    /// One vertex at a time toward its neighbours' centroid in its tangent plane (Turk).
+    Local,
+    /// The quadratic energy of Eq. 5 on tangent planes, solved for all at once.
+    Global,
+}
+
+impl Relax {
+    fn name(self) -> &'static str {
+        match self {
+            Relax::Local => "local",
+            Relax::Global => "global",
+        }
+    }
+}
 
 /// Input and output shared by every triangle edit.
 #[derive(Args)]
@@ -39,6 +66,13 @@ pub struct Files {
     /// Print one JSON value instead of text.
     #[arg(long)]
     json: bool,
+    /// Relax the edit's neighbourhood afterwards, on the input surface (Sec. 8). Without
+    /// it, every vertex the edit does not touch keeps its position bit for bit.
+    #[arg(long, value_enum)]
+    relax: Option<Relax>,
+    /// With --relax: how many rings around the vertices the edit touched relax too.
+    #[arg(long, default_value_t = 2, requires = "relax")]
+    rings: usize,
 }
 
 /// `zipmesh tri-move`.
@@ -271,6 +305,7 @@ fn finish(
     ops: &Ops,
     report: impl FnOnce(&Compaction) -> (Value, String),
 ) -> Result<ExitCode, InputError> {
+    let relaxed = f.relax.map(|mode| relax(f, &mut mesh, mode)).transpose()?;
     let c = mesh.compact();
     let pending = io::prepare_mesh(&f.output, &mesh)?;
     let (mut value, text) = report(&c);
@@ -279,6 +314,7 @@ fn finish(
     value["flips"] = json!(ops.flips);
     value["collapses"] = json!(ops.collapses);
     value["splits"] = json!(ops.splits);
+    value["relax"] = relax_json(f, relaxed.as_ref());
     if f.json {
         outln!("{value}");
     } else {
@@ -288,10 +324,58 @@ fn finish(
             f.output.display(),
             ops.text()
         );
+        if let (Some(mode), Some(r)) = (f.relax, relaxed) {
+            outln!(
+                "relaxed ({}, {} rings): {} of {} vertices moved, Eq. 5 energy {:.6} -> {:.6}",
+                mode.name(),
+                f.rings,
+                r.moved,
+                r.movable,
+                r.energy_before,
+                r.energy_after
+            );
+        }
     }
     out::flush()?;
     pending.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// `--relax`: the vertices the edit touched (compared with the input file, read again) and
+/// `--rings` rings around them, relaxed on the input's surface.
+fn relax(f: &Files, mesh: &mut Mesh, mode: Relax) -> Result<Relaxed, InputError> {
+    let input = load(f)?;
+    let touched = touched_vertices(&input.map, &mesh.map);
+    let region = relax_region(&mesh.map, &touched, f.rings);
+    let surface = Surface::new(&input);
+    let r = match mode {
+        Relax::Local => relax_local(mesh, &surface, &region, LOCAL_SWEEPS),
+        Relax::Global => relax_global(mesh, &surface, &region, GLOBAL_SOLVES),
+    };
+    r.map_err(|e| {
+        err(format_args!(
+            "{}: --relax {}: {e}",
+            f.file.display(),
+            mode.name()
+        ))
+    })
+}
+
+/// The report's `relax`: `null` without `--relax`.
+fn relax_json(f: &Files, r: Option<&Relaxed>) -> Value {
+    match (f.relax, r) {
+        (Some(mode), Some(r)) => json!({
+            "mode": mode.name(),
+            "rings": f.rings,
+            "vertices": r.movable,
+            "moved": r.moved,
+            "iterations": r.iterations,
+            "edge_length": r.edge_length,
+            "energy_before": r.energy_before,
+            "energy_after": r.energy_after,
+        }),
+        _ => Value::Null,
+    }
 }
 
 fn list(v: &[Option<u32>]) -> String {
