@@ -13,8 +13,10 @@ cd "$SRC/zipmesh"
 # Release with debug assertions and overflow checks: what plain `cargo fuzz build` (the
 # fuzz stage of .ci/run) builds, spelled as the Rust integration guide suggests. `-O` alone
 # would drop the assertions and, its flags differing, rebuild everything (4 minutes here).
-# No RUSTFLAGS here either, for the same reason.
-cargo fuzz build -O --debug-assertions
+# No RUSTFLAGS here either, for the same reason. ZIPMESH_FUZZ_FLAGS (unset in the image, so
+# ASan and compare tracing as ClusterFuzzLite expects) lets .ci/run reuse its faster build.
+# shellcheck disable=SC2086 # the flags are words
+cargo fuzz build -O --debug-assertions ${ZIPMESH_FUZZ_FLAGS:-}
 
 # The targets are the [[bin]] names of fuzz/Cargo.toml (what `cargo fuzz list` prints; not
 # called here because the image's cargo wrapper turns every `cargo fuzz` call into a build

@@ -47,7 +47,7 @@
 //!   or 5-7-7 triple into one v5 or one v7, [`cancel_triple`] (Sec. 7.2; generation,
 //!   Sec. 7.3, is [`generate_pair`] or [`generate_pair_v7`]);
 //! * relaxation of the geometry after an edit (Sec. 8): [`relax_local`] (Turk-style, one
-//!   vertex at a time) and `relax_global` (Eq. 5 on tangent planes, sparse Cholesky; `std`
+//!   vertex at a time) and `relax_global` (Eq. 5 on tangent planes, sparse Cholesky; `sparse`
 //!   feature), on the region [`relax_region`] grows around [`touched_vertices`]; the
 //!   equations and our reading of them in [`relax`];
 //! * composite movement of a 5-7, 5-5 or 7-7 pair that need not be adjacent (Sec. 7.1):
@@ -86,7 +86,7 @@ pub use quadruple::{
     remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
 };
 pub use record::VertexMove;
-#[cfg(feature = "std")]
+#[cfg(feature = "sparse")]
 pub use relax::relax_global;
 pub use relax::{
     mean_edge_length, relax_energy, relax_local, relax_region, touched_vertices, RelaxError,

@@ -21,8 +21,8 @@
 //! depend on what moves. A vertex without a tangent plane (degenerate or non-finite
 //! triangles around it) has no targets, adds no terms and does not move.
 //!
-//! **Global relaxation** ([`relax_global`], behind the `std` feature because the sparse
-//! Cholesky of `nalgebra-sparse` needs std): each region vertex is kept on its tangent plane,
+//! **Global relaxation** ([`relax_global`], behind the `sparse` feature, which brings the
+//! sparse Cholesky of `nalgebra-sparse`): each region vertex is kept on its tangent plane,
 //! `p_i = c_i + a_i t1_i + b_i t2_i` with `c_i` its current position, which makes `E`
 //! quadratic in the `2 n` unknowns `(a_i, b_i)` with the targets held fixed. The normal
 //! equations (plus `1e-9` times the identity, so that a region that could slide as a whole
@@ -455,7 +455,7 @@ pub fn relax_local(
     })
 }
 
-#[cfg(feature = "std")]
+#[cfg(feature = "sparse")]
 mod global;
-#[cfg(feature = "std")]
+#[cfg(feature = "sparse")]
 pub use global::relax_global;

@@ -27,7 +27,7 @@ const SCALES: [f64; 3] = [1.0, 0.5, 0.25];
 /// on their tangent planes, projecting them onto `surface` and recomputing the targets. A
 /// step that would raise the energy is halved twice, then relaxation stops, so
 /// `energy_after <= energy_before` always. Vertices outside the region keep their positions
-/// bit for bit; the map is not touched. Needs the `std` feature (the sparse solver).
+/// bit for bit; the map is not touched. Needs the `sparse` feature (the sparse solver).
 ///
 /// # Errors
 /// [`RelaxError::DeadHandle`] or [`RelaxError::NonFinite`] for a region vertex (or a
