@@ -431,3 +431,18 @@ fn workspace_epoch_wrap_clears_old_records() {
         assert!(ws.explored() > 40, "every record fresh: {}", ws.explored());
     }
 }
+
+/// Validation ignores the weights: a caller's path is checked against the forbidden edges
+/// and faces only, so weights a search would refuse (too few, negative) do not refuse it.
+#[test]
+fn validation_ignores_the_weights() {
+    let map = gen::grid(5, 5).map;
+    let path: Vec<Vert> = [7u32, 8, 9, 15].map(Vert::new).to_vec();
+    let (from, to) = (path[0], path[3]);
+    for weights in [vec![1.0; 3], vec![-1.0; map.edge_slots()]] {
+        let opts = SketchOptions::default().weights(weights);
+        assert!(zipmesh::qzip::sketch(&map, from, to, &opts).is_err());
+        let p = zipmesh::qzip::validate_path(&map, from, to, &path, &opts).unwrap();
+        assert_eq!(p.vertices(), path.as_slice());
+    }
+}
