@@ -96,10 +96,9 @@ pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
             }
             let (x, y) = (map.origin(map.prev(e)), map.dest(map.next(e)));
             let (ni, nj) = if left { (x, y) } else { (y, x) };
-            // A corner already on the path is refused by `validate_path` below (no vertex twice).
-            if !regular(ni) || !regular(nj) {
-                continue;
-            }
+            // The new corners need no test of their own: each is a neighbour of v[i] or
+            // v[i + 1], so `clear` below makes it regular or an end, and a corner on the path
+            // is refused by `validate_path` (no vertex twice).
             if (i > 0 && !regular(v[i])) || (i + 2 < v.len() && !regular(v[i + 1])) {
                 continue;
             }
