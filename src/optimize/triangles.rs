@@ -6,7 +6,8 @@
 //!
 //! A crawl is greedy: at each step it tries the four moves of both triangles and takes one
 //! that makes them collide, or else the one that brings the tips nearest (then the corners),
-//! never returning to a pair of tip darts it had; it is all or nothing. A merge is kept only
+//! never returning to a pair of tip darts it had; up to six moves may go uphill, to leave a
+//! local minimum; it is all or nothing. A merge is kept only
 //! if the constraints still hold and the interior singularities plus boundary defects
 //! ([`SingularityCounts`]) did not grow; otherwise every move of the crawl is undone and the
 //! pair is not tried again.
@@ -24,6 +25,9 @@ use crate::Mesh;
 
 /// How far (edges) two triangles may be apart to be paired.
 const RADIUS: usize = 64;
+
+/// How many moves of a crawl may raise the potential.
+const ESCAPES: usize = 6;
 
 /// What the triangle stage did.
 ///
@@ -81,15 +85,15 @@ fn potential(map: &Map, a: Dart, b: Dart) -> (usize, usize) {
     (tips, gap(map, &corners(map, a), &corners(map, b)))
 }
 
-/// The best next move of the pair `(i, j)`: `(which, move, collides)`, or `None` when no
-/// move collides or lowers the potential to a state not visited.
+/// The best next move of the pair `(i, j)` to a state not visited: `(which, move, uphill)`,
+/// `uphill` when it raises the potential; `None` when no move applies.
 fn best_step(
     mesh: &mut Mesh,
     tips: &[Dart],
     i: usize,
     j: usize,
     visited: &[(Dart, Dart)],
-) -> Option<(usize, Move)> {
+) -> Option<(usize, Move, bool)> {
     let here = potential(&mesh.map, tips[i], tips[j]);
     let mut best: Option<((usize, usize), usize, Move)> = None;
     for (k, other) in [(i, j), (j, i)] {
@@ -109,12 +113,12 @@ fn best_step(
                 return None;
             }
             let fresh = !visited.contains(&state);
-            if fresh && p <= here && best.is_none_or(|b| p < b.0) {
+            if fresh && best.is_none_or(|b| p < b.0) {
                 best = Some((p, k, mv));
             }
         }
     }
-    best.map(|(_, k, mv)| (k, mv))
+    best.map(|(p, k, mv)| (k, mv, p > here))
 }
 
 /// Undoes the crawl's moves, last first.
@@ -146,10 +150,18 @@ fn crawl_and_merge(
     let limit = 4 * start.min(RADIUS) + 16;
     let mut edits = Vec::new();
     let mut visited = alloc::vec![(tips[i], tips[j])];
+    // A few moves uphill get a pair out of a local minimum of the potential.
+    let mut uphill = ESCAPES;
     while hybrid::collision(&mesh.map, tips[i], tips[j]).is_none() && edits.len() < limit {
-        let Some((k, mv)) = best_step(mesh, tips, i, j, &visited) else {
+        let Some((k, mv, up)) = best_step(mesh, tips, i, j, &visited) else {
             break;
         };
+        if up {
+            if uphill == 0 {
+                break;
+            }
+            uphill -= 1;
+        }
         let Ok(e) = hybrid::mesh_move_triangle(mesh, tips[k], mv) else {
             break;
         };
