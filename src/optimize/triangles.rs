@@ -98,18 +98,20 @@ fn best_step(
     let mut best: Option<((usize, usize), usize, Move)> = None;
     for (k, other) in [(i, j), (j, i)] {
         for mv in Move::ALL {
-            let Ok(e) = hybrid::mesh_move_triangle(mesh, tips[k], mv) else {
+            // A probe on the map alone (positions play no part in the potential).
+            let Ok(e) = hybrid::move_triangle(&mut mesh.map, tips[k], mv) else {
                 continue;
             };
-            let (t, o) = (e.record().tip(), e.record().follow(tips[other]));
+            let (t, o) = (e.tip(), e.follow(tips[other]));
             let state = if k == i { (t, o) } else { (o, t) };
             let p = if hybrid::collision(&mesh.map, t, o).is_some() {
                 (0, 0)
             } else {
                 potential(&mesh.map, t, o)
             };
-            // An undo of a move just made cannot be refused; if it were, stop here.
-            if e.undo(mesh).is_err() {
+            // The move was just made on this map, so its undo is not refused; if it were,
+            // the full undo is tried, and then the crawl stops.
+            if e.undo_fresh(&mut mesh.map).is_err() && e.undo(&mut mesh.map).is_err() {
                 return None;
             }
             let fresh = !visited.contains(&state);
