@@ -1,9 +1,9 @@
 //! Criterion benches of the quad-dominant edits (`zipmesh::hybrid`, Q-zip paper Sec. 3.2) on
 //! torus grids with triangle pairs (`gen::quad_dominant`) of two sizes: each triangle move
-//! applied and undone, a move and its inverse applied (no undo), a compass walk straight on (4 and 11 edges on the small torus, 8 and 32 on the large)
-//! applied and undone, and the
-//! optimizer's triangle stage (crawl and merge every pair; `optimize` with no batch, on a
-//! fresh copy each iteration, the copy not timed).
+//! applied and undone; a move and its inverse applied (no undo); a compass walk straight on
+//! (4 and 11 edges on the small torus, 8 and 32 on the large) applied and undone, and there
+//! and back (no undo); and the optimizer's triangle stage (crawl and merge every pair;
+//! `optimize` with no batch, on a fresh copy each iteration, the copy not timed).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use zipmesh::hybrid::{self, compass, Move};
@@ -57,6 +57,17 @@ fn moves(c: &mut Criterion) {
                     w.undo(&mut mesh).expect("undo")
                 })
             });
+            // There and back again by the compass: the moves alone, no undo.
+            let (home, mut tip) = (mesh.map.origin(t), t);
+            g.bench_function(format!("walk {k} edges there and back, torus {n}"), |b| {
+                b.iter(|| {
+                    let w = compass::walk_to(&mut mesh, tip, target).expect("walks there");
+                    tip = compass::walk_to(&mut mesh, w.tip(), home)
+                        .expect("and back")
+                        .tip();
+                })
+            });
+            assert_eq!(mesh.map.check(), Ok(()));
         }
     }
     g.finish();
