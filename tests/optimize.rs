@@ -331,3 +331,31 @@ fn quad_dominant_same_seed_same_mesh() {
         assert_eq!(oa, ob, "{name}");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// Over random quad-dominant meshes (any genus, with or without boundary, 1 to 3
+    /// triangle pairs): topology and validity kept, the counts match, the score never
+    /// rises, every merged pair took two triangles, and the output is pure quad unless a
+    /// pair was refused.
+    #[test]
+    fn quad_dominant_random_meshes(
+        faces in 200usize..500, genus in 0usize..3, holes in 0usize..2, pairs in 1usize..4,
+        seed in any::<u64>(),
+    ) {
+        let base = gen::random_quad(faces, genus, holes, seed);
+        let (mut mesh, tips) = gen::with_triangle_pairs(base, pairs, 10, seed);
+        let before = Counts::of(&mesh.map);
+        let out = run(&mut mesh, Constraints::default(), 3, seed);
+        mesh.map.check().unwrap();
+        let after = Counts::of(&mesh.map);
+        prop_assert_eq!(after.euler_characteristic, before.euler_characteristic);
+        prop_assert_eq!(after.boundary_loops, before.boundary_loops);
+        prop_assert_eq!(out.input.triangles, tips.len());
+        prop_assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
+        prop_assert_eq!(out.final_counts.triangles, tips.len() - 2 * out.triangles.merged);
+        prop_assert!(out.batches.windows(2).all(|w| w[1].score <= w[0].score));
+        prop_assert!(out.final_counts.triangles == 0 || out.triangles.refused > 0);
+    }
+}
