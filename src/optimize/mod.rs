@@ -1,7 +1,8 @@
 //! Automatic singularity reduction of quad meshes by batches of Q-zips (Q-zip paper,
 //! Sec. 4.1): scores ([`score`](mod@score)), batches (`batch`), boundary defects
 //! ([`defect`](mod@defect)), features and protected regions ([`Constraints`]) and smoothing
-//! near the scars ([`smooth`](mod@smooth)). `docs/optimize.md` gives our reading of the paper.
+//! near the scars ([`smooth`](mod@smooth)); quad-dominant input has its triangle pairs
+//! merged first ([`TriangleStage`]). `docs/optimize.md` gives our reading of the paper.
 //!
 //! ```
 //! use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
