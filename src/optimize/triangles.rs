@@ -189,21 +189,49 @@ fn crawl_and_merge(
     None
 }
 
-/// The closest pair of triangles not tried yet, by tip distance.
+/// The nearest triangle to triangle `i` by tip distance (up to [`RADIUS`]) whose pair with
+/// `i` was not tried yet: `(distance, j)`. One breadth-first search from `i`'s tip.
+fn nearest(
+    map: &Map,
+    tips: &[Dart],
+    i: usize,
+    untried: impl Fn(usize) -> bool,
+) -> Option<(usize, usize)> {
+    let start = map.origin(tips[i]);
+    let mut seen: HashMap<Vert, usize> = HashMap::from([(start, 0)]);
+    let mut queue = VecDeque::from([start]);
+    while let Some(v) = queue.pop_front() {
+        let d = seen[&v];
+        let hit = (0..tips.len()).find(|&j| j != i && map.origin(tips[j]) == v && untried(j));
+        if let Some(j) = hit {
+            return Some((d, j));
+        }
+        if d >= RADIUS {
+            continue;
+        }
+        for e in map.vertex_darts(v) {
+            let w = map.dest(e);
+            if !seen.contains_key(&w) {
+                seen.insert(w, d + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    None
+}
+
+/// The closest pair of triangles not tried yet, by tip distance (ties: the lowest index).
 fn closest_pair(map: &Map, tips: &[Dart], tried: &[(Face, Face)]) -> Option<(usize, usize)> {
-    let face = |t: Dart| map.face(t);
+    let pair = |i: usize, j: usize| (map.face(tips[i.min(j)]), map.face(tips[i.max(j)]));
+    let untried = |i: usize, j: usize| match pair(i, j) {
+        (Some(a), Some(b)) => !tried.contains(&(a, b)),
+        _ => false,
+    };
     let mut best: Option<(usize, usize, usize)> = None;
     for i in 0..tips.len() {
-        for j in i + 1..tips.len() {
-            let (Some(a), Some(b)) = (face(tips[i]), face(tips[j])) else {
-                continue;
-            };
-            if tried.contains(&(a, b)) {
-                continue;
-            }
-            let d = gap(map, &[map.origin(tips[i])], &[map.origin(tips[j])]);
-            if d != usize::MAX && best.is_none_or(|x| d < x.0) {
-                best = Some((d, i, j));
+        if let Some((d, j)) = nearest(map, tips, i, |j| untried(i, j)) {
+            if best.is_none_or(|b| d < b.0) {
+                best = Some((d, i.min(j), i.max(j)));
             }
         }
     }
