@@ -2,15 +2,43 @@
 //! (`SketchOptions::forbid_faces`), every movement keeps the grid (valid map, topology,
 //! irregular valences, the triangles unchanged), has a reverse run restoring the input, and
 //! homotopic paths give isomorphic results. A plan that meets a triangle in a counted fan
-//! is refused and changes nothing: no collapse is ever attempted on a triangle.
+//! is refused and changes nothing: no collapse is ever attempted on a triangle. The
+//! fixtures include the polygon cages of `../shared/data/poly/` after one Catmull-Clark step
+//! with quads re-split; the campaign's `qzip-hybrid-*` properties are run here too.
 
+use zipmesh::campaign::{self, Case, Config, PairChoice};
 use zipmesh::hybrid;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, MeshKind};
 use zipmesh::qzip::{
     find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
 };
-use zipmesh::{gen, is_isomorphic, Face, Map, Vert};
+use zipmesh::{gen, is_isomorphic, Face, Map, Mesh, Vert};
+
+/// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step (quads only,
+/// singularities where the cage had non-quads or irregular vertices), with `pairs` quads
+/// re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
+fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/poly");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 2, "cages in {dir:?}");
+    names
+        .into_iter()
+        .map(|p| {
+            let (cage, _) = zipmesh::io::read_mesh(&p).unwrap();
+            assert!(cage.map.faces().any(|f| cage.map.degree(f) != 4));
+            let quads = gen::catmull_clark(&cage);
+            let (mesh, tips) = gen::with_triangle_pairs(quads, pairs, 12, seed);
+            assert_eq!(tips.len(), 2 * pairs);
+            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
+        })
+        .collect()
+}
 
 /// The twice-subdivided icosahedron (12 v5s, 20 v3s, isolated) or a cube (8 v3s) with
 /// triangle pairs walked apart among the singularities.
@@ -91,10 +119,15 @@ struct Tally {
     reversed: usize,
 }
 
+/// The fixtures, then the cages (`true`): on the cages `find_reverse` misses some movements,
+/// as it does on the same cages without triangles (docs/qzip.md), so there the misses are
+/// counted, not failed.
 #[test]
 fn grid_preservation_and_reversal() {
-    let mut t = Tally::default();
-    for map in fixtures() {
+    let (mut t, mut c) = (Tally::default(), Tally::default());
+    let cage_maps = cages(3, 0).into_iter().map(|(_, m)| (true, m.map));
+    for (is_cage, map) in fixtures().into_iter().map(|m| (false, m)).chain(cage_maps) {
+        let t = if is_cage { &mut c } else { &mut t };
         assert_eq!(hybrid::triangles(&map).len() % 2, 0);
         assert!(!hybrid::triangles(&map).is_empty());
         for path in pairs(&map, 6) {
@@ -126,9 +159,10 @@ fn grid_preservation_and_reversal() {
             }
         }
     }
-    eprintln!("{t:?}");
-    assert!(t.ok >= 300, "{t:?}");
+    eprintln!("fixtures {t:?}, cages {c:?}");
+    assert!(t.ok >= 300 && c.ok >= 300, "{t:?} {c:?}");
     assert_eq!(t.reversed, t.ok, "{t:?}");
+    assert!(c.reversed * 100 >= c.ok * 95, "cages: {c:?}");
 }
 
 #[test]
@@ -196,4 +230,79 @@ fn a_plan_meeting_a_triangle_is_refused() {
         }
     }
     assert!(refusals > 0);
+}
+
+/// The campaign's Q-zip properties on quad-dominant meshes hold on generated cases (quad
+/// cases with triangle pairs inserted, mixed cases as they are) and on the cages, with
+/// something checked; what they skip is in the `skipped` column (printed).
+#[test]
+fn hybrid_qzip_properties_hold_in_a_campaign() {
+    let names = [
+        "qzip-hybrid-grid",
+        "qzip-hybrid-reversal",
+        "qzip-hybrid-homotopy",
+    ];
+    let names: Vec<String> = names.map(String::from).to_vec();
+    let props =
+        campaign::select(&campaign::qzip_properties(PairChoice::default()), &names).unwrap();
+    let config = Config {
+        cases: 60,
+        max_faces: 600,
+        ..Config::default()
+    };
+    let r = campaign::run(&config, &props);
+    eprintln!("{}", r.table(false));
+    assert!(r.passed(), "{}", r.table(false));
+    for row in &r.rows {
+        assert!(row.cases > 0 && row.checks > 0, "{}", r.table(false));
+        assert_eq!(row.cases + row.skipped, 60);
+    }
+    // On the cages, homotopy is left out: `qzip-homotopy` already fails on the pure-quad
+    // subdivided Spot and Blub cages (docs/qzip.md, open points), triangles or not.
+    let cases: Vec<Case> = cages(2, 1)
+        .into_iter()
+        .map(|(name, m)| Case::from_mesh(m, 0, 0, name))
+        .collect();
+    let all = PairChoice {
+        max_distance: 8,
+        per_case: None,
+    };
+    let props = campaign::select(&campaign::qzip_properties(all), &names[..2]).unwrap();
+    let r = campaign::run_cases(&Config::default(), &cases, &props, &|| {});
+    eprintln!("{}", r.table(false));
+    assert!(r.passed(), "{}", r.table(false));
+    assert!(
+        r.rows.iter().all(|row| row.cases == 2 && row.checks > 0),
+        "{}",
+        r.table(false)
+    );
+}
+
+/// The hybrid properties check the triangles: a mesh whose triangles are all in one
+/// region the paths cannot leave is skipped, not passed silently, and a pure-triangle case
+/// is skipped too.
+#[test]
+fn hybrid_qzip_properties_skip_what_they_cannot_check() {
+    let props = campaign::qzip_properties(PairChoice::default());
+    let hybrid: Vec<_> = props
+        .iter()
+        .filter(|p| p.name().starts_with("qzip-hybrid"))
+        .collect();
+    assert_eq!(hybrid.len(), 3);
+    let tri = Case::from_mesh(gen::random_triangle(80, 0, 0, 1), 0, 0, "triangles");
+    // A regular torus with triangles: no quad singularity to join.
+    let (flat, _) = gen::quad_dominant(10, 10, 1, 2);
+    let flat = Case::from_mesh(flat, 0, 0, "torus");
+    for p in hybrid {
+        assert!(
+            !p.check(&tri).is_pass() && !p.check(&tri).is_fail(),
+            "{}",
+            p.name()
+        );
+        assert!(
+            !p.check(&flat).is_pass() && !p.check(&flat).is_fail(),
+            "{}",
+            p.name()
+        );
+    }
 }

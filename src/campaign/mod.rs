@@ -58,6 +58,7 @@ mod merge;
 mod optimize;
 mod property;
 mod qzip;
+mod qzip_hybrid;
 mod report;
 mod shard;
 mod shrink;

@@ -1,6 +1,7 @@
 //! The Q-zip properties: grid preservation, reversal, homotopy invariance and the four
 //! movements, checked on the singularity pairs of quad cases.
 
+use std::borrow::Cow;
 use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
@@ -50,16 +51,44 @@ fn singularities(map: &Map) -> Option<Vec<Vert>> {
     )
 }
 
-/// The pairs to try on a case, each with its shortest path.
-fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
-    let map = &case.mesh.map;
-    let sing = singularities(map)?;
+/// What a Q-zip property runs on: a map, its singularities (the path ends to draw from) and
+/// the sketch options; on a quad-dominant subject ([`super::qzip_hybrid`]) also the vertices
+/// within one edge of a triangle, which no path may visit.
+pub(super) struct Subject<'c> {
+    pub map: Cow<'c, Map>,
+    pub sing: Vec<Vert>,
+    pub opts: SketchOptions<'static>,
+    pub near: Option<Vec<Vert>>,
+}
+
+impl<'c> Subject<'c> {
+    /// A pure-quad case as it is.
+    fn quad(case: &'c Case) -> Option<Subject<'c>> {
+        let map = &case.mesh.map;
+        Some(Subject {
+            sing: singularities(map)?,
+            map: Cow::Borrowed(map),
+            opts: SketchOptions::default(),
+            near: None,
+        })
+    }
+
+    /// Whether a path keeps away from the triangles (always on a pure-quad subject).
+    pub(super) fn allows(&self, p: &Path) -> bool {
+        self.near
+            .as_ref()
+            .is_none_or(|n| p.vertices().iter().all(|v| n.binary_search(v).is_err()))
+    }
+}
+
+/// The pairs to try on a subject, each with its shortest path.
+fn pairs(case: &Case, s: &Subject<'_>, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
+    let (map, sing) = (&*s.map, &s.sing);
     if sing.len() < 2 {
         return None;
     }
-    let opts = SketchOptions::default();
     let fits = |a: Vert, b: Vert| {
-        sketch(map, a, b, &opts)
+        sketch(map, a, b, &s.opts)
             .ok()
             .filter(|p| p.len() <= choice.max_distance)
     };
@@ -67,7 +96,7 @@ fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
     match choice.per_case {
         None => {
             for &a in sing.iter().take_while(|_| !case.out_of_time()) {
-                for &b in &sing {
+                for &b in sing {
                     if a != b {
                         out.extend(fits(a, b));
                     }
@@ -98,11 +127,12 @@ fn pairs(case: &Case, choice: PairChoice, salt: u64) -> Option<Vec<Path>> {
 
 /// One movement checked for grid preservation and exact undo: `Ok(Some(edited))` if done,
 /// `Ok(None)` if refused cleanly, `Err` if a promise is broken.
-fn checked_zip(
-    map: &Map,
+pub(super) fn checked_zip(
+    s: &Subject<'_>,
     path: &Path,
     tag: Tag,
 ) -> Result<Option<(Map, crate::qzip::ZipReport)>, String> {
+    let map = &*s.map;
     let mut m = map.clone();
     let r = match Qzip::new().zip_along(&mut m, path, tag) {
         Ok(r) => r,
@@ -116,18 +146,24 @@ fn checked_zip(
             path.end().index()
         ));
     }
+    if s.near.is_some() {
+        super::qzip_hybrid::triangles_kept(map, &m).map_err(|e| format!("{tag}: {e}"))?;
+    }
     Ok(Some((m, r)))
 }
 
 fn grid(case: &Case, choice: PairChoice) -> Outcome {
-    let Some(paths) = pairs(case, choice, 0x717a_6772) else {
+    Subject::quad(case).map_or(Outcome::Skip, |s| grid_on(case, &s, choice))
+}
+
+pub(super) fn grid_on(case: &Case, s: &Subject<'_>, choice: PairChoice) -> Outcome {
+    let Some(paths) = pairs(case, s, choice, 0x717a_6772) else {
         return Outcome::Skip;
     };
-    let map = &case.mesh.map;
     let mut checks = 0;
     for path in paths.iter().take_while(|_| !case.out_of_time()) {
         for tag in Tag::CCW {
-            match checked_zip(map, path, tag) {
+            match checked_zip(s, path, tag) {
                 Ok(_) => checks += 1,
                 Err(e) => return Outcome::fail(e, Some(path.start())),
             }
@@ -137,15 +173,19 @@ fn grid(case: &Case, choice: PairChoice) -> Outcome {
 }
 
 fn reversal(case: &Case, choice: PairChoice) -> Outcome {
-    let Some(paths) = pairs(case, choice, 0x717a_7276) else {
+    Subject::quad(case).map_or(Outcome::Skip, |s| reversal_on(case, &s, choice))
+}
+
+pub(super) fn reversal_on(case: &Case, s: &Subject<'_>, choice: PairChoice) -> Outcome {
+    let Some(paths) = pairs(case, s, choice, 0x717a_7276) else {
         return Outcome::Skip;
     };
-    let map = &case.mesh.map;
+    let map = &*s.map;
     let code = CanonicalCode::of(map);
     let (mut checks, mut missed) = (0, 0);
     for path in paths.iter().take_while(|_| !case.out_of_time()) {
         for tag in Tag::CCW {
-            let edited = match checked_zip(map, path, tag) {
+            let edited = match checked_zip(s, path, tag) {
                 Ok(Some(x)) => x,
                 Ok(None) => continue,
                 Err(e) => return Outcome::fail(e, Some(path.start())),
@@ -201,18 +241,27 @@ fn outcomes(map: &Map, p: &Path) -> [Option<CanonicalCode>; 4] {
 }
 
 fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
+    Subject::quad(case).map_or(Outcome::Skip, |s| homotopy_on(case, &s, choice))
+}
+
+pub(super) fn homotopy_on(case: &Case, s: &Subject<'_>, choice: PairChoice) -> Outcome {
     let choice = PairChoice {
         max_distance: choice.max_distance.min(8),
         ..choice
     };
-    let Some(paths) = pairs(case, choice, 0x717a_686f) else {
+    let Some(paths) = pairs(case, s, choice, 0x717a_686f) else {
         return Outcome::Skip;
     };
-    let map = &case.mesh.map;
+    let map = &*s.map;
     let mut checks = 0;
     for p in paths.iter().take_while(|_| !case.out_of_time()) {
         let h0 = outcomes(map, p);
         for (_, q) in one_quad_sweeps(map, p).into_iter().take(4) {
+            // A sweep next to a triangle leaves the region the sketch keeps to (counted).
+            if !s.allows(&q) {
+                case.note_unchecked(1);
+                continue;
+            }
             let Some(k) = start_turn(map, p, &q) else {
                 return Outcome::fail("the swept path does not share the start", None);
             };
@@ -256,10 +305,13 @@ fn in_regular_region(map: &Map, p: &Path) -> bool {
 }
 
 fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
-    let Some(paths) = pairs(case, choice, 0x717a_666d) else {
+    let Some(s) = Subject::quad(case) else {
         return Outcome::Skip;
     };
-    let map = &case.mesh.map;
+    let Some(paths) = pairs(case, &s, choice, 0x717a_666d) else {
+        return Outcome::Skip;
+    };
+    let map = &*s.map;
     let mut checks = 0;
     for p in paths
         .iter()
@@ -294,7 +346,15 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
 /// not failed),
 /// `qzip-homotopy` (paths one swept quad apart give the same maps, labels matched by
 /// [`start_turn`]), `qzip-four-moves` (in a regular region the movements done are pairwise
-/// different).
+/// different); then the first three again on quad-dominant meshes (Sec. 3.2):
+/// `qzip-hybrid-grid`, `qzip-hybrid-reversal`, `qzip-hybrid-homotopy`. These run on a case of
+/// triangles and quads as it is, and on a pure-quad case with two triangle pairs inserted
+/// ([`gen::with_triangle_pairs`](crate::gen::with_triangle_pairs)); the paths wind around the
+/// triangles ([`avoid_triangles`](crate::hybrid::avoid_triangles)); a movement done must
+/// also keep every triangle (face handle and corner valences). Cases with other faces, or
+/// whose triangles leave no pair of singularities a path can join, are skipped (the
+/// `skipped` column); a swept path that comes near a triangle is not compared and is counted
+/// in `qzip-hybrid-homotopy`'s `unchecked` column.
 ///
 /// ```
 /// use zipmesh::campaign::{qzip_properties, Case, PairChoice};
@@ -327,6 +387,21 @@ pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
             "qzip-four-moves",
             about("for a pair in a regular region, the movements done give pairwise non-isomorphic maps"),
             move |c| four_moves(c, choice)
+        ),
+        Property::new(
+            "qzip-hybrid-grid",
+            about("on a quad-dominant mesh (triangle pairs inserted into a quad case), a Q-zip winding around the triangles keeps the grid and every triangle (face, corner valences) and undoes exactly"),
+            move |c| super::qzip_hybrid::grid(c, choice)
+        ),
+        Property::new(
+            "qzip-hybrid-reversal",
+            about("on a quad-dominant mesh, the reverse Q-zip found restores the original up to isomorphism"),
+            move |c| super::qzip_hybrid::reversal(c, choice)
+        ),
+        Property::new(
+            "qzip-hybrid-homotopy",
+            about("on a quad-dominant mesh, paths one swept quad apart (both away from the triangles) give the same maps"),
+            move |c| super::qzip_hybrid::homotopy(c, choice)
         ),
     ]
 }

@@ -97,12 +97,19 @@ impl Walk<Positions> {
     }
 }
 
-/// Breadth-first edge distances to `target` (`usize::MAX` where unreachable).
-fn distances(map: &Map, target: Vert) -> Vec<usize> {
+/// Breadth-first edge distances to `target` (`usize::MAX` where unreachable or not
+/// reached): the search stops once every vertex at most one edge farther than `tip` is
+/// labelled, since every move lands the tip on a neighbour. O(ball around the target)
+/// instead of O(map) per step.
+fn distances(map: &Map, target: Vert, tip: Vert) -> Vec<usize> {
     let mut dist = vec![usize::MAX; map.vertex_slots()];
     let mut queue = VecDeque::from([target]);
     dist[target.index()] = 0;
     while let Some(v) = queue.pop_front() {
+        let reached = dist.get(tip.index()).copied().unwrap_or(usize::MAX);
+        if reached != usize::MAX && dist[v.index()] > reached {
+            break;
+        }
         for d in map.vertex_darts(v) {
             let w = map.dest(d);
             if dist[w.index()] == usize::MAX {
@@ -140,7 +147,7 @@ pub fn next_move(map: &Map, t: Dart, target: Vert) -> Option<Move> {
     if !map.is_live_vertex(target) || map.origin(t) == target {
         return None;
     }
-    next_move_by(map, t, &distances(map, target))
+    next_move_by(map, t, &distances(map, target, map.origin(t)))
 }
 
 fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
@@ -188,7 +195,7 @@ pub fn walk_to_with<A: VertexAttributes>(
         tip: t,
     };
     while map.is_live_vertex(target) && map.origin(walk.tip) != target {
-        let dist = distances(map, target);
+        let dist = distances(map, target, map.origin(walk.tip));
         let here = dist[map.origin(walk.tip).index()];
         let stop = if here == usize::MAX {
             Some(WalkError::Unreachable)

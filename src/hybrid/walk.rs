@@ -556,6 +556,12 @@ impl TriangleMove {
     pub fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         self.patch.undo(map)
     }
+
+    /// [`TriangleMove::undo`] in place in O(entries touched), for a probe that made the
+    /// move on this map and changed nothing since (the optimizer's crawl).
+    pub(crate) fn undo_fresh(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.patch.undo_fresh(map)
+    }
 }
 
 impl crate::ops::Undo for TriangleMove {

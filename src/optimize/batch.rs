@@ -76,7 +76,16 @@ impl Batcher<'_> {
                 *l = true;
             }
         }
-        self.qzip.options_mut().forbidden_edges = self.constraints.forbidden_edges(mesh);
+        let o = self.qzip.options_mut();
+        o.forbidden_edges = self.constraints.forbidden_edges(mesh);
+        o.forbidden_faces.clear();
+        // On a quad-dominant mesh the paths wind around the triangles (Sec. 3.2).
+        if mesh.map.faces().any(|f| mesh.map.degree(f) == 3) {
+            let t =
+                crate::hybrid::avoid_triangles(&mesh.map, crate::qzip::SketchOptions::default());
+            o.forbidden_edges.extend(t.forbidden_edges);
+            o.forbidden_faces = t.forbidden_faces;
+        }
     }
 
     /// Relaxes the scar's vertices (two Laplacian steps, no projection), so that the new

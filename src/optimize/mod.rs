@@ -1,7 +1,8 @@
 //! Automatic singularity reduction of quad meshes by batches of Q-zips (Q-zip paper,
 //! Sec. 4.1): scores ([`score`](mod@score)), batches (`batch`), boundary defects
 //! ([`defect`](mod@defect)), features and protected regions ([`Constraints`]) and smoothing
-//! near the scars ([`smooth`](mod@smooth)). `docs/optimize.md` gives our reading of the paper.
+//! near the scars ([`smooth`](mod@smooth)); quad-dominant input has its triangle pairs
+//! merged first ([`TriangleStage`]). `docs/optimize.md` gives our reading of the paper.
 //!
 //! ```
 //! use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
@@ -16,6 +17,7 @@ pub mod constraints;
 pub mod defect;
 pub mod score;
 pub mod smooth;
+mod triangles;
 
 use alloc::boxed::Box;
 use alloc::vec::Vec;
@@ -28,6 +30,7 @@ pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
 };
 pub use smooth::{smooth, spring_stiffness, Surface};
+pub use triangles::TriangleStage;
 
 use crate::invariants::{Counts, MeshKind};
 use crate::qzip::{mesh_preprocess, Qzip, SketchOptions};
@@ -145,8 +148,9 @@ impl OptimizeOptions {
     }
 }
 
-/// The counts a run reports: faces, vertices, interior vertices by valence (2, 3, 5, 6 and
-/// more) and the sum of |defect| over boundary vertices.
+/// The counts a run reports: faces, triangles, vertices, interior vertices by valence (2, 3,
+/// 5, 6 and more; a triangle's corners are counted by their valence like any other) and the
+/// sum of |defect| over boundary vertices.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::SingularityCounts};
@@ -157,6 +161,8 @@ impl OptimizeOptions {
 pub struct SingularityCounts {
     /// Faces.
     pub faces: usize,
+    /// Faces that are triangles (the others are quads).
+    pub triangles: usize,
     /// Vertices.
     pub vertices: usize,
     /// Interior vertices of valence 2.
@@ -179,6 +185,7 @@ impl SingularityCounts {
         let map = &mesh.map;
         let mut c = SingularityCounts {
             faces: map.num_faces(),
+            triangles: map.faces().filter(|&f| map.degree(f) == 3).count(),
             vertices: map.num_vertices(),
             ..Default::default()
         };
@@ -289,6 +296,8 @@ pub struct BatchReport {
 pub struct Outcome {
     /// The counts of the input.
     pub input: SingularityCounts,
+    /// What the triangle stage did (quad-dominant input; all zero on a pure quad mesh).
+    pub triangles: TriangleStage,
     /// The total score before the first batch (after preprocessing).
     pub initial_score: f64,
     /// Whether the preprocessing ran and was kept.
@@ -310,7 +319,7 @@ pub struct Outcome {
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum OptimizeError {
-    /// A face is not a quad.
+    /// A face is neither a quad nor a triangle, or no face is a quad.
     NotQuad,
     /// The constraints do not hold on the input (they were recorded on another mesh).
     ConstraintsBroken,
@@ -321,7 +330,7 @@ pub enum OptimizeError {
 impl core::fmt::Display for OptimizeError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Self::NotQuad => f.write_str("not a pure quad mesh"),
+            Self::NotQuad => f.write_str("not a quad or quad-dominant mesh"),
             Self::ConstraintsBroken => f.write_str("the constraints do not hold on this mesh"),
             Self::MissingPositions => f.write_str("fewer positions than vertices"),
         }
@@ -360,17 +369,34 @@ fn mean_face_area(mesh: &Mesh) -> f64 {
 /// Runs batches of Q-zips on `mesh` until a batch improves nothing
 /// ([`OptimizeOptions::patience`] times in a row) or [`OptimizeOptions::max_batches`] ran,
 /// calling `progress` after each batch. The score never rises from one batch to the next;
-/// the mesh stays a valid pure-quad map with the same Euler characteristic, boundary loops
-/// and components, and `constraints` hold throughout. Deterministic for a given seed.
+/// the mesh stays a valid map with the same Euler characteristic, boundary loops and
+/// components, and `constraints` hold throughout. Deterministic for a given seed.
 ///
-/// See the module example.
+/// **Quad-dominant input** (triangles and quads, at least one quad): first pairs of
+/// triangles crawl towards each other and merge ([`TriangleStage`], Tarini et al. 2010,
+/// Sec. 6.1), closest pair first; a merge is kept only if it does not raise the interior
+/// singularities plus boundary defects. The preprocessing runs only if the result is pure
+/// quad; the batches' Q-zips wind around the triangles left
+/// ([`crate::hybrid::avoid_triangles`]), which they never change.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+/// let (mut mesh, _) = gen::with_triangle_pairs(gen::subdivided_icosahedron(2), 2, 6, 1);
+/// let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().batches(2), |_| {}).unwrap();
+/// assert_eq!(out.input.triangles, 4);
+/// assert_eq!(out.final_counts.triangles, 4 - 2 * out.triangles.merged);
+/// assert_eq!(mesh.map.check(), Ok(()));
+/// ```
 pub fn optimize(
     mesh: &mut Mesh,
     constraints: Constraints,
     options: OptimizeOptions,
     mut progress: impl FnMut(&BatchReport),
 ) -> Result<Outcome, OptimizeError> {
-    if MeshKind::of(&mesh.map) != MeshKind::Quad && mesh.map.num_faces() > 0 {
+    let map = &mesh.map;
+    let quads = map.faces().filter(|&f| map.degree(f) == 4).count();
+    let tris = map.faces().filter(|&f| map.degree(f) == 3).count();
+    if map.num_faces() > 0 && (quads == 0 || quads + tris != map.num_faces()) {
         return Err(OptimizeError::NotQuad);
     }
     if mesh.positions.len() < mesh.map.vertex_slots() {
@@ -382,8 +408,9 @@ pub fn optimize(
     let input = SingularityCounts::of(mesh);
     let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
+    let triangles = triangles::pair_triangles(mesh, &constraints);
     let mut preprocessed = false;
-    if options.preprocess {
+    if options.preprocess && MeshKind::of(&mesh.map) == MeshKind::Quad {
         if let Ok(p) = mesh_preprocess(mesh) {
             preprocessed = constraints.holds(mesh);
             if !preprocessed {
@@ -452,6 +479,7 @@ pub fn optimize(
     let _ = scorer;
     Ok(Outcome {
         input,
+        triangles,
         initial_score,
         preprocessed,
         batches,

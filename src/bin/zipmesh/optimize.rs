@@ -1,4 +1,5 @@
-//! `zipmesh optimize`: batches of Q-zips that reduce the singularities of a quad mesh.
+//! `zipmesh optimize`: batches of Q-zips that reduce the singularities of a quad mesh (on
+//! quad-dominant input after merging pairs of triangles).
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -16,7 +17,7 @@ use crate::qzip::InputError;
 
 #[derive(Args)]
 pub struct OptimizeArgs {
-    /// The input quad mesh (.obj or .off).
+    /// The input quad or quad-dominant (triangles and quads) mesh (.obj or .off).
     file: PathBuf,
     /// Where to write the result.
     #[arg(short, long)]
@@ -70,7 +71,7 @@ fn parse_weight(s: &str) -> Result<(String, f64), String> {
 
 fn counts(c: &SingularityCounts) -> serde_json::Map<String, Value> {
     let v = json!({
-        "faces": c.faces, "vertices": c.vertices, "v2": c.v2, "v3": c.v3, "v5": c.v5,
+        "faces": c.faces, "triangles": c.triangles, "vertices": c.vertices, "v2": c.v2, "v3": c.v3, "v5": c.v5,
         "v6plus": c.v6plus, "boundary_defects": c.boundary_defects,
     });
     match v {
@@ -150,8 +151,8 @@ fn progress(planned: usize) -> Option<ProgressBar> {
 
 fn summary(c: &SingularityCounts) -> String {
     format!(
-        "v2 {} v3 {} v5 {} v6+ {} boundary defects {} ({} faces)",
-        c.v2, c.v3, c.v5, c.v6plus, c.boundary_defects, c.faces
+        "v2 {} v3 {} v5 {} v6+ {} boundary defects {} ({} faces, {} triangles)",
+        c.v2, c.v3, c.v5, c.v6plus, c.boundary_defects, c.faces, c.triangles
     )
 }
 
@@ -159,11 +160,16 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     let (mut mesh, _) = io::read_mesh(&args.file)?;
     let name = out::escape(&args.file.display().to_string());
     let map = &mesh.map;
-    if let Some(f) = map.faces().find(|&f| map.degree(f) != 4) {
+    if let Some(f) = map.faces().find(|&f| !matches!(map.degree(f), 3 | 4)) {
         return Err(InputError(format!(
-            "{name}: not a quad mesh (face {} has {} corners); optimize edits quad meshes",
+            "{name}: not a quad-dominant mesh (face {} has {} corners); optimize edits quad meshes and quad-dominant ones (triangles and quads)",
             f.index(),
             map.degree(f)
+        )));
+    }
+    if map.num_faces() > 0 && map.faces().all(|f| map.degree(f) == 3) {
+        return Err(InputError(format!(
+            "{name}: not a quad-dominant mesh (every face is a triangle); optimize edits quad meshes and quad-dominant ones"
         )));
     }
     let c = constraints(&args, &mesh)?;
@@ -212,6 +218,12 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     if args.json {
         let report = json!({
             "input": counts(&outcome.input),
+            "triangle_stage": {
+                "input": outcome.triangles.input,
+                "merged_pairs": outcome.triangles.merged,
+                "moves": outcome.triangles.moves,
+                "refused_pairs": outcome.triangles.refused,
+            },
             "preprocessed": outcome.preprocessed,
             "initial_score": outcome.initial_score,
             "batches": rows,

@@ -1,0 +1,269 @@
+//! Quad-dominant input (Tarini et al. 2010, Sec. 6.1; Q-zip paper, Sec. 3.2): before the
+//! batches, pairs of triangles crawl towards each other by triangle moves
+//! ([`crate::hybrid::move_triangle`]) until they share an edge, and merge
+//! ([`crate::hybrid::merge_collision`]), so that a mesh with an even number of triangles can
+//! come out pure quad.
+//!
+//! A crawl is greedy: at each step it tries the four moves of both triangles and takes one
+//! that makes them collide, or else the one that brings the tips nearest (then the corners),
+//! never returning to a pair of tip darts it had; up to six moves may go uphill, to leave a
+//! local minimum; it is all or nothing. A merge is kept only
+//! if the constraints still hold and the interior singularities plus boundary defects
+//! ([`SingularityCounts`]) did not grow; otherwise every move of the crawl is undone and the
+//! pair is not tried again.
+
+use alloc::collections::VecDeque;
+use alloc::vec::Vec;
+
+use hashbrown::HashMap;
+
+use super::{Constraints, SingularityCounts};
+use crate::hybrid::{self, Move, TriangleMove};
+use crate::map::{Dart, Face, Map, Vert};
+use crate::mesh::Edited;
+use crate::Mesh;
+
+/// How far (edges) two triangles may be apart to be paired.
+const RADIUS: usize = 64;
+
+/// How many moves of a crawl may raise the potential.
+const ESCAPES: usize = 6;
+
+/// What the triangle stage did.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+/// let (mut mesh, _) = gen::quad_dominant(12, 12, 1, 4);
+/// let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().batches(1), |_| {}).unwrap();
+/// let t = out.triangles;
+/// assert_eq!(t.input, 2);
+/// assert_eq!(t.input - 2 * t.merged, out.final_counts.triangles);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct TriangleStage {
+    /// Triangles of the input.
+    pub input: usize,
+    /// Pairs merged.
+    pub merged: usize,
+    /// Triangle moves kept (the crawls of the merged pairs).
+    pub moves: usize,
+    /// Pairs whose crawl or merge failed or was not kept (each tried once).
+    pub refused: usize,
+}
+
+/// Breadth-first distance from any vertex of `from` to any of `to`, up to [`RADIUS`].
+fn gap(map: &Map, from: &[Vert], to: &[Vert]) -> usize {
+    let mut seen: HashMap<Vert, usize> = from.iter().map(|&v| (v, 0)).collect();
+    let mut queue: VecDeque<Vert> = from.iter().copied().collect();
+    while let Some(v) = queue.pop_front() {
+        let d = seen[&v];
+        if to.contains(&v) {
+            return d;
+        }
+        if d >= RADIUS {
+            continue;
+        }
+        for e in map.vertex_darts(v) {
+            let w = map.dest(e);
+            if !seen.contains_key(&w) {
+                seen.insert(w, d + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    usize::MAX
+}
+
+fn corners(map: &Map, t: Dart) -> [Vert; 3] {
+    [map.origin(t), map.dest(t), map.dest(map.next(t))]
+}
+
+/// How far apart two triangles are: their tips, then their nearest corners.
+fn potential(map: &Map, a: Dart, b: Dart) -> (usize, usize) {
+    let tips = gap(map, &[map.origin(a)], &[map.origin(b)]);
+    (tips, gap(map, &corners(map, a), &corners(map, b)))
+}
+
+/// The best next move of the pair `(i, j)` to a state not visited: `(which, move, uphill)`,
+/// `uphill` when it raises the potential; `None` when no move applies.
+fn best_step(
+    mesh: &mut Mesh,
+    tips: &[Dart],
+    i: usize,
+    j: usize,
+    visited: &[(Dart, Dart)],
+) -> Option<(usize, Move, bool)> {
+    let here = potential(&mesh.map, tips[i], tips[j]);
+    let mut best: Option<((usize, usize), usize, Move)> = None;
+    for (k, other) in [(i, j), (j, i)] {
+        for mv in Move::ALL {
+            // A probe on the map alone (positions play no part in the potential).
+            let Ok(e) = hybrid::move_triangle(&mut mesh.map, tips[k], mv) else {
+                continue;
+            };
+            let (t, o) = (e.tip(), e.follow(tips[other]));
+            let state = if k == i { (t, o) } else { (o, t) };
+            let p = if hybrid::collision(&mesh.map, t, o).is_some() {
+                (0, 0)
+            } else {
+                potential(&mesh.map, t, o)
+            };
+            // The move was just made on this map, so its undo is not refused; if it were,
+            // the full undo is tried, and then the crawl stops.
+            if e.undo_fresh(&mut mesh.map).is_err() && e.undo(&mut mesh.map).is_err() {
+                return None;
+            }
+            let fresh = !visited.contains(&state);
+            if fresh && best.is_none_or(|b| p < b.0) {
+                best = Some((p, k, mv));
+            }
+        }
+    }
+    best.map(|(p, k, mv)| (k, mv, p > here))
+}
+
+/// Undoes the crawl's moves, last first.
+fn undo_all(mesh: &mut Mesh, edits: &[Edited<TriangleMove>]) {
+    for e in edits.iter().rev() {
+        let _ = e.undo(mesh);
+    }
+}
+
+/// The combinatorial singularity measure a merge may not raise.
+fn irregularity(mesh: &Mesh) -> usize {
+    let c = SingularityCounts::of(mesh);
+    c.singularities() + c.boundary_defects
+}
+
+/// Crawls triangles `i` and `j` together and merges them; on success `tips` holds the
+/// other triangles' tip darts and the number of moves is returned; on failure mesh and
+/// `tips` are as they were.
+fn crawl_and_merge(
+    mesh: &mut Mesh,
+    tips: &mut Vec<Dart>,
+    i: usize,
+    j: usize,
+    constraints: &Constraints,
+) -> Option<usize> {
+    let saved = tips.clone();
+    let before = irregularity(mesh);
+    let start = potential(&mesh.map, tips[i], tips[j]).0;
+    let limit = 4 * start.min(RADIUS) + 16;
+    let mut edits = Vec::new();
+    let mut visited = alloc::vec![(tips[i], tips[j])];
+    // A few moves uphill get a pair out of a local minimum of the potential.
+    let mut uphill = ESCAPES;
+    while hybrid::collision(&mesh.map, tips[i], tips[j]).is_none() && edits.len() < limit {
+        let Some((k, mv, up)) = best_step(mesh, tips, i, j, &visited) else {
+            break;
+        };
+        if up {
+            if uphill == 0 {
+                break;
+            }
+            uphill -= 1;
+        }
+        let Ok(e) = hybrid::mesh_move_triangle(mesh, tips[k], mv) else {
+            break;
+        };
+        for t in tips.iter_mut() {
+            *t = e.record().follow(*t);
+        }
+        tips[k] = e.record().tip();
+        visited.push((tips[i], tips[j]));
+        edits.push(e);
+    }
+    if hybrid::collision(&mesh.map, tips[i], tips[j]).is_some() {
+        if let Ok(rec) = hybrid::merge_collision(&mut mesh.map, tips[i], tips[j]) {
+            if constraints.holds(mesh) && irregularity(mesh) <= before {
+                let rest = tips.iter().enumerate().filter(|&(k, _)| k != i && k != j);
+                *tips = rest.map(|(_, &t)| rec.follow(t)).collect();
+                return Some(edits.len());
+            }
+            let _ = rec.undo(&mut mesh.map);
+        }
+    }
+    undo_all(mesh, &edits);
+    *tips = saved;
+    None
+}
+
+/// The nearest triangle to triangle `i` by tip distance (up to [`RADIUS`]) whose pair with
+/// `i` was not tried yet: `(distance, j)`. One breadth-first search from `i`'s tip.
+fn nearest(
+    map: &Map,
+    tips: &[Dart],
+    i: usize,
+    untried: impl Fn(usize) -> bool,
+) -> Option<(usize, usize)> {
+    let start = map.origin(tips[i]);
+    let mut seen: HashMap<Vert, usize> = HashMap::from([(start, 0)]);
+    let mut queue = VecDeque::from([start]);
+    while let Some(v) = queue.pop_front() {
+        let d = seen[&v];
+        let hit = (0..tips.len()).find(|&j| j != i && map.origin(tips[j]) == v && untried(j));
+        if let Some(j) = hit {
+            return Some((d, j));
+        }
+        if d >= RADIUS {
+            continue;
+        }
+        for e in map.vertex_darts(v) {
+            let w = map.dest(e);
+            if !seen.contains_key(&w) {
+                seen.insert(w, d + 1);
+                queue.push_back(w);
+            }
+        }
+    }
+    None
+}
+
+/// The closest pair of triangles not tried yet, by tip distance (ties: the lowest index).
+fn closest_pair(map: &Map, tips: &[Dart], tried: &[(Face, Face)]) -> Option<(usize, usize)> {
+    let pair = |i: usize, j: usize| (map.face(tips[i.min(j)]), map.face(tips[i.max(j)]));
+    let untried = |i: usize, j: usize| match pair(i, j) {
+        (Some(a), Some(b)) => !tried.contains(&(a, b)),
+        _ => false,
+    };
+    let mut best: Option<(usize, usize, usize)> = None;
+    for i in 0..tips.len() {
+        if let Some((d, j)) = nearest(map, tips, i, |j| untried(i, j)) {
+            if best.is_none_or(|b| d < b.0) {
+                best = Some((d, i.min(j), i.max(j)));
+            }
+        }
+    }
+    best.map(|(_, i, j)| (i, j))
+}
+
+/// Merges pairs of triangles of `mesh`, closest first, each pair tried once.
+pub(crate) fn pair_triangles(mesh: &mut Mesh, constraints: &Constraints) -> TriangleStage {
+    let map = &mesh.map;
+    let mut tips: Vec<Dart> = hybrid::triangles(map)
+        .into_iter()
+        .map(|f| hybrid::default_tip(map, f).unwrap_or(map.face_dart(f)))
+        .collect();
+    let mut stage = TriangleStage {
+        input: tips.len(),
+        ..TriangleStage::default()
+    };
+    let mut tried = Vec::new();
+    while let Some((i, j)) = closest_pair(&mesh.map, &tips, &tried) {
+        let faces = (mesh.map.face(tips[i]), mesh.map.face(tips[j]));
+        match crawl_and_merge(mesh, &mut tips, i, j, constraints) {
+            Some(moves) => {
+                stage.merged += 1;
+                stage.moves += moves;
+            }
+            None => {
+                if let (Some(a), Some(b)) = faces {
+                    tried.push((a, b));
+                }
+                stage.refused += 1;
+            }
+        }
+    }
+    stage
+}
