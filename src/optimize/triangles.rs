@@ -52,14 +52,15 @@ pub struct TriangleStage {
     pub refused: usize,
 }
 
-/// Breadth-first distance from any vertex of `from` to any of `to`, up to [`RADIUS`].
-fn gap(map: &Map, from: &[Vert], to: &[Vert]) -> usize {
+/// Breadth-first search from the vertices of `from`, up to [`RADIUS`] edges: the first
+/// vertex (nearest first) for which `hit` gives a value, with its distance.
+fn search<T>(map: &Map, from: &[Vert], hit: impl Fn(Vert) -> Option<T>) -> Option<(usize, T)> {
     let mut seen: HashMap<Vert, usize> = from.iter().map(|&v| (v, 0)).collect();
     let mut queue: VecDeque<Vert> = from.iter().copied().collect();
     while let Some(v) = queue.pop_front() {
         let d = seen[&v];
-        if to.contains(&v) {
-            return d;
+        if let Some(x) = hit(v) {
+            return Some((d, x));
         }
         if d >= RADIUS {
             continue;
@@ -72,7 +73,13 @@ fn gap(map: &Map, from: &[Vert], to: &[Vert]) -> usize {
             }
         }
     }
-    usize::MAX
+    None
+}
+
+/// Breadth-first distance from any vertex of `from` to any of `to`, up to [`RADIUS`]
+/// (`usize::MAX` past it).
+fn gap(map: &Map, from: &[Vert], to: &[Vert]) -> usize {
+    search(map, from, |v| to.contains(&v).then_some(())).map_or(usize::MAX, |(d, ())| d)
 }
 
 fn corners(map: &Map, t: Dart) -> [Vert; 3] {
@@ -198,26 +205,9 @@ fn nearest(
     untried: impl Fn(usize) -> bool,
 ) -> Option<(usize, usize)> {
     let start = map.origin(tips[i]);
-    let mut seen: HashMap<Vert, usize> = HashMap::from([(start, 0)]);
-    let mut queue = VecDeque::from([start]);
-    while let Some(v) = queue.pop_front() {
-        let d = seen[&v];
-        let hit = (0..tips.len()).find(|&j| j != i && map.origin(tips[j]) == v && untried(j));
-        if let Some(j) = hit {
-            return Some((d, j));
-        }
-        if d >= RADIUS {
-            continue;
-        }
-        for e in map.vertex_darts(v) {
-            let w = map.dest(e);
-            if !seen.contains_key(&w) {
-                seen.insert(w, d + 1);
-                queue.push_back(w);
-            }
-        }
-    }
-    None
+    search(map, &[start], |v| {
+        (0..tips.len()).find(|&j| j != i && map.origin(tips[j]) == v && untried(j))
+    })
 }
 
 /// The closest pair of triangles not tried yet, by tip distance (ties: the lowest index).
