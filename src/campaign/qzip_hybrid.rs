@@ -12,7 +12,7 @@ use std::vec::Vec;
 use super::qzip::{grid_on, homotopy_on, reversal_on, Subject};
 use super::{Case, Outcome, PairChoice};
 use crate::qzip::SketchOptions;
-use crate::{gen, hybrid, Map, Vert};
+use crate::{gen, hybrid, Map};
 
 /// The quad-dominant map a case is checked on: a case of triangles and quads (at least one
 /// of each) as it is; a pure-quad case with two triangle pairs inserted
@@ -33,28 +33,12 @@ fn hybrid_map(case: &Case) -> Option<Cow<'_, Map>> {
     (!tips.is_empty()).then_some(Cow::Owned(mesh.map))
 }
 
-/// Every triangle corner and every neighbour of one, sorted (what `avoid_triangles` keeps
-/// every path off).
-fn near_triangles(map: &Map) -> Vec<Vert> {
-    let mut near = Vec::new();
-    for f in hybrid::triangles(map) {
-        for d in map.face_darts(f) {
-            let c = map.origin(d);
-            near.push(c);
-            near.extend(map.vertex_darts(c).map(|e| map.dest(e)));
-        }
-    }
-    near.sort_unstable();
-    near.dedup();
-    near
-}
-
 impl<'c> Subject<'c> {
     /// The quad-dominant subject of a case ([`hybrid_map`]): singularities are the interior
     /// irregular vertices away from the triangles.
     fn hybrid(case: &'c Case) -> Option<Subject<'c>> {
         let map = hybrid_map(case)?;
-        let near = near_triangles(&map);
+        let near = hybrid::near_triangles(&map);
         let sing = map
             .vertices()
             .filter(|&v| {

@@ -129,8 +129,19 @@ pub fn avoid_triangles<'a>(
     opts: crate::qzip::SketchOptions<'a>,
 ) -> crate::qzip::SketchOptions<'a> {
     let tris = triangles(map);
-    let mut near: Vec<Vert> = Vec::new();
-    for &f in &tris {
+    let near = near_triangles(map);
+    let edges: Vec<crate::map::Edge> = near
+        .iter()
+        .flat_map(|&v| map.vertex_darts(v).map(|d| d.edge()))
+        .collect();
+    opts.forbid_faces(tris).forbid_edges(edges)
+}
+
+/// Every triangle corner and every neighbour of one, sorted: the vertices
+/// [`avoid_triangles`] keeps every path off.
+pub(crate) fn near_triangles(map: &Map) -> Vec<Vert> {
+    let mut near = Vec::new();
+    for f in triangles(map) {
         for d in map.face_darts(f) {
             let c = map.origin(d);
             near.push(c);
@@ -139,9 +150,5 @@ pub fn avoid_triangles<'a>(
     }
     near.sort_unstable();
     near.dedup();
-    let edges: Vec<crate::map::Edge> = near
-        .iter()
-        .flat_map(|&v| map.vertex_darts(v).map(|d| d.edge()))
-        .collect();
-    opts.forbid_faces(tris).forbid_edges(edges)
+    near
 }
