@@ -385,17 +385,59 @@ fn movable(mesh: &Mesh, region: &[Vert]) -> Result<Vec<Vert>, RelaxError> {
     Ok(out)
 }
 
-/// Writes the region's new finite positions into `mesh`; returns how many changed.
-fn finish(mesh: &mut Mesh, region: &[Vert], pos: &[DVec3]) -> usize {
+/// What both relaxations start from: the vertices that move, the mean edge length `d`, a
+/// copy of the positions to work on, the region's mask and Eq. 5 before.
+struct Start {
+    moving: Vec<Vert>,
+    d: f64,
+    pos: Vec<DVec3>,
+    mask: Vec<bool>,
+    before: f64,
+}
+
+impl Start {
+    fn new(mesh: &Mesh, region: &[Vert]) -> Result<Start, RelaxError> {
+        let moving = movable(mesh, region)?;
+        let d = mean_edge_length(mesh);
+        let pos = mesh.positions.clone();
+        let mut mask = vec![false; mesh.map.vertex_slots()];
+        region.iter().for_each(|v| mask[v.index()] = true);
+        let before = energy(&mesh.map, &pos, region, &mask, d);
+        Ok(Start {
+            moving,
+            d,
+            pos,
+            mask,
+            before,
+        })
+    }
+}
+
+/// Writes the moving vertices' new finite positions into `mesh` and reports the run;
+/// `(d, before, after)` are the edge length and Eq. 5 before and after.
+fn finish(
+    mesh: &mut Mesh,
+    moving: &[Vert],
+    pos: &[DVec3],
+    (d, before, after): (f64, f64, f64),
+    iterations: usize,
+) -> Relaxed {
     let mut moved = 0;
-    for &v in region {
+    for &v in moving {
         let (old, new) = (&mut mesh.positions[v.index()], pos[v.index()]);
         if new.is_finite() && *old != new {
             *old = new;
             moved += 1;
         }
     }
-    moved
+    Relaxed {
+        movable: moving.len(),
+        moved,
+        iterations,
+        edge_length: d,
+        energy_before: before,
+        energy_after: after,
+    }
 }
 
 /// Local relaxation (Turk-style, one vertex at a time; see [the module](self)): `iterations`
@@ -414,13 +456,14 @@ pub fn relax_local(
     region: &[Vert],
     iterations: usize,
 ) -> Result<Relaxed, RelaxError> {
-    let moving = movable(mesh, region)?;
-    let d = mean_edge_length(mesh);
+    let Start {
+        moving,
+        d,
+        mut pos,
+        mask,
+        before,
+    } = Start::new(mesh, region)?;
     let map = &mesh.map;
-    let mut pos = mesh.positions.clone();
-    let mut mask = vec![false; map.vertex_slots()];
-    region.iter().for_each(|v| mask[v.index()] = true);
-    let before = energy(map, &pos, region, &mask, d);
     let mut count = 0;
     for _ in 0..iterations {
         for &v in &moving {
@@ -444,15 +487,7 @@ pub fn relax_local(
         count += 1;
     }
     let after = energy(map, &pos, region, &mask, d);
-    let moved = finish(mesh, &moving, &pos);
-    Ok(Relaxed {
-        movable: moving.len(),
-        moved,
-        iterations: count,
-        edge_length: d,
-        energy_before: before,
-        energy_after: after,
-    })
+    Ok(finish(mesh, &moving, &pos, (d, before, after), count))
 }
 
 #[cfg(feature = "sparse")]

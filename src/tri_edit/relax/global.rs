@@ -9,9 +9,7 @@ use nalgebra_sparse::factorization::CscCholesky;
 use nalgebra_sparse::na::DMatrix;
 use nalgebra_sparse::{CooMatrix, CscMatrix};
 
-use super::{
-    centres, energy, finish, finite, frame, mean_edge_length, movable, targets, RelaxError, Relaxed,
-};
+use super::{centres, energy, finish, finite, frame, targets, RelaxError, Relaxed, Start};
 use crate::optimize::Surface;
 use crate::{Map, Mesh, Vert};
 
@@ -54,13 +52,14 @@ pub fn relax_global(
     region: &[Vert],
     iterations: usize,
 ) -> Result<Relaxed, RelaxError> {
-    let moving = movable(mesh, region)?;
-    let d = mean_edge_length(mesh);
+    let Start {
+        moving,
+        d,
+        mut pos,
+        mask,
+        before,
+    } = Start::new(mesh, region)?;
     let map = &mesh.map;
-    let mut pos = mesh.positions.clone();
-    let mut mask = vec![false; map.vertex_slots()];
-    region.iter().for_each(|v| mask[v.index()] = true);
-    let before = energy(map, &pos, region, &mask, d);
     let (mut e, mut count) = (before, 0);
     for _ in 0..iterations {
         let step = solve(map, &pos, region, &moving, &mask, d)?;
@@ -85,15 +84,7 @@ pub fn relax_global(
         }
         count += 1;
     }
-    let moved = finish(mesh, &moving, &pos);
-    Ok(Relaxed {
-        movable: moving.len(),
-        moved,
-        iterations: count,
-        edge_length: d,
-        energy_before: before,
-        energy_after: e,
-    })
+    Ok(finish(mesh, &moving, &pos, (d, before, e), count))
 }
 
 /// One linearised solve: for each vertex of `moving`, its displacement in its tangent plane
