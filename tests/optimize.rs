@@ -6,6 +6,9 @@
 //! input (generated, and the subdivided polygon cages with quads re-split) comes out pure
 //! quad: its triangles crawl together in pairs and merge.
 
+mod common;
+
+use common::cages;
 use glam::DVec3;
 use proptest::prelude::*;
 use zipmesh::invariants::{gauss_bonnet, Counts, MeshKind};
@@ -222,27 +225,6 @@ fn cancelling_qzips_are_valid_and_undo_exactly() {
 
 // ------------------------------------------------------------------------------------
 // Quad-dominant input (issue 14): pairs of triangles crawl together and merge.
-
-/// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step, with `pairs`
-/// quads re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
-fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/poly");
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    names.sort();
-    names
-        .into_iter()
-        .map(|p| {
-            let (cage, _) = zipmesh::io::read_mesh(&p).unwrap();
-            let quads = gen::catmull_clark(&cage);
-            let (mesh, _) = gen::with_triangle_pairs(quads, pairs, 12, seed);
-            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
-        })
-        .collect()
-}
 
 /// Generated quad-dominant meshes of genus 0 to 2, with and without boundary, and the
 /// cages, each with an even number of triangles.

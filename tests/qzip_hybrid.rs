@@ -13,32 +13,10 @@ use zipmesh::invariants::{irregular_vertices, MeshKind};
 use zipmesh::qzip::{
     find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
 };
-use zipmesh::{gen, is_isomorphic, Face, Map, Mesh, Vert};
+mod common;
 
-/// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step (quads only,
-/// singularities where the cage had non-quads or irregular vertices), with `pairs` quads
-/// re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
-fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/poly");
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    names.sort();
-    assert!(names.len() >= 2, "cages in {dir:?}");
-    names
-        .into_iter()
-        .map(|p| {
-            let (cage, _) = zipmesh::io::read_mesh(&p).unwrap();
-            assert!(cage.map.faces().any(|f| cage.map.degree(f) != 4));
-            let quads = gen::catmull_clark(&cage);
-            let (mesh, tips) = gen::with_triangle_pairs(quads, pairs, 12, seed);
-            assert_eq!(tips.len(), 2 * pairs);
-            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
-        })
-        .collect()
-}
+use common::cages;
+use zipmesh::{gen, is_isomorphic, Face, Map, Vert};
 
 /// The twice-subdivided icosahedron (12 v5s, 20 v3s, isolated) or a cube (8 v3s) with
 /// triangle pairs walked apart among the singularities.

@@ -78,3 +78,28 @@ pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), Q
     }
     Ok((m, r))
 }
+
+/// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step (quads only,
+/// singularities where the cage had non-quads or irregular vertices), with `pairs` quads
+/// re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
+pub fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/poly");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 2, "cages in {dir:?}");
+    names
+        .into_iter()
+        .map(|p| {
+            let (cage, _) = zipmesh::io::read_mesh(&p).unwrap();
+            assert!(cage.map.faces().any(|f| cage.map.degree(f) != 4));
+            let quads = gen::catmull_clark(&cage);
+            let (mesh, tips) = gen::with_triangle_pairs(quads, pairs, 12, seed);
+            assert_eq!(tips.len(), 2 * pairs);
+            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
+        })
+        .collect()
+}
