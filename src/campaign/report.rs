@@ -37,8 +37,9 @@ pub struct Row {
     /// covers only the checks that ran, which `checks` counts.
     pub cut: u64,
     /// What the property found but could not check, summed over the cases
-    /// ([`Case::note_unchecked`](super::Case::note_unchecked)); for `qzip-reversal`, the
-    /// movements with no reverse run found. Not in `checks`, and not failures.
+    /// ([`Case::note_unchecked`](super::Case::note_unchecked)); for the reversal
+    /// properties, the movements with no reverse run found; for the homotopy ones, the swept
+    /// paths next to a triangle, not compared. Not in `checks`, and not failures.
     pub unchecked: u64,
     /// Time spent in the property, summed over the cases and workers (so it can exceed the
     /// wall time with several jobs). Not deterministic, unlike every other field.
