@@ -8,7 +8,8 @@ use common::{ico_cc, pairs_within};
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, is_regular_interior, MeshKind};
 use zipmesh::qzip::{
-    one_quad_sweeps, plan, sketch, start_turn, validate_path, Path, Qzip, SketchOptions, Tag,
+    one_quad_sweeps, plan, sketch, start_turn, validate_path, Path, Qzip, QzipError, SketchOptions,
+    Tag, ZipError,
 };
 use zipmesh::{gen, Map, Vert};
 
@@ -16,14 +17,12 @@ fn regular(map: &Map, v: Vert) -> bool {
     is_regular_interior(map, MeshKind::Quad, v)
 }
 
-/// The canonical hash of each of the four movements (in `Tag::CCW` order), `None` where
-/// not realizable.
-fn outcomes(map: &Map, p: &Path) -> [Option<u128>; 4] {
+/// The canonical hash of each of the four movements (in `Tag::CCW` order), or the refusal.
+fn outcomes(map: &Map, p: &Path) -> [Result<u128, QzipError>; 4] {
     Tag::CCW.map(|t| {
         let mut m = map.clone();
         Qzip::new()
             .zip_along(&mut m, p, t)
-            .ok()
             .map(|_| canonical_hash(&m))
     })
 }
@@ -34,6 +33,12 @@ struct Tally {
     compared: usize,
     at_start: usize,
     one_side_refused: usize,
+    /// Refused on one side only because the report cannot tell the moved pair from the
+    /// singularities the edit touched (`ZipError::Untracked`): the edit itself was possible.
+    one_side_untracked: usize,
+    /// Refused on one side only by the end-point adjustments (`QzipError::Prepare`: the
+    /// start rule's reroute of the swept path visits a vertex twice, or leaves nothing to do).
+    one_side_prepare: usize,
     both_refused: usize,
 }
 
@@ -49,12 +54,19 @@ fn sweep(map: &Map, max_len: usize) -> Tally {
             let h1 = outcomes(map, &q);
             for (j, tag) in Tag::CCW.into_iter().enumerate() {
                 let jq = Tag::CCW.iter().position(|&u| u == tag.turned(k)).unwrap();
-                match (h0[j], h1[jq]) {
-                    (Some(x), Some(y)) => {
+                let untracked = QzipError::Execute(ZipError::Untracked);
+                match (&h0[j], &h1[jq]) {
+                    (Ok(x), Ok(y)) => {
                         assert_eq!(x, y, "movement {tag} along {:?} vs {:?}", p, q);
                         t.compared += 1;
                     }
-                    (None, None) => t.both_refused += 1,
+                    (Err(_), Err(_)) => t.both_refused += 1,
+                    (Err(e), Ok(_)) | (Ok(_), Err(e)) if *e == untracked => {
+                        t.one_side_untracked += 1
+                    }
+                    (Err(QzipError::Prepare(_)), Ok(_)) | (Ok(_), Err(QzipError::Prepare(_))) => {
+                        t.one_side_prepare += 1
+                    }
                     _ => t.one_side_refused += 1,
                 }
             }
@@ -98,6 +110,50 @@ fn homotopic_paths_give_isomorphic_maps_on_real_meshes() {
         assert!(t.compared >= 1000, "{name}: {t:?}");
         assert_eq!(t.one_side_refused, 0, "{name}: {t:?}");
     }
+}
+
+/// The polygon cages after one Catmull-Clark step, as they are and preprocessed (valence-6
+/// vertices split): crowded enough that a passed v5 merges with the transient one into a v6.
+/// The clean-up split of that v6 was once chosen by the order the surgery touched its
+/// neighbours, which a sweep elsewhere changes: Spot's `RC` from 34 to 146 differed.
+#[test]
+fn homotopic_paths_give_isomorphic_maps_on_subdivided_cages() {
+    let mut v6_splits = 0;
+    for (name, mesh) in common::cages(0, 0) {
+        for pre in [false, true] {
+            let mut mesh = mesh.clone();
+            if pre {
+                zipmesh::qzip::mesh_preprocess(&mut mesh).expect("preprocess");
+                mesh.compact();
+            }
+            let t = sweep(&mesh.map, 8);
+            v6_splits += count_v6_splits(&mesh.map, 8);
+            eprintln!("{name} (preprocessed: {pre}): {t:?}");
+            assert!(t.compared >= 1000, "{name}: {t:?}");
+            // Sweeps at the start of a few short paths next to crowded ends: on one side the
+            // edit is done but its report cannot name the moved pair, the end-point
+            // adjustments refuse the swept path, or (adjacent v5s made by preprocessing) the
+            // execution finds the surgery stale. docs/qzip.md counts them; open.
+            let one_sided = t.one_side_untracked + t.one_side_prepare + t.one_side_refused;
+            assert!(one_sided * 100 <= t.compared, "{name}: {t:?}");
+        }
+    }
+    // The meshes do exercise the clean-up split this test is about.
+    assert!(v6_splits > 0);
+}
+
+/// How many movements between pairs within `max_len` edges split a valence-6 vertex.
+fn count_v6_splits(map: &Map, max_len: usize) -> usize {
+    let mut n = 0;
+    for p in pairs_within(map, max_len) {
+        for t in Tag::CCW {
+            let mut m = map.clone();
+            if let Ok(r) = Qzip::new().zip_along(&mut m, &p, t) {
+                n += usize::from(r.cleanup_counts().1 > 0);
+            }
+        }
+    }
+    n
 }
 
 /// Passing a third singularity on its other side is not a homotopy: there is a pair and a

@@ -119,9 +119,12 @@ fn preprocessed_spot_and_blub() {
         eprintln!("{name} preprocessed: {t:?}");
         assert!(!t.refused.contains_key("Plan Valence"), "{t:?}");
         assert!(t.moved > 100, "{t:?}");
-        // Measured on every movement: 5,322 of 5,336 on Spot, 510 of 526 on Blub; each miss
-        // has a third singularity on its path or next to one of its ends (docs/qzip.md).
-        assert!(t.reversed * 100 >= t.reverse_checked * 95, "{t:?}");
+        // Measured on every movement: 5,317 of 5,340 on Spot, 487 of 529 on Blub (every 8th
+        // here: 667 of 667 and 59 of 66); each miss has a third singularity on its path or
+        // next to one of its ends. The canonical clean-up split costs some (5,322 of 5,336
+        // and 510 of 526 when the split followed the touch order, which broke homotopy
+        // invariance): docs/qzip.md.
+        assert!(t.reversed * 100 >= t.reverse_checked * 85, "{t:?}");
         p.undo(&mut map).unwrap();
         assert_eq!(map, before);
     }

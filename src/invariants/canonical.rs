@@ -360,3 +360,134 @@ fn rarest(keys: impl Iterator<Item = u64>) -> u64 {
         .min()
         .map_or(0, |(_, k)| k)
 }
+
+/// The dart of `candidates` whose breadth-first numbering (the one of the canonical code,
+/// started from it) reads smallest; `None` if there are none. Two candidates related by an
+/// isomorphism read the same, so the choice depends on the map, not on its handles.
+///
+/// The walks are compared symbol by symbol and stop at the first difference, which near an
+/// irregular vertex comes within a few rings: the cost is local, not O(map), unless two
+/// candidates are related by an automorphism (then the whole component is read, O(n log n),
+/// and either is right). Labels live in a `BTreeMap` so that a short walk allocates little.
+pub(crate) fn least_start(map: &Map, candidates: &[crate::Dart]) -> Option<crate::Dart> {
+    let mut best = *candidates.first()?;
+    for &c in &candidates[1..] {
+        if compare_starts((map, c), (map, best)) == core::cmp::Ordering::Less {
+            best = c;
+        }
+    }
+    Some(best)
+}
+
+/// How the reading from `a` compares with the one from `b` (each dart with its map): `Equal`
+/// exactly when an isomorphism of their components maps `a` to `b`.
+fn compare_starts(a: (&Map, crate::Dart), b: (&Map, crate::Dart)) -> core::cmp::Ordering {
+    let (mut wa, mut wb) = (Walk::new(a.1), Walk::new(b.1));
+    loop {
+        match (wa.step(a.0), wb.step(b.0)) {
+            (Some(x), Some(y)) if x == y => continue,
+            (x, y) => return x.cmp(&y),
+        }
+    }
+}
+
+/// A breadth-first numbering from one dart, one symbol at a time.
+struct Walk {
+    label: alloc::collections::BTreeMap<u32, u32>,
+    order: Vec<u32>,
+    i: usize,
+}
+
+impl Walk {
+    fn new(s: crate::Dart) -> Walk {
+        let s = s.index() as u32;
+        Walk {
+            label: [(s, 0)].into_iter().collect(),
+            order: vec![s],
+            i: 0,
+        }
+    }
+
+    fn label(&mut self, d: u32) -> u32 {
+        let next = self.order.len() as u32;
+        let l = *self.label.entry(d).or_insert(next);
+        if l == next {
+            self.order.push(d);
+        }
+        l
+    }
+
+    /// The next symbol of the code, `None` when the component is read.
+    fn step(&mut self, map: &Map) -> Option<[u32; 2]> {
+        let d = *self.order.get(self.i)? as usize;
+        self.i += 1;
+        let n = self.label(map.next[d]);
+        let t = self.label(d as u32 ^ 1);
+        Some([n, t * 2 + u32::from(map.face[d] == NONE)])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{gen, Dart};
+    use core::cmp::Ordering;
+
+    fn darts(map: &Map) -> Vec<Dart> {
+        (0..map.next.len() as u32)
+            .map(Dart::new)
+            .filter(|&d| map.is_live_dart(d))
+            .collect()
+    }
+
+    #[test]
+    fn starts_compare_equal_exactly_under_an_automorphism() {
+        // A square torus: translations and quarter turns take any dart to any other.
+        let square = gen::torus_grid(5, 5).map;
+        let all = darts(&square);
+        assert!(all
+            .iter()
+            .all(|&d| compare_starts((&square, all[0]), (&square, d)) == Ordering::Equal));
+        // A 5 x 4 torus: no automorphism takes a dart along the 5-cycle to one along the 4-cycle.
+        let oblong = gen::torus_grid(5, 4).map;
+        let all = darts(&oblong);
+        assert!(all
+            .iter()
+            .any(|&d| compare_starts((&oblong, all[0]), (&oblong, d)) != Ordering::Equal));
+    }
+
+    #[test]
+    fn the_least_start_does_not_depend_on_handles() {
+        // The same cube numbered twice: polygons and vertices listed in another order.
+        let mesh = gen::cube(3);
+        let polys: Vec<Vec<u32>> = mesh
+            .map
+            .faces()
+            .map(|f| {
+                mesh.map
+                    .face_darts(f)
+                    .map(|d| mesh.map.origin(d).index() as u32)
+                    .collect()
+            })
+            .collect();
+        let n = mesh.map.num_vertices() as u32;
+        let renamed: Vec<Vec<u32>> = polys
+            .iter()
+            .rev()
+            .map(|p| p.iter().map(|&v| n - 1 - v).collect())
+            .collect();
+        let a = Map::from_polygons(n as usize, &polys).unwrap();
+        let b = Map::from_polygons(n as usize, &renamed).unwrap();
+        for v in 0..n {
+            let (va, vb) = (crate::Vert::new(v), crate::Vert::new(n - 1 - v));
+            let ca: Vec<Dart> = a.vertex_darts(va).collect();
+            let cb: Vec<Dart> = b.vertex_darts(vb).collect();
+            let (la, lb) = (least_start(&a, &ca).unwrap(), least_start(&b, &cb).unwrap());
+            assert_eq!(compare_starts((&a, la), (&b, lb)), Ordering::Equal);
+            assert!(ca
+                .iter()
+                .all(|&d| compare_starts((&a, la), (&a, d)) != Ordering::Greater));
+        }
+        assert_eq!(least_start(&a, &[]), None);
+    }
+}

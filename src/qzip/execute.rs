@@ -34,6 +34,7 @@ use core::fmt;
 use super::compass::Tag;
 use super::prepare::{EndRule, StartRule, Surgery};
 use super::quad::bounds_one_quad;
+use crate::invariants::canonical::least_start;
 use crate::invariants::{is_regular_interior, regular_valence, MeshKind};
 use crate::ops::quad::{
     collapse_quad, remove_valence2, split_high_valence, split_vertex, QuadRecord,
@@ -452,25 +453,23 @@ fn undo_all(map: &mut Map, records: &[QuadRecord]) {
     let _ = undo_records(records, map);
 }
 
-/// The dart of the valence-6 vertex `v` to split along (with its opposite): the first pair
-/// of opposite edges, in the order the surgery touched their far ends, whose far ends are
-/// both regular interior vertices (they become the two v5s).
-fn v6_first_dart(map: &Map, v: Vert, order: &[Seen]) -> Dart {
+/// The dart of the valence-6 vertex `v` to split along (with its opposite), among the pairs
+/// of opposite edges whose far ends are both regular interior vertices (they become the two
+/// v5s): the one whose breadth-first reading of the map is smallest
+/// (the canonical code's numbering started there).
+///
+/// The choice must depend on the map, not on the path's history: a homotopic path swept
+/// round a quad elsewhere gives an isomorphic map before the clean-up but touches (and
+/// names) the vertices round `v` in another order. Choosing by touch order broke homotopy
+/// invariance on the Catmull-Clark-subdivided Spot and Blub cages.
+fn v6_first_dart(map: &Map, v: Vert) -> Dart {
     let regular = |x: Vert| is_regular_interior(map, MeshKind::Quad, x);
-    let good = |d: Dart| {
-        let o = map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
-        regular(map.dest(d)) && regular(map.dest(o))
-    };
-    for t in order.iter().map(|s| s.v) {
-        if let Some(d) = map.vertex_darts(v).find(|&d| map.dest(d) == t) {
-            if good(d) {
-                return d;
-            }
-        }
-    }
-    map.vertex_darts(v)
-        .find(|&d| good(d))
-        .unwrap_or_else(|| map.vertex_dart(v))
+    let opposite = |d: Dart| map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
+    let good: Vec<Dart> = map
+        .vertex_darts(v)
+        .filter(|&d| regular(map.dest(d)) && regular(map.dest(opposite(d))))
+        .collect();
+    least_start(map, &good).unwrap_or_else(|| map.vertex_dart(v))
 }
 
 /// Executes a prepared surgery: the serial operations, then the v2/v6 clean-up.
@@ -806,7 +805,7 @@ impl<'s> Chain<'s> {
                 v2_removals += 1;
                 records.push(r.into());
             } else {
-                let first = v6_first_dart(map, v, &self.touched.list);
+                let first = v6_first_dart(map, v);
                 let r = split_high_valence(map, v, first).map_err(cleanup)?;
                 v6_splits += 1;
                 records.push(r.into());
