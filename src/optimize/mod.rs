@@ -17,6 +17,7 @@ pub mod constraints;
 pub mod defect;
 pub mod score;
 pub mod smooth;
+mod tri_mesh;
 mod triangles;
 
 use alloc::boxed::Box;
@@ -30,6 +31,10 @@ pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
 };
 pub use smooth::{smooth, spring_stiffness, Surface};
+pub use tri_mesh::{
+    optimize_triangles, tri_score, TriBatch, TriCounts, TriOptimizeError, TriOptimizeOptions,
+    TriOutcome,
+};
 pub use triangles::TriangleStage;
 
 use crate::invariants::{Counts, MeshKind};

@@ -9,7 +9,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 use zipmesh::io;
-use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::optimize::{
+    optimize, optimize_triangles, Constraints, OptimizeOptions, SingularityCounts, TriCounts,
+    TriOptimizeOptions,
+};
 use zipmesh::{Face, Mesh, Vert};
 
 use crate::out::{self, outln};
@@ -17,7 +20,7 @@ use crate::qzip::InputError;
 
 #[derive(Args)]
 pub struct OptimizeArgs {
-    /// The input quad or quad-dominant (triangles and quads) mesh (.obj or .off).
+    /// The input mesh (.obj or .off): quad, quad-dominant (triangles and quads) or all triangles.
     file: PathBuf,
     /// Where to write the result.
     #[arg(short, long)]
@@ -67,6 +70,94 @@ fn parse_weight(s: &str) -> Result<(String, f64), String> {
         Ok(x) if x.is_finite() && x >= 0.0 => Ok((name.to_string(), x)),
         _ => Err(format!("{w}: expected a finite non-negative weight")),
     }
+}
+
+fn tri_counts(c: &TriCounts) -> Value {
+    json!({
+        "faces": c.faces, "vertices": c.vertices, "v3": c.v3, "v4": c.v4, "v5": c.v5,
+        "v7": c.v7, "v8plus": c.v8plus, "irregular": c.irregular(),
+    })
+}
+
+fn tri_summary(c: &TriCounts) -> String {
+    format!(
+        "v3 {} v4 {} v5 {} v7 {} v8+ {} ({} irregular, {} faces)",
+        c.v3,
+        c.v4,
+        c.v5,
+        c.v7,
+        c.v8plus,
+        c.irregular(),
+        c.faces
+    )
+}
+
+/// A pure triangle mesh: flips, triple cancellations and pair moves (`optimize_triangles`).
+/// The quad-only options (constraints, weights, paths) are refused rather than ignored.
+fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<ExitCode, InputError> {
+    let quad_only = [
+        ("--protect", args.protect.is_some()),
+        ("--features", args.features.is_some()),
+        ("--sharp-angle", args.sharp_angle.is_some()),
+        ("--paths", args.paths),
+        ("--weight", !args.weights.is_empty()),
+    ];
+    if let Some((flag, _)) = quad_only.iter().find(|(_, set)| *set) {
+        return Err(InputError(format!(
+            "{name}: {flag} applies to quad meshes only (this one is all triangles)"
+        )));
+    }
+    let options = TriOptimizeOptions {
+        max_batches: args.batches,
+        relax: !args.no_smooth,
+        ..TriOptimizeOptions::default()
+    };
+    let bar = progress(args.batches);
+    let start = Instant::now();
+    let mut rows = Vec::new();
+    let outcome = optimize_triangles(&mut mesh, &options, |b| {
+        let mut row = tri_counts(&b.counts);
+        if let Value::Object(m) = &mut row {
+            m.insert("batch".into(), json!(b.batch));
+            m.insert("flips".into(), json!(b.flips));
+            m.insert("cancellations".into(), json!(b.cancellations));
+            m.insert("pair_moves".into(), json!(b.pair_moves));
+            m.insert("score".into(), json!(b.score));
+        }
+        rows.push(row);
+        if let Some(bar) = &bar {
+            bar.set_position(b.batch as u64);
+            bar.set_message(tri_summary(&b.counts));
+        }
+    })
+    .map_err(|e| InputError(format!("{name}: {e}")))?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    mesh.compact();
+    let pending = io::prepare_mesh(&args.output, &mesh)?;
+    if args.json {
+        let report = json!({
+            "kind": "triangle",
+            "input": tri_counts(&outcome.input),
+            "batches": rows,
+            "final": tri_counts(&outcome.final_counts),
+            "seconds": seconds,
+        });
+        outln!("{report}");
+    } else {
+        outln!("{name}: {}", tri_summary(&outcome.input));
+        outln!(
+            "{}: {} after {} batches, {seconds:.2} s",
+            out::escape(&args.output.display().to_string()),
+            tri_summary(&outcome.final_counts),
+            outcome.batches.len()
+        );
+    }
+    out::flush()?;
+    pending.commit()?;
+    Ok(ExitCode::SUCCESS)
 }
 
 fn counts(c: &SingularityCounts) -> serde_json::Map<String, Value> {
@@ -168,9 +259,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         )));
     }
     if map.num_faces() > 0 && map.faces().all(|f| map.degree(f) == 3) {
-        return Err(InputError(format!(
-            "{name}: not a quad-dominant mesh (every face is a triangle); optimize edits quad meshes and quad-dominant ones"
-        )));
+        return run_triangles(&args, mesh, &name);
     }
     let c = constraints(&args, &mesh)?;
     let mut options = OptimizeOptions::default()

@@ -1,0 +1,552 @@
+//! Automatic singularity reduction of pure triangle meshes (issue 13, "beyond the paper"):
+//! batches of valence-improving edge flips, triple cancellations (Sec. 7.2) and 5-7 pair
+//! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
+//! each followed by local relaxation (Sec. 8) of what it touched. `docs/optimize.md` gives
+//! the reading.
+//!
+//! The score is `sum over interior vertices of (valence - 6)^2`: a flip or a cancellation is
+//! kept only when it lowers it, so a batch never makes the score worse. Boundary vertices
+//! keep their valences (no edit changes one), and an edit that would turn a triangle over
+//! (its normal against the old one's) is undone.
+//!
+//! ```
+//! use zipmesh::{gen, optimize::{optimize_triangles, TriOptimizeOptions}};
+//! let mut mesh = gen::random_triangle(400, 1, 0, 3);
+//! let out = optimize_triangles(&mut mesh, &TriOptimizeOptions::default(), |_| {}).unwrap();
+//! assert!(out.final_counts.irregular() < out.input.irregular());
+//! assert_eq!(mesh.map.check(), Ok(()));
+//! ```
+
+use alloc::collections::VecDeque;
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt;
+
+use glam::DVec3;
+
+use super::smooth::Surface;
+use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
+use crate::tri_edit::{
+    can_cancel_triple, cancel_triple_with, move_pair_with, relax_local, Direction,
+};
+use crate::{Dart, Map, Mesh, Vert};
+
+/// How a run goes. Start from [`TriOptimizeOptions::default`].
+///
+/// ```
+/// use zipmesh::optimize::TriOptimizeOptions;
+/// let o = TriOptimizeOptions { max_batches: 5, ..TriOptimizeOptions::default() };
+/// assert!(o.relax);
+/// ```
+#[derive(Clone, Debug)]
+pub struct TriOptimizeOptions {
+    /// The most batches to run (a batch that changes nothing ends the run earlier).
+    pub max_batches: usize,
+    /// How far (edges) an isolated 5-7 pair looks for another irregular vertex to move to.
+    pub search_radius: usize,
+    /// Relax the vertices each batch touched (three local sweeps, Sec. 8).
+    pub relax: bool,
+}
+
+impl Default for TriOptimizeOptions {
+    fn default() -> Self {
+        TriOptimizeOptions {
+            max_batches: 50,
+            search_radius: 8,
+            relax: true,
+        }
+    }
+}
+
+/// Interior valence counts of a triangle mesh (boundary vertices are not counted).
+///
+/// ```
+/// use zipmesh::{gen, optimize::TriCounts};
+/// let c = TriCounts::of(&gen::geodesic_sphere(2));
+/// assert_eq!((c.v5, c.irregular()), (12, 12));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TriCounts {
+    /// Live faces.
+    pub faces: usize,
+    /// Live vertices.
+    pub vertices: usize,
+    /// Interior vertices of valence 3 or less.
+    pub v3: usize,
+    /// Interior vertices of valence 4.
+    pub v4: usize,
+    /// Interior vertices of valence 5.
+    pub v5: usize,
+    /// Interior vertices of valence 7.
+    pub v7: usize,
+    /// Interior vertices of valence 8 or more.
+    pub v8plus: usize,
+}
+
+impl TriCounts {
+    /// The counts of `map`.
+    ///
+    /// See [`TriCounts`] for an example.
+    pub fn of(map: &Map) -> TriCounts {
+        let mut c = TriCounts {
+            faces: map.num_faces(),
+            vertices: map.num_vertices(),
+            ..TriCounts::default()
+        };
+        for v in map.vertices().filter(|&v| !map.is_boundary_vertex(v)) {
+            match map.valence(v) {
+                0..=3 => c.v3 += 1,
+                4 => c.v4 += 1,
+                5 => c.v5 += 1,
+                6 => {}
+                7 => c.v7 += 1,
+                _ => c.v8plus += 1,
+            }
+        }
+        c
+    }
+
+    /// Interior irregular vertices.
+    ///
+    /// See [`TriCounts`] for an example.
+    pub fn irregular(&self) -> usize {
+        self.v3 + self.v4 + self.v5 + self.v7 + self.v8plus
+    }
+}
+
+/// What one batch did.
+#[derive(Clone, Debug)]
+pub struct TriBatch {
+    /// 1-based.
+    pub batch: usize,
+    /// Edge flips kept.
+    pub flips: usize,
+    /// Triple cancellations kept.
+    pub cancellations: usize,
+    /// 5-7 pair moves made.
+    pub pair_moves: usize,
+    /// The score after the batch (`sum of (valence - 6)^2` over interior vertices).
+    pub score: u64,
+    /// The counts after the batch.
+    pub counts: TriCounts,
+}
+
+/// The result of [`optimize_triangles`].
+#[derive(Clone, Debug)]
+pub struct TriOutcome {
+    /// The counts of the input.
+    pub input: TriCounts,
+    /// One row per batch run.
+    pub batches: Vec<TriBatch>,
+    /// The counts of the result.
+    pub final_counts: TriCounts,
+}
+
+/// Why [`optimize_triangles`] refused (the mesh is then unchanged).
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TriOptimizeError {
+    /// A face is not a triangle (or the mesh has no face).
+    NotTriangles,
+    /// A vertex has no position or a non-finite one.
+    Positions(Vert),
+}
+
+impl fmt::Display for TriOptimizeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotTriangles => f.write_str("not a triangle mesh (a face is not a triangle)"),
+            Self::Positions(v) => write!(f, "vertex {} has no finite position", v.index()),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for TriOptimizeError {}
+
+fn cost(k: usize) -> u64 {
+    let d = k.abs_diff(6) as u64;
+    d * d
+}
+
+/// The score: `sum over interior vertices of (valence - 6)^2`.
+///
+/// ```
+/// use zipmesh::{gen, optimize::tri_score};
+/// assert_eq!(tri_score(&gen::geodesic_sphere(1)), 12);
+/// ```
+pub fn tri_score(map: &Map) -> u64 {
+    map.vertices()
+        .filter(|&v| !map.is_boundary_vertex(v))
+        .map(|v| cost(map.valence(v)))
+        .sum()
+}
+
+fn vertex_cost(map: &Map, v: Vert) -> u64 {
+    if map.is_boundary_vertex(v) {
+        0
+    } else {
+        cost(map.valence(v))
+    }
+}
+
+/// Reduces the interior irregular vertices of a triangle mesh by batches (see the
+/// [module](self)); `progress` sees each batch. Every edit keeps the map valid; the mesh's
+/// topology (genus, boundary) and its boundary valences are kept.
+///
+/// # Errors
+/// [`TriOptimizeError`] before anything is changed.
+///
+/// See the [module](self) for an example.
+pub fn optimize_triangles(
+    mesh: &mut Mesh,
+    options: &TriOptimizeOptions,
+    mut progress: impl FnMut(&TriBatch),
+) -> Result<TriOutcome, TriOptimizeError> {
+    let map = &mesh.map;
+    if map.num_faces() == 0 || map.faces().any(|f| map.degree(f) != 3) {
+        return Err(TriOptimizeError::NotTriangles);
+    }
+    if let Some(v) = map
+        .vertices()
+        .find(|&v| mesh.positions.get(v.index()).is_none_or(|p| !p.is_finite()))
+    {
+        return Err(TriOptimizeError::Positions(v));
+    }
+    let surface = Surface::new(mesh);
+    let input = TriCounts::of(&mesh.map);
+    let mut batches = Vec::new();
+    for batch in 1..=options.max_batches {
+        let mut touched = Vec::new();
+        let flips = flip_pass(mesh, &mut touched) + collapse_pass(mesh, &mut touched);
+        let cancellations = cancel_pass(mesh, &mut touched);
+        let pair_moves = if flips + cancellations == 0 {
+            move_pass(mesh, options.search_radius, &mut touched)
+        } else {
+            0
+        };
+        if options.relax && !touched.is_empty() {
+            touched.retain(|&v| mesh.map.is_live_vertex(v));
+            touched.sort_unstable();
+            touched.dedup();
+            // Positions were checked finite and edits keep them so: a refusal cannot happen.
+            let _ = relax_local(mesh, &surface, &touched, 3);
+        }
+        let row = TriBatch {
+            batch,
+            flips,
+            cancellations,
+            pair_moves,
+            score: tri_score(&mesh.map),
+            counts: TriCounts::of(&mesh.map),
+        };
+        progress(&row);
+        batches.push(row);
+        if flips + cancellations + pair_moves == 0 {
+            break;
+        }
+    }
+    Ok(TriOutcome {
+        input,
+        batches,
+        final_counts: TriCounts::of(&mesh.map),
+    })
+}
+
+/// The four vertices a flip of `d` changes: its ends lose one, the opposite corners gain one.
+fn flip_gain(map: &Map, d: Dart) -> Option<i64> {
+    let (a, b) = (map.origin(d), map.dest(d));
+    let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
+    if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
+        return None;
+    }
+    let before: u64 = [a, b, c, e].iter().map(|&v| cost(map.valence(v))).sum();
+    let after = cost(map.valence(a) - 1)
+        + cost(map.valence(b) - 1)
+        + cost(map.valence(c) + 1)
+        + cost(map.valence(e) + 1);
+    Some(before as i64 - after as i64)
+}
+
+/// The unit normal of the triangle of `d`, `None` if degenerate.
+fn face_normal(mesh: &Mesh, d: Dart) -> Option<DVec3> {
+    let m = &mesh.map;
+    let p = |v: Vert| mesh.positions[v.index()];
+    let (a, b, c) = (p(m.origin(d)), p(m.dest(d)), p(m.dest(m.next(d))));
+    (b - a).cross(c - a).try_normalize()
+}
+
+/// Whether the two triangles of `d` turned over (or became degenerate) compared with `old`.
+fn turned_over(mesh: &Mesh, d: Dart, old: DVec3) -> bool {
+    [d, d.twin()]
+        .iter()
+        .any(|&x| face_normal(mesh, x).is_none_or(|n| n.dot(old) < 0.5))
+}
+
+fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
+    let mut kept = 0;
+    let edges: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
+    for d in edges {
+        let map = &mesh.map;
+        if !map.is_live_dart(d) || can_flip_edge(map, d).is_err() {
+            continue;
+        }
+        if flip_gain(map, d).is_none_or(|g| g <= 0) {
+            continue;
+        }
+        let old = match (face_normal(mesh, d), face_normal(mesh, d.twin())) {
+            (Some(x), Some(y)) => (x + y).normalize_or_zero(),
+            _ => continue,
+        };
+        let Ok(edit) = mesh_flip_edge(mesh, d) else {
+            continue;
+        };
+        if turned_over(mesh, d, old) {
+            // The record was made on this mesh just now: the undo cannot be stale.
+            let _ = edit.undo(mesh);
+            continue;
+        }
+        let m = &mesh.map;
+        touched.extend([
+            m.origin(d),
+            m.dest(d),
+            m.dest(m.next(d)),
+            m.dest(m.next(d.twin())),
+        ]);
+        kept += 1;
+    }
+    kept
+}
+
+/// What collapsing `d` gains: its ends merge (valence `a + b - 4`), the opposite corners
+/// lose one each; `None` when a vertex involved is on the boundary.
+fn collapse_gain(map: &Map, d: Dart) -> Option<i64> {
+    let (a, b) = (map.origin(d), map.dest(d));
+    let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
+    if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
+        return None;
+    }
+    let val = |v: Vert| map.valence(v);
+    let before: u64 = [a, b, c, e].iter().map(|&v| cost(val(v))).sum();
+    let after = cost((val(a) + val(b)).saturating_sub(4)) + cost(val(c) - 1) + cost(val(e) - 1);
+    Some(before as i64 - after as i64)
+}
+
+/// Edge collapses that lower the score (a 5-5 edge between two v7s is the quadruple removal
+/// of Sec. 6.2 read backwards), undone when a triangle turns over.
+fn collapse_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
+    let mut kept = 0;
+    let darts: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
+    for d in darts {
+        let map = &mesh.map;
+        if !map.is_live_dart(d) || collapse_gain(map, d).is_none_or(|g| g <= 0) {
+            continue;
+        }
+        if can_collapse_edge(map, d).is_err() {
+            continue;
+        }
+        let kept_vertex = map.dest(d);
+        let normals: Vec<(Dart, DVec3)> = fan(map, kept_vertex)
+            .chain(fan(map, map.origin(d)))
+            .filter_map(|x| face_normal(mesh, x).map(|n| (x, n)))
+            .collect();
+        let Ok(edit) = mesh_collapse_edge(mesh, d) else {
+            continue;
+        };
+        let turned = normals.iter().any(|&(x, n)| {
+            mesh.map.is_live_dart(x)
+                && mesh.map.face(x).is_some()
+                && face_normal(mesh, x).is_none_or(|m| m.dot(n) < 0.5)
+        });
+        if turned {
+            let _ = edit.undo(mesh);
+            continue;
+        }
+        let m = &mesh.map;
+        let k = edit.record().kept();
+        touched.push(k);
+        touched.extend(m.vertex_darts(k).map(|x| m.dest(x)));
+        kept += 1;
+    }
+    kept
+}
+
+/// The summed unit normals of the triangles round `verts` (a reference direction for
+/// [`folds`]).
+fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
+    verts
+        .iter()
+        .filter(|&&v| mesh.map.is_live_vertex(v))
+        .flat_map(|&v| fan(&mesh.map, v))
+        .filter_map(|x| face_normal(mesh, x))
+        .sum::<DVec3>()
+        .normalize_or_zero()
+}
+
+/// Whether a triangle round `verts` is degenerate or faces away from `reference` (more
+/// than about 70 degrees off): the edit folded the surface there.
+fn folds(mesh: &Mesh, verts: &[Vert], reference: DVec3) -> bool {
+    verts
+        .iter()
+        .filter(|&&v| mesh.map.is_live_vertex(v))
+        .flat_map(|&v| fan(&mesh.map, v))
+        .any(|x| face_normal(mesh, x).is_none_or(|n| n.dot(reference) < 0.3))
+}
+
+/// The darts leaving `v` that have a face (one per triangle round `v`).
+fn fan(map: &Map, v: Vert) -> impl Iterator<Item = Dart> + '_ {
+    map.vertex_darts(v).filter(move |&x| map.face(x).is_some())
+}
+
+/// Triples `v, a, b` of interior v5/v7s, `a` a neighbour of `v` and `b` a neighbour of `v`
+/// or `a`: the cancellations of Sec. 7.2, kept when they lower the score.
+fn cancel_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
+    let mut kept = 0;
+    let verts: Vec<Vert> = mesh.map.vertices().collect();
+    for v in verts {
+        let map = &mesh.map;
+        if !map.is_live_vertex(v) || !matches!(vertex_cost_kind(map, v), Some(5 | 7)) {
+            continue;
+        }
+        let Some(three) = triple_at(map, v) else {
+            continue;
+        };
+        let before: u64 = three.iter().map(|&x| vertex_cost(map, x)).sum();
+        let reference = region_normal(mesh, &three);
+        let Ok(edit) = cancel_triple_with(&mut mesh.map, &mut mesh.positions, &three) else {
+            continue;
+        };
+        let map = &mesh.map;
+        let after: u64 = three
+            .iter()
+            .filter(|&&x| map.is_live_vertex(x))
+            .map(|&x| vertex_cost(map, x))
+            .sum();
+        if after >= before || folds(mesh, &three, reference) {
+            let _ = edit.undo(mesh);
+            continue;
+        }
+        touched.extend(three.iter().copied().filter(|&x| map.is_live_vertex(x)));
+        kept += 1;
+    }
+    kept
+}
+
+fn vertex_cost_kind(map: &Map, v: Vert) -> Option<usize> {
+    (!map.is_boundary_vertex(v)).then(|| map.valence(v))
+}
+
+/// A cancellable 5-5-7 or 5-7-7 triple containing `v`, if any.
+fn triple_at(map: &Map, v: Vert) -> Option<[Vert; 3]> {
+    let odd = |x: Vert| matches!(vertex_cost_kind(map, x), Some(5 | 7));
+    for a in map.vertex_darts(v).map(|d| map.dest(d)).filter(|&a| odd(a)) {
+        let around = map
+            .vertex_darts(v)
+            .chain(map.vertex_darts(a))
+            .map(|d| map.dest(d));
+        for b in around.filter(|&b| b != v && b != a && odd(b)) {
+            let three = [v, a, b];
+            if can_cancel_triple(map, &three).is_ok() {
+                return Some(three);
+            }
+        }
+    }
+    None
+}
+
+/// Breadth-first distances from `from` up to `radius` edges (`usize::MAX` beyond).
+fn distances(map: &Map, from: &[Vert], radius: usize) -> Vec<usize> {
+    let mut dist = vec![usize::MAX; map.vertex_slots()];
+    let mut queue = VecDeque::new();
+    for &v in from {
+        dist[v.index()] = 0;
+        queue.push_back(v);
+    }
+    while let Some(v) = queue.pop_front() {
+        let dv = dist[v.index()];
+        if dv == radius {
+            continue;
+        }
+        for w in map.vertex_darts(v).map(|d| map.dest(d)) {
+            if dist[w.index()] == usize::MAX {
+                dist[w.index()] = dv + 1;
+                queue.push_back(w);
+            }
+        }
+    }
+    dist
+}
+
+/// Each adjacent 5-7 pair makes the one atomic move (Sec. 6.2) that brings it nearest to
+/// the closest other irregular vertex within `radius`, if any move brings it strictly
+/// nearer. "Nearer" is measured from the pair's vertex that can cancel with the target: a
+/// target v5 cancels with the v7 (5-5-7), a target v7 with the v5 (5-7-7).
+fn move_pass(mesh: &mut Mesh, radius: usize, touched: &mut Vec<Vert>) -> usize {
+    let mut moved = 0;
+    let pairs = five_seven_pairs(&mesh.map);
+    for (p, q) in pairs {
+        let map = &mesh.map;
+        if !map.is_live_vertex(p) || !map.is_live_vertex(q) {
+            continue;
+        }
+        let Some(target) = nearest_other(map, p, q, radius) else {
+            continue;
+        };
+        let kind = vertex_cost_kind(map, target);
+        let dist = distances(map, &[target], radius + 2);
+        let reach = |d: &[usize], p: Vert, q: Vert| match kind {
+            Some(5) => d[q.index()],
+            Some(7) => d[p.index()],
+            _ => d[p.index()].min(d[q.index()]),
+        };
+        let now = reach(&dist, p, q);
+        let mut best: Option<(usize, Direction)> = None;
+        for dir in Direction::ALL {
+            let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) else {
+                continue;
+            };
+            let d2 = distances(&mesh.map, &[target], radius + 2);
+            let at = reach(&d2, e.record().p(), e.record().q());
+            let _ = e.undo(mesh);
+            if at < now && best.is_none_or(|(b, _)| at < b) {
+                best = Some((at, dir));
+            }
+        }
+        let reference = region_normal(mesh, &[p, q]);
+        if let Some((_, dir)) = best {
+            if let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) {
+                let four = [p, q, e.record().p(), e.record().q()];
+                if folds(mesh, &four, reference) {
+                    let _ = e.undo(mesh);
+                    continue;
+                }
+                touched.extend(four);
+                moved += 1;
+            }
+        }
+    }
+    touched.retain(|&v| mesh.map.is_live_vertex(v));
+    moved
+}
+
+/// Adjacent interior (v5, v7) pairs, each v5 with its first v7 neighbour.
+fn five_seven_pairs(map: &Map) -> Vec<(Vert, Vert)> {
+    map.vertices()
+        .filter(|&p| vertex_cost_kind(map, p) == Some(5))
+        .filter_map(|p| {
+            map.vertex_darts(p)
+                .map(|d| map.dest(d))
+                .find(|&q| vertex_cost_kind(map, q) == Some(7))
+                .map(|q| (p, q))
+        })
+        .collect()
+}
+
+/// The closest interior irregular vertex other than `p` and `q`, within `radius`.
+fn nearest_other(map: &Map, p: Vert, q: Vert, radius: usize) -> Option<Vert> {
+    let dist = distances(map, &[p, q], radius);
+    map.vertices()
+        .filter(|&v| v != p && v != q && vertex_cost(map, v) > 0)
+        .filter(|&v| dist[v.index()] != usize::MAX)
+        .min_by_key(|&v| (dist[v.index()], v.index()))
+}
