@@ -105,7 +105,9 @@ fn bad_input_exits_2_without_out() {
     let bad_edges = dir.join("edges.txt");
     fs::write(&bad_edges, "0 1 2\n").unwrap();
     let cases: Vec<Vec<String>> = vec![
-        vec![s(&tri).into()],
+        // All triangles is accepted, but the quad-only options are refused, not ignored.
+        vec![s(&tri).into(), "--protect".into(), s(&bad_faces).into()],
+        vec![s(&tri).into(), "--weight".into(), "count=1".into()],
         vec![s(&inp).into(), "--protect".into(), s(&bad_faces).into()],
         vec![s(&inp).into(), "--features".into(), s(&bad_edges).into()],
         vec![s(&inp).into(), "--sharp-angle".into(), "400".into()],
@@ -214,4 +216,42 @@ fn quad_dominant_input_through_the_cli() {
         .map
         .faces()
         .all(|f| matches!(after.map.degree(f), 3 | 4)));
+}
+
+/// An all-triangle input: the JSON counts equal a recount of IN and OUT (interior valences),
+/// the batches never raise the score, and OUT keeps the genus and the boundary.
+#[test]
+fn triangle_input_json_counts_match_a_recount() {
+    let dir = temp_dir("optimize-tri");
+    let (inp, out) = (dir.join("in.obj"), dir.join("out.obj"));
+    let mesh = gen::random_triangle(600, 1, 1, 8);
+    io::write_mesh(&inp, &mesh).unwrap();
+    let o = zipmesh(&["optimize", s(&inp), "-o", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let recount = |m: &zipmesh::Mesh| {
+        let c = zipmesh::optimize::TriCounts::of(&m.map);
+        serde_json::json!({
+            "faces": c.faces, "vertices": c.vertices, "v3": c.v3, "v4": c.v4, "v5": c.v5,
+            "v7": c.v7, "v8plus": c.v8plus, "irregular": c.irregular(),
+        })
+    };
+    let (result, _) = io::read_mesh(&out).unwrap();
+    assert_eq!(v["kind"], "triangle");
+    assert_eq!(v["input"], recount(&mesh));
+    assert_eq!(v["final"], recount(&result));
+    let scores: Vec<u64> = v["batches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["score"].as_u64().unwrap())
+        .collect();
+    assert!(scores.windows(2).all(|w| w[1] <= w[0]), "{scores:?}");
+    let before = zipmesh::invariants::Counts::of(&mesh.map);
+    let after = zipmesh::invariants::Counts::of(&result.map);
+    assert_eq!(
+        (before.genus, before.boundary_loops),
+        (after.genus, after.boundary_loops)
+    );
+    assert!(v["final"]["irregular"].as_u64() < v["input"]["irregular"].as_u64());
 }

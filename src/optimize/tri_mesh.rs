@@ -4,8 +4,9 @@
 //! each followed by local relaxation (Sec. 8) of what it touched. `docs/optimize.md` gives
 //! the reading.
 //!
-//! The score is `sum over interior vertices of (valence - 6)^2`: a flip or a cancellation is
-//! kept only when it lowers it, so a batch never makes the score worse. Boundary vertices
+//! A flip, collapse or cancellation is kept only when it lowers the sum of
+//! `(valence - 6)^2` over the interior vertices ([`tri_score`]) and makes no new irregular
+//! vertex, so neither ever rises. Boundary vertices
 //! keep their valences (no edit changes one), and an edit that would turn a triangle over
 //! (its normal against the old one's) is undone.
 //!
@@ -46,6 +47,9 @@ pub struct TriOptimizeOptions {
     pub search_radius: usize,
     /// Relax the vertices each batch touched (three local sweeps, Sec. 8).
     pub relax: bool,
+    /// How far the face count may drift from the input's, as a fraction: an edit that
+    /// would leave `[(1 - f) F, (1 + f) F]` is undone.
+    pub face_drift: f64,
 }
 
 impl Default for TriOptimizeOptions {
@@ -54,6 +58,7 @@ impl Default for TriOptimizeOptions {
             max_batches: 50,
             search_radius: 8,
             relax: true,
+            face_drift: 0.05,
         }
     }
 }
@@ -125,7 +130,7 @@ pub struct TriBatch {
     pub cancellations: usize,
     /// 5-7 pair moves made.
     pub pair_moves: usize,
-    /// The score after the batch (`sum of (valence - 6)^2` over interior vertices).
+    /// The score after the batch ([`tri_score`]).
     pub score: u64,
     /// The counts after the batch.
     pub counts: TriCounts,
@@ -164,29 +169,66 @@ impl fmt::Display for TriOptimizeError {
 #[cfg(feature = "std")]
 impl std::error::Error for TriOptimizeError {}
 
-fn cost(k: usize) -> u64 {
-    let d = k.abs_diff(6) as u64;
-    d * d
+/// The face counts an edit may leave.
+struct Budget {
+    min: usize,
+    max: usize,
 }
 
-/// The score: `sum over interior vertices of (valence - 6)^2`.
+impl Budget {
+    fn holds(&self, map: &Map) -> bool {
+        (self.min..=self.max).contains(&map.num_faces())
+    }
+}
+
+/// What interior vertices cost: how many are irregular, and the sum of `(valence - 6)^2`.
+#[derive(Clone, Copy, Default, PartialEq, Eq, Debug)]
+struct Cost {
+    irregular: u64,
+    spread: u64,
+}
+
+impl Cost {
+    fn of(k: usize) -> Cost {
+        let d = k.abs_diff(6) as u64;
+        Cost {
+            irregular: u64::from(d > 0),
+            spread: d * d,
+        }
+    }
+
+    /// An edit from `self` to `after` is kept when it spreads the valences less and makes
+    /// no new irregular vertex (so two v7s never merge into a v8 to save one).
+    fn improved_by(self, after: Cost) -> bool {
+        after.irregular <= self.irregular && after.spread < self.spread
+    }
+}
+
+impl core::iter::Sum for Cost {
+    fn sum<I: Iterator<Item = Cost>>(iter: I) -> Cost {
+        iter.fold(Cost::default(), |a, b| Cost {
+            irregular: a.irregular + b.irregular,
+            spread: a.spread + b.spread,
+        })
+    }
+}
+
+/// The score: the sum of `(valence - 6)^2` over the interior vertices. Every edit the
+/// optimizer keeps lowers it without raising the number of irregular vertices.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::tri_score};
 /// assert_eq!(tri_score(&gen::geodesic_sphere(1)), 12);
 /// ```
 pub fn tri_score(map: &Map) -> u64 {
-    map.vertices()
-        .filter(|&v| !map.is_boundary_vertex(v))
-        .map(|v| cost(map.valence(v)))
-        .sum()
+    map.vertices().map(|v| vertex_cost(map, v).spread).sum()
 }
 
-fn vertex_cost(map: &Map, v: Vert) -> u64 {
+fn vertex_cost(map: &Map, v: Vert) -> Cost {
     if map.is_boundary_vertex(v) {
-        0
+        Cost::default()
     } else {
-        cost(map.valence(v))
+        Cost::of(map.valence(v))
     }
 }
 
@@ -215,13 +257,18 @@ pub fn optimize_triangles(
     }
     let surface = Surface::new(mesh);
     let input = TriCounts::of(&mesh.map);
+    let drift = options.face_drift.clamp(0.0, 1.0);
+    let budget = Budget {
+        min: ((1.0 - drift) * input.faces as f64).ceil() as usize,
+        max: ((1.0 + drift) * input.faces as f64).floor() as usize,
+    };
     let mut batches = Vec::new();
     for batch in 1..=options.max_batches {
         let mut touched = Vec::new();
-        let flips = flip_pass(mesh, &mut touched) + collapse_pass(mesh, &mut touched);
-        let cancellations = cancel_pass(mesh, &mut touched);
+        let flips = flip_pass(mesh, &mut touched) + collapse_pass(mesh, &budget, &mut touched);
+        let cancellations = cancel_pass(mesh, &budget, &mut touched);
         let pair_moves = if flips + cancellations == 0 {
-            move_pass(mesh, options.search_radius, &mut touched)
+            move_pass(mesh, options.search_radius, &budget, &mut touched)
         } else {
             0
         };
@@ -254,18 +301,16 @@ pub fn optimize_triangles(
 }
 
 /// The four vertices a flip of `d` changes: its ends lose one, the opposite corners gain one.
-fn flip_gain(map: &Map, d: Dart) -> Option<i64> {
+fn flip_gain(map: &Map, d: Dart) -> Option<bool> {
     let (a, b) = (map.origin(d), map.dest(d));
     let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
     if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
         return None;
     }
-    let before: u64 = [a, b, c, e].iter().map(|&v| cost(map.valence(v))).sum();
-    let after = cost(map.valence(a) - 1)
-        + cost(map.valence(b) - 1)
-        + cost(map.valence(c) + 1)
-        + cost(map.valence(e) + 1);
-    Some(before as i64 - after as i64)
+    let val = |v: Vert| map.valence(v);
+    let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
+    let after = [val(a) - 1, val(b) - 1, val(c) + 1, val(e) + 1];
+    Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
 }
 
 /// The unit normal of the triangle of `d`, `None` if degenerate.
@@ -291,7 +336,7 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
         if !map.is_live_dart(d) || can_flip_edge(map, d).is_err() {
             continue;
         }
-        if flip_gain(map, d).is_none_or(|g| g <= 0) {
+        if flip_gain(map, d) != Some(true) {
             continue;
         }
         let old = match (face_normal(mesh, d), face_normal(mesh, d.twin())) {
@@ -320,26 +365,26 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
 
 /// What collapsing `d` gains: its ends merge (valence `a + b - 4`), the opposite corners
 /// lose one each; `None` when a vertex involved is on the boundary.
-fn collapse_gain(map: &Map, d: Dart) -> Option<i64> {
+fn collapse_gain(map: &Map, d: Dart) -> Option<bool> {
     let (a, b) = (map.origin(d), map.dest(d));
     let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
     if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
         return None;
     }
     let val = |v: Vert| map.valence(v);
-    let before: u64 = [a, b, c, e].iter().map(|&v| cost(val(v))).sum();
-    let after = cost((val(a) + val(b)).saturating_sub(4)) + cost(val(c) - 1) + cost(val(e) - 1);
-    Some(before as i64 - after as i64)
+    let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
+    let after = [(val(a) + val(b)).saturating_sub(4), val(c) - 1, val(e) - 1];
+    Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
 }
 
 /// Edge collapses that lower the score (a 5-5 edge between two v7s is the quadruple removal
 /// of Sec. 6.2 read backwards), undone when a triangle turns over.
-fn collapse_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
+fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usize {
     let mut kept = 0;
     let darts: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
     for d in darts {
         let map = &mesh.map;
-        if !map.is_live_dart(d) || collapse_gain(map, d).is_none_or(|g| g <= 0) {
+        if !map.is_live_dart(d) || collapse_gain(map, d) != Some(true) {
             continue;
         }
         if can_collapse_edge(map, d).is_err() {
@@ -358,7 +403,7 @@ fn collapse_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
                 && mesh.map.face(x).is_some()
                 && face_normal(mesh, x).is_none_or(|m| m.dot(n) < 0.5)
         });
-        if turned {
+        if turned || !budget.holds(&mesh.map) {
             let _ = edit.undo(mesh);
             continue;
         }
@@ -400,7 +445,7 @@ fn fan(map: &Map, v: Vert) -> impl Iterator<Item = Dart> + '_ {
 
 /// Triples `v, a, b` of interior v5/v7s, `a` a neighbour of `v` and `b` a neighbour of `v`
 /// or `a`: the cancellations of Sec. 7.2, kept when they lower the score.
-fn cancel_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
+fn cancel_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usize {
     let mut kept = 0;
     let verts: Vec<Vert> = mesh.map.vertices().collect();
     for v in verts {
@@ -411,18 +456,19 @@ fn cancel_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
         let Some(three) = triple_at(map, v) else {
             continue;
         };
-        let before: u64 = three.iter().map(|&x| vertex_cost(map, x)).sum();
+        let before: Cost = three.iter().map(|&x| vertex_cost(map, x)).sum();
         let reference = region_normal(mesh, &three);
         let Ok(edit) = cancel_triple_with(&mut mesh.map, &mut mesh.positions, &three) else {
             continue;
         };
         let map = &mesh.map;
-        let after: u64 = three
+        let after: Cost = three
             .iter()
             .filter(|&&x| map.is_live_vertex(x))
             .map(|&x| vertex_cost(map, x))
             .sum();
-        if after >= before || folds(mesh, &three, reference) {
+        if !before.improved_by(after) || folds(mesh, &three, reference) || !budget.holds(&mesh.map)
+        {
             let _ = edit.undo(mesh);
             continue;
         }
@@ -481,7 +527,7 @@ fn distances(map: &Map, from: &[Vert], radius: usize) -> Vec<usize> {
 /// the closest other irregular vertex within `radius`, if any move brings it strictly
 /// nearer. "Nearer" is measured from the pair's vertex that can cancel with the target: a
 /// target v5 cancels with the v7 (5-5-7), a target v7 with the v5 (5-7-7).
-fn move_pass(mesh: &mut Mesh, radius: usize, touched: &mut Vec<Vert>) -> usize {
+fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<Vert>) -> usize {
     let mut moved = 0;
     let pairs = five_seven_pairs(&mesh.map);
     for (p, q) in pairs {
@@ -516,7 +562,7 @@ fn move_pass(mesh: &mut Mesh, radius: usize, touched: &mut Vec<Vert>) -> usize {
         if let Some((_, dir)) = best {
             if let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) {
                 let four = [p, q, e.record().p(), e.record().q()];
-                if folds(mesh, &four, reference) {
+                if folds(mesh, &four, reference) || !budget.holds(&mesh.map) {
                     let _ = e.undo(mesh);
                     continue;
                 }
@@ -546,7 +592,7 @@ fn five_seven_pairs(map: &Map) -> Vec<(Vert, Vert)> {
 fn nearest_other(map: &Map, p: Vert, q: Vert, radius: usize) -> Option<Vert> {
     let dist = distances(map, &[p, q], radius);
     map.vertices()
-        .filter(|&v| v != p && v != q && vertex_cost(map, v) > 0)
+        .filter(|&v| v != p && v != q && vertex_cost(map, v).irregular > 0)
         .filter(|&v| dist[v.index()] != usize::MAX)
         .min_by_key(|&v| (dist[v.index()], v.index()))
 }
