@@ -175,7 +175,8 @@ impl Property {
 
 /// Every built-in property: [`kernel`], [`operators`], the Q-zip properties
 /// ([`qzip_properties`](super::qzip_properties) with the default [`PairChoice`](super::PairChoice)),
-/// then [`optimize_property`](super::optimize_property).
+/// then [`optimize_property`](super::optimize_property) and
+/// [`optimize_triangles_property`](super::optimize_triangles_property).
 ///
 /// ```
 /// let names: Vec<String> = zipmesh::campaign::builtin().iter().map(|p| p.name().to_string()).collect();
@@ -189,6 +190,7 @@ pub fn builtin() -> Vec<Property> {
     all.extend(hybrid());
     all.extend(super::qzip_properties(super::PairChoice::default()));
     all.push(super::optimize_property());
+    all.push(super::optimize_triangles_property());
     all
 }
 

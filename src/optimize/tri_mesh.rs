@@ -18,7 +18,8 @@
 //! assert_eq!(mesh.map.check(), Ok(()));
 //! ```
 
-use alloc::collections::VecDeque;
+use alloc::collections::btree_map::Entry;
+use alloc::collections::{BTreeMap, VecDeque};
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
@@ -500,27 +501,40 @@ fn triple_at(map: &Map, v: Vert) -> Option<[Vert; 3]> {
     None
 }
 
-/// Breadth-first distances from `from` up to `radius` edges (`usize::MAX` beyond).
-fn distances(map: &Map, from: &[Vert], radius: usize) -> Vec<usize> {
-    let mut dist = vec![usize::MAX; map.vertex_slots()];
-    let mut queue = VecDeque::new();
-    for &v in from {
-        dist[v.index()] = 0;
-        queue.push_back(v);
-    }
-    while let Some(v) = queue.pop_front() {
-        let dv = dist[v.index()];
-        if dv == radius {
-            continue;
+/// Breadth-first distances from `from`, up to `radius` edges; a map, not a per-slot array,
+/// because the searches are small and many (one per pair and direction).
+struct Near(BTreeMap<u32, usize>);
+
+impl Near {
+    fn from(map: &Map, from: &[Vert], radius: usize) -> Near {
+        let mut dist = BTreeMap::new();
+        let mut queue = VecDeque::new();
+        for &v in from {
+            dist.insert(v.index() as u32, 0);
+            queue.push_back(v);
         }
-        for w in map.vertex_darts(v).map(|d| map.dest(d)) {
-            if dist[w.index()] == usize::MAX {
-                dist[w.index()] = dv + 1;
-                queue.push_back(w);
+        while let Some(v) = queue.pop_front() {
+            let dv = dist[&(v.index() as u32)];
+            if dv == radius {
+                continue;
+            }
+            for w in map.vertex_darts(v).map(|d| map.dest(d)) {
+                if let Entry::Vacant(e) = dist.entry(w.index() as u32) {
+                    e.insert(dv + 1);
+                    queue.push_back(w);
+                }
             }
         }
+        Near(dist)
     }
-    dist
+
+    /// The distance of `v`, `usize::MAX` beyond the radius.
+    fn at(&self, v: Vert) -> usize {
+        self.0
+            .get(&(v.index() as u32))
+            .copied()
+            .unwrap_or(usize::MAX)
+    }
 }
 
 /// Each adjacent 5-7 pair makes the one atomic move (Sec. 6.2) that brings it nearest to
@@ -539,20 +553,33 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
             continue;
         };
         let kind = vertex_cost_kind(map, target);
-        let dist = distances(map, &[target], radius + 2);
-        let reach = |d: &[usize], p: Vert, q: Vert| match kind {
-            Some(5) => d[q.index()],
-            Some(7) => d[p.index()],
-            _ => d[p.index()].min(d[q.index()]),
+        let dist = Near::from(map, &[target], radius + 2);
+        let now = match kind {
+            Some(5) => dist.at(q),
+            Some(7) => dist.at(p),
+            _ => dist.at(p).min(dist.at(q)),
         };
-        let now = reach(&dist, p, q);
         let mut best: Option<(usize, Direction)> = None;
         for dir in Direction::ALL {
             let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) else {
                 continue;
             };
-            let d2 = distances(&mesh.map, &[target], radius + 2);
-            let at = reach(&d2, e.record().p(), e.record().q());
+            // Distances from the target as they were: a move changes the graph next to the
+            // pair only, and a vertex it made is one edge from one that was there.
+            let m = &mesh.map;
+            let seen = |v: Vert| {
+                let old = dist.at(v);
+                let via = m
+                    .vertex_darts(v)
+                    .map(|d| dist.at(m.dest(d)).saturating_add(1));
+                via.fold(old, usize::min)
+            };
+            let (np, nq) = (e.record().p(), e.record().q());
+            let at = match kind {
+                Some(5) => seen(nq),
+                Some(7) => seen(np),
+                _ => seen(np).min(seen(nq)),
+            };
             let _ = e.undo(mesh);
             if at < now && best.is_none_or(|(b, _)| at < b) {
                 best = Some((at, dir));
@@ -588,11 +615,33 @@ fn five_seven_pairs(map: &Map) -> Vec<(Vert, Vert)> {
         .collect()
 }
 
-/// The closest interior irregular vertex other than `p` and `q`, within `radius`.
+/// The closest interior irregular vertex other than `p` and `q`, within `radius` (the
+/// lowest handle among the closest): a breadth-first search that stops at the first ring
+/// holding one.
 fn nearest_other(map: &Map, p: Vert, q: Vert, radius: usize) -> Option<Vert> {
-    let dist = distances(map, &[p, q], radius);
-    map.vertices()
-        .filter(|&v| v != p && v != q && vertex_cost(map, v).irregular > 0)
-        .filter(|&v| dist[v.index()] != usize::MAX)
-        .min_by_key(|&v| (dist[v.index()], v.index()))
+    let mut seen = BTreeMap::new();
+    let mut ring: Vec<Vert> = vec![p, q];
+    for &v in &ring {
+        seen.insert(v.index(), ());
+    }
+    for _ in 0..radius {
+        let mut next = Vec::new();
+        for &v in &ring {
+            for w in map.vertex_darts(v).map(|d| map.dest(d)) {
+                if seen.insert(w.index(), ()).is_none() {
+                    next.push(w);
+                }
+            }
+        }
+        let found = next
+            .iter()
+            .copied()
+            .filter(|&w| vertex_cost(map, w).irregular > 0)
+            .min();
+        if found.is_some() || next.is_empty() {
+            return found;
+        }
+        ring = next;
+    }
+    None
 }

@@ -279,6 +279,7 @@ fn properties(args: &CheckArgs) -> Vec<Property> {
         per_case,
     }));
     all.push(campaign::optimize_property());
+    all.push(campaign::optimize_triangles_property());
     all
 }
 
