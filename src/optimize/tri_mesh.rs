@@ -310,7 +310,12 @@ fn flip_gain(map: &Map, d: Dart) -> Option<bool> {
     }
     let val = |v: Vert| map.valence(v);
     let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
-    let after = [val(a) - 1, val(b) - 1, val(c) + 1, val(e) + 1];
+    let after = [
+        val(a).saturating_sub(1),
+        val(b).saturating_sub(1),
+        val(c) + 1,
+        val(e) + 1,
+    ];
     Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
 }
 
@@ -374,7 +379,11 @@ fn collapse_gain(map: &Map, d: Dart) -> Option<bool> {
     }
     let val = |v: Vert| map.valence(v);
     let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
-    let after = [(val(a) + val(b)).saturating_sub(4), val(c) - 1, val(e) - 1];
+    let after = [
+        (val(a) + val(b)).saturating_sub(4),
+        val(c).saturating_sub(1),
+        val(e).saturating_sub(1),
+    ];
     Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
 }
 
