@@ -70,7 +70,9 @@ pub use merge::{merge, Campaign, MergeError};
 pub use optimize::{
     optimize_property, optimize_triangles_property, OPTIMIZE_MAX_FACES, TRI_OPTIMIZE_MAX_FACES,
 };
-pub use property::{builtin, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property};
+pub use property::{
+    builtin, builtin_with, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property,
+};
 pub use qzip::{qzip_properties, PairChoice};
 pub use report::{Failure, Report, Row};
 pub use shard::{Shard, ShardError};

@@ -184,11 +184,22 @@ impl Property {
 /// assert!(names.contains(&"tri-flip".to_string()));
 /// ```
 pub fn builtin() -> Vec<Property> {
+    builtin_with(super::PairChoice::default())
+}
+
+/// [`builtin`] with the Q-zip properties drawing their pairs by `choice` (what `zipmesh
+/// check --max-distance` sets).
+///
+/// ```
+/// use zipmesh::campaign::{builtin, builtin_with, PairChoice};
+/// assert_eq!(builtin_with(PairChoice::default()).len(), builtin().len());
+/// ```
+pub fn builtin_with(choice: super::PairChoice) -> Vec<Property> {
     let mut all = kernel();
     all.extend(operators());
     all.extend(super::tri_edit_properties());
     all.extend(hybrid());
-    all.extend(super::qzip_properties(super::PairChoice::default()));
+    all.extend(super::qzip_properties(choice));
     all.push(super::optimize_property());
     all.push(super::optimize_triangles_property());
     all

@@ -269,18 +269,11 @@ fn show_checks(
 /// Every property `check` knows. On given meshes the Q-zip properties try every ordered
 /// pair of singularities within `--max-distance` (generated cases draw a few pairs each).
 fn properties(args: &CheckArgs) -> Vec<Property> {
-    let mut all = campaign::kernel();
-    all.extend(campaign::operators());
-    all.extend(campaign::tri_edit_properties());
-    all.extend(campaign::hybrid());
     let per_case = if args.files.is_empty() { Some(4) } else { None };
-    all.extend(campaign::qzip_properties(campaign::PairChoice {
+    campaign::builtin_with(campaign::PairChoice {
         max_distance: args.max_distance,
         per_case,
-    }));
-    all.push(campaign::optimize_property());
-    all.push(campaign::optimize_triangles_property());
-    all
+    })
 }
 
 fn print_text(report: &Report) {
