@@ -391,6 +391,47 @@ fn compare_starts(a: (&Map, crate::Dart), b: (&Map, crate::Dart)) -> core::cmp::
     }
 }
 
+/// Whether an isomorphism of the whole maps takes dart `a` of the first to dart `b` of the
+/// second: the breadth-first readings from the two agree (as in [`compare_starts`]) and each
+/// reads every live dart of its map, so both maps are connected. `true` implies equal
+/// canonical codes; `false` says nothing when an isomorphism exists that moves the anchor.
+/// Dense labels (one slot per dart): the walk reads the whole map when it succeeds.
+pub(crate) fn same_from(a: (&Map, crate::Dart), b: (&Map, crate::Dart)) -> bool {
+    let ((ma, sa), (mb, sb)) = ((a.0, a.1.index()), (b.0, b.1.index()));
+    if ma.num_darts() != mb.num_darts() || !ma.is_live_dart(a.1) || !mb.is_live_dart(b.1) {
+        return false;
+    }
+    let (mut la, mut lb) = (vec![NONE; ma.next.len()], vec![NONE; mb.next.len()]);
+    let (mut oa, mut ob) = (vec![sa as u32], vec![sb as u32]);
+    la[sa] = 0;
+    lb[sb] = 0;
+    let mut i = 0;
+    while i < oa.len() {
+        let (da, db) = (oa[i] as usize, ob[i] as usize);
+        if (ma.face[da] == NONE) != (mb.face[db] == NONE) {
+            return false;
+        }
+        for (xa, xb) in [
+            (ma.next[da] as usize, mb.next[db] as usize),
+            (da ^ 1, db ^ 1),
+        ] {
+            match (la[xa], lb[xb]) {
+                // Both new: the readings stay in step, so both get the same number.
+                (NONE, NONE) => {
+                    la[xa] = oa.len() as u32;
+                    lb[xb] = ob.len() as u32;
+                    oa.push(xa as u32);
+                    ob.push(xb as u32);
+                }
+                (p, q) if p == q => {}
+                _ => return false,
+            }
+        }
+        i += 1;
+    }
+    oa.len() == ma.num_darts()
+}
+
 /// A breadth-first numbering from one dart, one symbol at a time.
 struct Walk {
     label: alloc::collections::BTreeMap<u32, u32>,
@@ -489,5 +530,39 @@ mod tests {
                 .all(|&d| compare_starts((&a, la), (&a, d)) != Ordering::Greater));
         }
         assert_eq!(least_start(&a, &[]), None);
+    }
+
+    #[test]
+    fn same_from_agrees_with_the_canonical_code() {
+        // Every anchor pair on a pair of maps: `true` exactly when the readings compare
+        // equal (both maps connected here), and then the codes agree.
+        let cases = [
+            (gen::torus_grid(4, 3).map, gen::torus_grid(3, 4).map),
+            (gen::cube(2).map, gen::cube(2).map),
+            (gen::grid(3, 2).map, gen::grid(2, 3).map),
+            (gen::torus_grid(4, 4).map, gen::torus_grid(4, 5).map),
+        ];
+        let mut agreed = 0;
+        for (a, b) in &cases {
+            for &x in &darts(a) {
+                for &y in darts(b).iter().take(12) {
+                    let same = same_from((a, x), (b, y));
+                    assert_eq!(same, compare_starts((a, x), (b, y)) == Ordering::Equal);
+                    if same {
+                        assert_eq!(CanonicalCode::of(a), CanonicalCode::of(b));
+                        agreed += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            agreed > 0,
+            "no anchor pair agreed: the test checked only refusals"
+        );
+        // Two components: the reading from one dart misses the other, so it is refused.
+        let two = Map::from_polygons(8, &[[0u32, 1, 2, 3], [4, 5, 6, 7]]).unwrap();
+        let d = darts(&two)[0];
+        assert_eq!(compare_starts((&two, d), (&two, d)), Ordering::Equal);
+        assert!(!same_from((&two, d), (&two, d)));
     }
 }
