@@ -259,9 +259,11 @@ pub fn optimize_triangles(
     let surface = Surface::new(mesh);
     let input = TriCounts::of(&mesh.map);
     let drift = options.face_drift.clamp(0.0, 1.0);
+    // `as` truncates: the slack is the whole faces within the drift (no `floor` in no_std).
+    let slack = (drift * input.faces as f64) as usize;
     let budget = Budget {
-        min: ((1.0 - drift) * input.faces as f64).ceil() as usize,
-        max: ((1.0 + drift) * input.faces as f64).floor() as usize,
+        min: input.faces - slack.min(input.faces),
+        max: input.faces + slack,
     };
     let mut batches = Vec::new();
     for batch in 1..=options.max_batches {
