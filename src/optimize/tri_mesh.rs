@@ -233,14 +233,25 @@ fn vertex_cost(map: &Map, v: Vert) -> Cost {
     }
 }
 
-/// Reduces the interior irregular vertices of a triangle mesh by batches (see the
-/// [module](self)); `progress` sees each batch. Every edit keeps the map valid; the mesh's
-/// topology (genus, boundary) and its boundary valences are kept.
+/// Reduces the interior irregular vertices of a triangle mesh by batches; `progress` sees
+/// each batch. A batch keeps the flips, collapses and triple cancellations (Sec. 7.2) that
+/// lower [`tri_score`] without adding an irregular vertex; when none is left it moves each
+/// adjacent 5-7 pair (Sec. 6.2) towards its nearest other irregular vertex; then it relaxes
+/// what it touched. An edit that turns a triangle over or lets the face count drift past
+/// [`TriOptimizeOptions::face_drift`] is undone. Every edit keeps the map valid; the mesh's
+/// topology (genus, boundary) and its boundary valences are kept. `docs/optimize.md` gives
+/// the reading and measurements.
 ///
 /// # Errors
 /// [`TriOptimizeError`] before anything is changed.
 ///
-/// See the [module](self) for an example.
+/// ```
+/// use zipmesh::{gen, optimize::{optimize_triangles, TriOptimizeOptions}};
+/// let mut mesh = gen::random_triangle(400, 1, 0, 3);
+/// let out = optimize_triangles(&mut mesh, &TriOptimizeOptions::default(), |_| {}).unwrap();
+/// assert!(out.final_counts.irregular() < out.input.irregular());
+/// assert_eq!(mesh.map.check(), Ok(()));
+/// ```
 pub fn optimize_triangles(
     mesh: &mut Mesh,
     options: &TriOptimizeOptions,
