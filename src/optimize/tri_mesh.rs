@@ -314,22 +314,26 @@ pub fn optimize_triangles(
     })
 }
 
-/// The four vertices a flip of `d` changes: its ends lose one, the opposite corners gain one.
-fn flip_gain(map: &Map, d: Dart) -> Option<bool> {
+/// The valences of `d`'s ends and of the two opposite corners, `None` when one of the four
+/// is on the boundary (no edit changes a boundary valence).
+fn edge_valences(map: &Map, d: Dart) -> Option<[usize; 4]> {
     let (a, b) = (map.origin(d), map.dest(d));
     let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
-    if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
-        return None;
-    }
-    let val = |v: Vert| map.valence(v);
-    let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
-    let after = [
-        val(a).saturating_sub(1),
-        val(b).saturating_sub(1),
-        val(c) + 1,
-        val(e) + 1,
-    ];
-    Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
+    let four = [a, b, c, e];
+    (!four.iter().any(|&v| map.is_boundary_vertex(v))).then(|| four.map(|v| map.valence(v)))
+}
+
+/// Whether an edit that turns the valences `before` into `after` is kept.
+fn improves<const N: usize>(before: [usize; 4], after: [usize; N]) -> bool {
+    let cost = |k: &[usize]| k.iter().map(|&x| Cost::of(x)).sum::<Cost>();
+    cost(&before).improved_by(cost(&after))
+}
+
+/// Whether flipping `d` is kept: its ends lose one, the opposite corners gain one.
+fn flip_gain(map: &Map, d: Dart) -> Option<bool> {
+    let [a, b, c, e] = edge_valences(map, d)?;
+    let after = [a.saturating_sub(1), b.saturating_sub(1), c + 1, e + 1];
+    Some(improves([a, b, c, e], after))
 }
 
 /// The unit normal of the triangle of `d`, `None` if degenerate.
@@ -382,22 +386,16 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
     kept
 }
 
-/// What collapsing `d` gains: its ends merge (valence `a + b - 4`), the opposite corners
-/// lose one each; `None` when a vertex involved is on the boundary.
+/// Whether collapsing `d` is kept: its ends merge (valence `a + b - 4`), the opposite
+/// corners lose one each.
 fn collapse_gain(map: &Map, d: Dart) -> Option<bool> {
-    let (a, b) = (map.origin(d), map.dest(d));
-    let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
-    if [a, b, c, e].iter().any(|&v| map.is_boundary_vertex(v)) {
-        return None;
-    }
-    let val = |v: Vert| map.valence(v);
-    let before: Cost = [a, b, c, e].iter().map(|&v| Cost::of(val(v))).sum();
+    let [a, b, c, e] = edge_valences(map, d)?;
     let after = [
-        (val(a) + val(b)).saturating_sub(4),
-        val(c).saturating_sub(1),
-        val(e).saturating_sub(1),
+        (a + b).saturating_sub(4),
+        c.saturating_sub(1),
+        e.saturating_sub(1),
     ];
-    Some(before.improved_by(after.into_iter().map(Cost::of).sum()))
+    Some(improves([a, b, c, e], after))
 }
 
 /// Edge collapses that lower the score (a 5-5 edge between two v7s is the quadruple removal
