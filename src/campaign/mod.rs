@@ -68,7 +68,8 @@ pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
 pub use merge::{merge, Campaign, MergeError};
 pub use optimize::{
-    optimize_property, optimize_triangles_property, OPTIMIZE_MAX_FACES, TRI_OPTIMIZE_MAX_FACES,
+    check_optimize_triangles, optimize_property, optimize_triangles_property, OPTIMIZE_MAX_FACES,
+    TRI_OPTIMIZE_MAX_FACES,
 };
 pub use property::{
     builtin, builtin_with, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property,

@@ -141,15 +141,29 @@ fn check_triangles(case: &Case) -> Outcome {
     if !all_triangles || map.num_faces() > TRI_OPTIMIZE_MAX_FACES {
         return Outcome::Skip;
     }
-    let mut mesh = case.mesh.clone();
-    let (before, boundary) = (Counts::of(&mesh.map), boundary_valences(&mesh));
     let options = TriOptimizeOptions {
         max_batches: 3,
         ..TriOptimizeOptions::default()
     };
+    check_optimize_triangles(&case.mesh, &options)
+}
+
+/// The oracle of `optimize-triangles` (and of the `tri_optimize` fuzz target): runs
+/// [`optimize_triangles`] with `options` on a copy of `mesh`, a pure triangle mesh, and
+/// checks what [`optimize_triangles_property`] names.
+///
+/// ```
+/// use zipmesh::campaign::check_optimize_triangles;
+/// use zipmesh::optimize::TriOptimizeOptions;
+/// let mesh = zipmesh::gen::random_triangle(200, 0, 1, 2);
+/// assert!(check_optimize_triangles(&mesh, &TriOptimizeOptions::default()).is_pass());
+/// ```
+pub fn check_optimize_triangles(mesh: &Mesh, options: &TriOptimizeOptions) -> Outcome {
+    let mut mesh = mesh.clone();
+    let (before, boundary) = (Counts::of(&mesh.map), boundary_valences(&mesh));
     let mut last = (tri_score(&mesh.map), TriCounts::of(&mesh.map).irregular());
     let mut rose = None;
-    let out = optimize_triangles(&mut mesh, &options, |b| {
+    let out = optimize_triangles(&mut mesh, options, |b| {
         let now = (b.score, b.counts.irregular());
         if now.0 > last.0 || now.1 > last.1 {
             rose.get_or_insert(format!("batch {}: {last:?} -> {now:?}", b.batch));
@@ -177,7 +191,8 @@ fn check_triangles(case: &Case) -> Outcome {
     if let Some(r) = rose {
         return Outcome::fail(format!("score or irregular count rose: {r}"), None);
     }
-    let drift = options.face_drift * before.faces as f64;
+    // The library clamps the drift the same way.
+    let drift = options.face_drift.clamp(0.0, 1.0) * before.faces as f64;
     if (after.faces as f64 - before.faces as f64).abs() > drift.ceil() {
         return Outcome::fail(format!("faces {} -> {}", before.faces, after.faces), None);
     }

@@ -135,25 +135,42 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         bar.finish_and_clear();
     }
     let seconds = start.elapsed().as_secs_f64();
-    mesh.compact();
-    let pending = io::prepare_mesh(&args.output, &mesh)?;
-    if args.json {
-        let report = json!({
-            "kind": "triangle",
-            "input": tri_counts(&outcome.input),
-            "batches": rows,
-            "final": tri_counts(&outcome.final_counts),
-            "seconds": seconds,
-        });
-        outln!("{report}");
-    } else {
-        outln!("{name}: {}", tri_summary(&outcome.input));
-        outln!(
+    let report = json!({
+        "kind": "triangle",
+        "input": tri_counts(&outcome.input),
+        "batches": rows,
+        "final": tri_counts(&outcome.final_counts),
+        "seconds": seconds,
+    });
+    let lines = [
+        format!("{name}: {}", tri_summary(&outcome.input)),
+        format!(
             "{}: {} after {} batches, {seconds:.2} s",
             out::escape(&args.output.display().to_string()),
             tri_summary(&outcome.final_counts),
             outcome.batches.len()
-        );
+        ),
+    ];
+    finish(args, &mut mesh, &report, &lines)
+}
+
+/// The ending both paths share: OUT is prepared beside its place, the report printed
+/// (`--json`: the object, else the two lines), and only then OUT moved in, so a failed
+/// print leaves no OUT.
+fn finish(
+    args: &OptimizeArgs,
+    mesh: &mut Mesh,
+    report: &Value,
+    lines: &[String; 2],
+) -> Result<ExitCode, InputError> {
+    mesh.compact();
+    let pending = io::prepare_mesh(&args.output, mesh)?;
+    if args.json {
+        outln!("{report}");
+    } else {
+        for line in lines {
+            outln!("{line}");
+        }
     }
     out::flush()?;
     pending.commit()?;
@@ -302,35 +319,29 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         bar.finish_and_clear();
     }
     let seconds = start.elapsed().as_secs_f64();
-    mesh.compact();
-    let pending = io::prepare_mesh(&args.output, &mesh)?;
-    if args.json {
-        let report = json!({
-            "input": counts(&outcome.input),
-            "triangle_stage": {
-                "input": outcome.triangles.input,
-                "merged_pairs": outcome.triangles.merged,
-                "moves": outcome.triangles.moves,
-                "refused_pairs": outcome.triangles.refused,
-            },
-            "preprocessed": outcome.preprocessed,
-            "initial_score": outcome.initial_score,
-            "batches": rows,
-            "final": counts(&outcome.final_counts),
-            "seconds": seconds,
-        });
-        outln!("{report}");
-    } else {
-        let qzips: usize = outcome.batches.iter().map(|b| b.qzips).sum();
-        outln!("{name}: {}", summary(&outcome.input));
-        outln!(
+    let report = json!({
+        "input": counts(&outcome.input),
+        "triangle_stage": {
+            "input": outcome.triangles.input,
+            "merged_pairs": outcome.triangles.merged,
+            "moves": outcome.triangles.moves,
+            "refused_pairs": outcome.triangles.refused,
+        },
+        "preprocessed": outcome.preprocessed,
+        "initial_score": outcome.initial_score,
+        "batches": rows,
+        "final": counts(&outcome.final_counts),
+        "seconds": seconds,
+    });
+    let qzips: usize = outcome.batches.iter().map(|b| b.qzips).sum();
+    let lines = [
+        format!("{name}: {}", summary(&outcome.input)),
+        format!(
             "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s",
             out::escape(&args.output.display().to_string()),
             summary(&outcome.final_counts),
             outcome.batches.len()
-        );
-    }
-    out::flush()?;
-    pending.commit()?;
-    Ok(ExitCode::SUCCESS)
+        ),
+    ];
+    finish(&args, &mut mesh, &report, &lines)
 }
