@@ -1,6 +1,7 @@
 //! The runs of docs/results.md: `cargo run --release --example optimize_results`.
 //! Each row: mesh, counts before and after, batches, Q-zips, seconds, face count change.
-//! `ZIPMESH_WEIGHTS=name=w,...` changes weights; `ZIPMESH_TRACE=1` prints each batch's stats.
+//! `ZIPMESH_WEIGHTS=name=w,...` changes weights; `ZIPMESH_TRACE=1` prints each batch's stats;
+//! `ZIPMESH_CHAINS=0` turns the chain stage off.
 use std::time::Instant;
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
@@ -15,7 +16,11 @@ fn options() -> OptimizeOptions {
         .ok()
         .and_then(|b| b.parse().ok())
         .unwrap_or(0);
-    let mut o = OptimizeOptions::default().batches(batches).seed(seed);
+    let chains = std::env::var("ZIPMESH_CHAINS").map_or(true, |c| c != "0");
+    let mut o = OptimizeOptions::default()
+        .batches(batches)
+        .seed(seed)
+        .chains(chains);
     if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
         for pair in w.split(',').filter(|p| !p.is_empty()) {
             if let Some((n, x)) = pair.split_once('=') {
@@ -40,8 +45,8 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
         if trace {
             let c = b.counts;
             eprintln!(
-                "{name} batch {}: {} Q-zips, v3/v5/v6+ {}/{}/{}, faces {}, {:?}",
-                b.batch, b.qzips, c.v3, c.v5, c.v6plus, c.faces, b.stats
+                "{name} batch {}: {} Q-zips, v3/v5/v6+ {}/{}/{}, faces {}, {:?}, {:?}",
+                b.batch, b.qzips, c.v3, c.v5, c.v6plus, c.faces, b.stats, b.chains
             );
         }
     });
@@ -52,7 +57,7 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
         return;
     };
     let a = out.final_counts;
-    let q: usize = out.batches.iter().map(|b| b.qzips).sum();
+    let q: usize = out.batches.iter().map(|b| b.qzips + b.chains.qzips).sum();
     let nb = out.batches.len().max(1);
     println!(
         "| {name} | {}/{}/{}/{} ({}) bd {} | {}/{}/{}/{} ({}) bd {} | {} | {q} | {secs:.1} ({:.2}/batch) | {} -> {} ({:+.1} %) |",

@@ -144,8 +144,8 @@ fn removes_most_singularities_of_a_subdivided_genus_3_mesh() {
 }
 
 /// Each batch's stats add up: every candidate is counted once by the sign of its face
-/// change, the executed Q-zips are the batch's, and their face change is the batch's change
-/// of the face count (the smoothing changes no face).
+/// change, the executed Q-zips are the batch's, and their face change plus the kept
+/// chains' is the batch's change of the face count (the smoothing changes no face).
 #[test]
 fn batch_stats_account_for_the_face_change() {
     let mut mesh = subdivided(200, 2, 0, 4);
@@ -157,9 +157,50 @@ fn batch_stats_account_for_the_face_change() {
         assert_eq!(s.candidates, s.removing.0 + s.keeping.0 + s.adding.0);
         assert!(s.removing.1 <= s.removing.0 && s.adding.1 <= s.adding.0);
         assert_eq!(b.qzips, s.executed.0 + s.executed.1 + s.executed.2);
-        faces += s.face_change;
+        faces += s.face_change + b.chains.face_change;
         assert_eq!(faces, b.counts.faces as isize, "batch {}", b.batch);
     }
+}
+
+/// The endgame (`docs/optimize.md`): on a genus-2 mesh run until the batches stall, the
+/// chain stage keeps some chains, runs only after a batch that executed nothing, never
+/// raises the score, each kept chain cancels a pair (so lowers the count by at least 2 over
+/// a run without chains at the point it starts), and the run ends with no more
+/// singularities than the same run without chains; Gauss-Bonnet holds in both.
+#[test]
+fn endgame_chains_cancel_pairs_the_batches_cannot() {
+    let input = subdivided(300, 2, 0, 1);
+    let (mut on, mut off) = (input.clone(), input);
+    let o = || OptimizeOptions::default().batches(40).seed(0);
+    let with = optimize(&mut on, Constraints::default(), o(), |_| {}).unwrap();
+    let without = optimize(&mut off, Constraints::default(), o().chains(false), |_| {}).unwrap();
+    let kept: usize = with.batches.iter().map(|b| b.chains.kept).sum();
+    assert!(kept > 0, "no chain kept: {:?}", with.batches.last());
+    let mut last = with.initial_score;
+    let mut before = with.batches[0].counts.singularities();
+    for b in &with.batches {
+        assert!(b.score <= last, "batch {} raised the score", b.batch);
+        assert!(b.chains.kept <= b.chains.tried);
+        if b.chains.tried > 0 {
+            assert_eq!(b.qzips, 0, "chains after a batch that executed Q-zips");
+        }
+        if b.chains.kept > 0 {
+            assert!(b.counts.singularities() + 2 * b.chains.kept <= before);
+        }
+        (last, before) = (b.score, b.counts.singularities());
+    }
+    assert!(without
+        .batches
+        .iter()
+        .all(|b| b.chains == Default::default()));
+    assert!(
+        with.final_counts.singularities() <= without.final_counts.singularities(),
+        "{:?} with chains, {:?} without",
+        with.final_counts,
+        without.final_counts
+    );
+    assert!(gauss_bonnet(&on.map, MeshKind::Quad).holds());
+    assert!(gauss_bonnet(&off.map, MeshKind::Quad).holds());
 }
 
 /// A mesh without singularities is left as it is (no batch finds a candidate).

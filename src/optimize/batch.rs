@@ -26,10 +26,10 @@ const WINDOW: u32 = 4;
 const FULL_SAMPLE: usize = 64;
 
 /// Laplacian steps on a candidate's scar before it is scored.
-const RELAX_STEPS: usize = 2;
+pub(super) const RELAX_STEPS: usize = 2;
 
 /// The four initial operations, in compass order.
-const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
+pub(super) const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
 
 /// A candidate surgery: from a sampled singularity to a target, with an initial operation,
 /// and the score change it made when tried.
@@ -63,7 +63,7 @@ pub(crate) struct Batcher<'q> {
 }
 
 impl Batcher<'_> {
-    fn is_locked(&self, v: Vert) -> bool {
+    pub(super) fn is_locked(&self, v: Vert) -> bool {
         self.locked.get(v.index()).copied().unwrap_or(false)
     }
 
@@ -138,7 +138,7 @@ impl Batcher<'_> {
     }
 
     /// Applies the movement, keeping it only if the constraints hold.
-    fn apply(
+    pub(super) fn apply(
         &self,
         mesh: &mut Mesh,
         path: &Path,
@@ -370,7 +370,7 @@ fn union(a: &[(Vert, u32)], b: &[(Vert, u32)]) -> Vec<(Vert, u32)> {
 /// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved
 /// singularities, the corners of the scar faces and the ends of the scar edges, and their
 /// one-rings.
-fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Vert> {
+pub(super) fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Vert> {
     let map = &mesh.map;
     let mut core: Vec<Vert> = path
         .vertices()

@@ -13,6 +13,7 @@
 //! ```
 
 mod batch;
+mod chain;
 pub mod constraints;
 pub mod defect;
 pub mod score;
@@ -73,6 +74,9 @@ pub struct OptimizeOptions {
     pub preprocess: bool,
     /// How far (edges) a singularity looks for its six targets.
     pub search_radius: u32,
+    /// After a batch that executed nothing, walk v3/v5 pairs together by chains of Q-zips
+    /// ([`ChainStats`]).
+    pub chains: bool,
     terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
 }
 
@@ -86,6 +90,7 @@ impl Default for OptimizeOptions {
             smooth_iterations: 3,
             preprocess: true,
             search_radius: 64,
+            chains: true,
             terms: alloc::vec![
                 (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
                 (0.1, Box::new(Electric::default())),
@@ -120,6 +125,18 @@ impl OptimizeOptions {
     /// See [`OptimizeOptions`] for an example.
     pub fn smoothing(mut self, on: bool) -> Self {
         self.smooth = on;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::chains`].
+    ///
+    /// ```
+    /// use zipmesh::optimize::OptimizeOptions;
+    /// assert!(OptimizeOptions::default().chains);
+    /// assert!(!OptimizeOptions::default().chains(false).chains);
+    /// ```
+    pub fn chains(mut self, on: bool) -> Self {
+        self.chains = on;
         self
     }
 
@@ -269,6 +286,37 @@ impl BatchStats {
     }
 }
 
+/// What the chain stage of a batch did (our addition to Sec. 4.1, `docs/optimize.md`,
+/// "The endgame"). It runs after a batch that executed nothing: each v3-like singularity
+/// and its two closest v5-like ones (and the other way round), closest pairs first, are
+/// walked together by Q-zips, one movement at a time, until they cancel; a chain is kept
+/// only if it cancelled its pair and the whole score fell, else undone exactly.
+///
+/// ```
+/// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+/// let mut mesh = gen::catmull_clark(&gen::random_triangle(60, 1, 0, 3));
+/// let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().batches(8), |_| {}).unwrap();
+/// for b in &out.batches {
+///     assert!(b.chains.kept <= b.chains.tried && b.chains.qzips >= b.chains.kept);
+///     if b.chains.tried > 0 {
+///         assert_eq!(b.qzips, 0); // only after a batch that executed nothing
+///     }
+/// }
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ChainStats {
+    /// Chains started.
+    pub tried: usize,
+    /// Chains kept.
+    pub kept: usize,
+    /// Q-zips of the kept chains.
+    pub qzips: usize,
+    /// How the kept chains changed the face count (a quad mesh's Q-zip changes it as much
+    /// as the vertex count).
+    pub face_change: isize,
+}
+
 /// What one batch did.
 ///
 /// See [`optimize`] for an example.
@@ -277,8 +325,10 @@ impl BatchStats {
 pub struct BatchReport {
     /// The batch number, from 1.
     pub batch: usize,
-    /// Q-zips executed.
+    /// Q-zips executed by the batch (the chain stage's are in [`BatchReport::chains`]).
     pub qzips: usize,
+    /// What the chain stage did (nothing unless the batch executed nothing).
+    pub chains: ChainStats,
     /// Candidate surgeries applied, scored and undone.
     pub candidates: usize,
     /// How the candidates and the executed Q-zips changed the face count.
@@ -289,7 +339,8 @@ pub struct BatchReport {
     pub score: f64,
     /// Whether the smoothing was kept (it is undone when it would raise the score).
     pub smoothed: bool,
-    /// The executed surgery paths, as the positions of their vertices before each Q-zip.
+    /// The executed surgery paths (the batch's, then the kept chains' steps), as the
+    /// positions of their vertices before each Q-zip.
     pub paths: Vec<Vec<DVec3>>,
 }
 
@@ -447,10 +498,27 @@ pub fn optimize(
     let mut rng = Rng::new(options.seed);
     let mut batches = Vec::new();
     let mut idle = 0;
+    // Chains are deterministic: after a stage that kept nothing, another one finds
+    // nothing until a batch changes the mesh.
+    let mut chains_stale = false;
     for i in 1..=options.max_batches {
-        let run = b.run(mesh, &mut rng, &mut total);
+        let mut run = b.run(mesh, &mut rng, &mut total);
+        let mut chains = ChainStats::default();
+        if run.qzips == 0 && options.chains && !chains_stale {
+            let c = b.chains(mesh, &mut total);
+            chains = ChainStats {
+                tried: c.tried,
+                kept: c.kept,
+                qzips: c.qzips,
+                face_change: c.face_change,
+            };
+            run.paths.extend(c.paths);
+            run.scar.extend(c.scar);
+        }
+        let executed = run.qzips + chains.qzips;
+        chains_stale = executed == 0;
         let smoothed = options.smooth
-            && run.qzips > 0
+            && executed > 0
             && smooth_scars(
                 &mut b,
                 mesh,
@@ -462,6 +530,7 @@ pub fn optimize(
         let report = BatchReport {
             batch: i,
             qzips: run.qzips,
+            chains,
             candidates: run.stats.candidates,
             stats: run.stats,
             counts: SingularityCounts::of(mesh),
@@ -471,7 +540,7 @@ pub fn optimize(
         };
         progress(&report);
         batches.push(report);
-        idle = if run.qzips == 0 { idle + 1 } else { 0 };
+        idle = if executed == 0 { idle + 1 } else { 0 };
         if idle >= options.patience.max(1) {
             break;
         }

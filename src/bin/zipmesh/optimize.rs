@@ -46,6 +46,9 @@ pub struct OptimizeArgs {
     /// No smoothing after the batches.
     #[arg(long)]
     no_smooth: bool,
+    /// No chains of Q-zips walking v3/v5 pairs together after an idle batch (quad meshes).
+    #[arg(long)]
+    no_chains: bool,
     /// With --json: each batch's executed surgery paths (vertex positions).
     #[arg(long)]
     paths: bool,
@@ -282,7 +285,8 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     let mut options = OptimizeOptions::default()
         .batches(args.batches)
         .seed(args.seed)
-        .smoothing(!args.no_smooth);
+        .smoothing(!args.no_smooth)
+        .chains(!args.no_chains);
     for (name, w) in &args.weights {
         options = options.weight(name, *w);
     }
@@ -295,6 +299,10 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         row.insert("batch".into(), json!(b.batch));
         row.insert("qzips".into(), json!(b.qzips));
         row.insert("candidates".into(), json!(b.candidates));
+        row.insert(
+            "chains".into(),
+            json!({"tried": b.chains.tried, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
+        );
         row.insert("face_change".into(), json!(b.stats.face_change));
         row.insert("score".into(), json!(b.score));
         row.insert("smoothed".into(), json!(b.smoothed));
@@ -333,7 +341,11 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         "final": counts(&outcome.final_counts),
         "seconds": seconds,
     });
-    let qzips: usize = outcome.batches.iter().map(|b| b.qzips).sum();
+    let qzips: usize = outcome
+        .batches
+        .iter()
+        .map(|b| b.qzips + b.chains.qzips)
+        .sum();
     let lines = [
         format!("{name}: {}", summary(&outcome.input)),
         format!(

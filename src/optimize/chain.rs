@@ -1,0 +1,292 @@
+//! The endgame (our addition to Sec. 4.1): chains of Q-zips that walk one v3/v5 pair
+//! together until it cancels, kept only if the whole score falls.
+//!
+//! When a batch executes nothing, the pairs left are typically 5 to 20 edges apart, and a
+//! single Q-zip between them moves each by one edge and keeps the count: the batch's
+//! one-step look-ahead sees no gain. A chain looks as far as the pair needs:
+//!
+//! ```text
+//!   3 . . . . 5      3 . . . 5        3 . 5        3 5        (gone)
+//!   step 0           step 1 ...       step k       cancels    the count falls by 2
+//! ```
+//!
+//! Each step sketches the path between the pair's current vertices, tries the four
+//! movements, and takes the one that cancels the pair, else the one that leaves the pair
+//! closest (graph distance, then distance in space, then the smaller face change). A chain
+//! gives up after [`STALLS`] steps that did not shorten the distance, or `3 d + 8` steps in
+//! all; a failed or unprofitable chain is undone exactly, step by step in reverse.
+
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use super::batch::{touched_region, Batcher, RELAX_STEPS, TAGS};
+use super::defect::{defect, singularities};
+use crate::mesh::Edited;
+use crate::qzip::{Path, Tag, ZipReport};
+use crate::{Mesh, Vert};
+
+/// Partners tried per singularity: its closest ones of the opposite kind.
+const PARTNERS: usize = 2;
+
+/// Steps that did not shorten the pair's distance allowed in one chain.
+const STALLS: usize = 8;
+
+/// What one chain stage did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct ChainRun {
+    /// Chains started.
+    pub(crate) tried: usize,
+    /// Chains kept (each cancelled its pair and lowered the score).
+    pub(crate) kept: usize,
+    /// Q-zips of the kept chains.
+    pub(crate) qzips: usize,
+    /// The face count change of the kept chains.
+    pub(crate) face_change: isize,
+    /// The kept steps' paths, as positions before each step.
+    pub(crate) paths: Vec<Vec<DVec3>>,
+    /// Vertices near what the kept chains changed (for smoothing).
+    pub(crate) scar: Vec<Vert>,
+}
+
+/// A pair to walk together: vertices, their defects, their graph distance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Pair {
+    dist: u32,
+    a: Vert,
+    b: Vert,
+}
+
+/// Where a probed movement left the pair.
+#[derive(Clone, Copy, Debug)]
+struct Probe {
+    tag: Tag,
+    cancels: bool,
+    a: Vert,
+    b: Vert,
+    dist: u32,
+    space: f64,
+    faces: isize,
+}
+
+impl Probe {
+    /// Smaller is better: cancelling first, then graph distance, space, face change.
+    fn key(&self) -> (bool, u32, f64, usize) {
+        (
+            !self.cancels,
+            self.dist,
+            self.space,
+            self.faces.unsigned_abs(),
+        )
+    }
+
+    fn better_than(&self, other: &Probe) -> bool {
+        let (a, b) = (self.key(), other.key());
+        (a.0, a.1)
+            .cmp(&(b.0, b.1))
+            .then(a.2.total_cmp(&b.2))
+            .then(a.3.cmp(&b.3))
+            == core::cmp::Ordering::Less
+    }
+}
+
+/// One applied step of a chain, with what it needs to be undone and reported.
+struct Step {
+    edit: Edited<ZipReport>,
+    points: Vec<DVec3>,
+    /// What the step touched, read right after it (later steps may reuse handles).
+    region: Vec<Vert>,
+}
+
+impl Batcher<'_> {
+    /// The chain stage: tries the pairs closest first; returns what it kept. The score
+    /// never rises.
+    pub(crate) fn chains(&mut self, mesh: &mut Mesh, total: &mut f64) -> ChainRun {
+        self.refresh_constraints(mesh);
+        let mut out = ChainRun::default();
+        for p in self.pairs(mesh) {
+            let (da, db) = (defect(mesh, p.a), defect(mesh, p.b));
+            // An earlier chain may have cancelled or moved either end.
+            if da * db != -1 || self.is_locked(p.a) || self.is_locked(p.b) {
+                continue;
+            }
+            let Some(dist) = self.distance(mesh, p.a, p.b, self.search_radius) else {
+                continue;
+            };
+            out.tried += 1;
+            if let Some(steps) = self.walk(mesh, p.a, p.b, dist) {
+                self.keep_or_undo(mesh, steps, total, &mut out);
+            }
+        }
+        out
+    }
+
+    /// Each unit-defect singularity with its [`PARTNERS`] closest singularities of the
+    /// opposite unit defect, closest pairs first, each pair once.
+    fn pairs(&mut self, mesh: &Mesh) -> Vec<Pair> {
+        let sing: Vec<(Vert, i64)> = singularities(mesh)
+            .into_iter()
+            .filter(|s| s.defect.abs() == 1 && !self.is_locked(s.vertex))
+            .map(|s| (s.vertex, s.defect))
+            .collect();
+        let mut kind = alloc::vec![0i64; mesh.map.vertex_slots()];
+        for &(v, d) in &sing {
+            kind[v.index()] = d;
+        }
+        let mut pairs = Vec::new();
+        for &(s, d) in &sing {
+            let mut found = 0;
+            self.bfs.run(mesh, s, self.search_radius, |v, dist| {
+                if kind.get(v.index()).copied() == Some(-d) {
+                    pairs.push(Pair {
+                        dist,
+                        a: s.min(v),
+                        b: s.max(v),
+                    });
+                    found += 1;
+                }
+                found < PARTNERS
+            });
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    /// The graph distance from `a` to `b`, if at most `radius`.
+    fn distance(&mut self, mesh: &Mesh, a: Vert, b: Vert, radius: u32) -> Option<u32> {
+        let mut found = None;
+        self.bfs.run(mesh, a, radius, |v, d| {
+            if v == b {
+                found = Some(d);
+            }
+            found.is_none()
+        });
+        found
+    }
+
+    /// Walks the pair `a`, `b` (at distance `dist`) together; returns the applied steps if
+    /// the last one cancelled the pair, else undoes them all and returns `None`.
+    fn walk(&mut self, mesh: &mut Mesh, a: Vert, b: Vert, dist: u32) -> Option<Vec<Step>> {
+        let (mut a, mut b, mut dist) = (a, b, dist);
+        let cap = 3 * dist as usize + 8;
+        let (mut steps, mut stalls) = (Vec::new(), 0);
+        while steps.len() < cap && stalls <= STALLS {
+            let Ok(path) = self.qzip.sketch(&mesh.map, a, b) else {
+                break;
+            };
+            let Some(best) = self.probe(mesh, &path, a, b, dist) else {
+                break;
+            };
+            let points = path
+                .vertices()
+                .iter()
+                .map(|v| mesh.positions[v.index()])
+                .collect();
+            let Some(edit) = self.apply(mesh, &path, best.tag) else {
+                break;
+            };
+            let region = touched_region(mesh, &path, edit.record());
+            steps.push(Step {
+                edit,
+                points,
+                region,
+            });
+            self.refresh_constraints(mesh);
+            if best.cancels {
+                return Some(steps);
+            }
+            stalls += usize::from(best.dist >= dist);
+            (a, b, dist) = (best.a, best.b, best.dist);
+        }
+        self.undo_steps(mesh, &steps);
+        None
+    }
+
+    /// The best of the four movements along `path` (each applied and undone), or `None` if
+    /// none cancels the pair or keeps both ends singular with their defects.
+    fn probe(
+        &mut self,
+        mesh: &mut Mesh,
+        path: &Path,
+        a: Vert,
+        b: Vert,
+        dist: u32,
+    ) -> Option<Probe> {
+        let (da, db) = (defect(mesh, a), defect(mesh, b));
+        let mut best: Option<Probe> = None;
+        for tag in TAGS {
+            let Some(z) = self.apply(mesh, path, tag) else {
+                continue;
+            };
+            let r = z.record();
+            let (na, nb) = (r.moved_from(), r.moved_to());
+            let cancels = defect(mesh, na) == 0 && defect(mesh, nb) == 0;
+            let kept = na != nb && defect(mesh, na) == da && defect(mesh, nb) == db;
+            let d = if kept {
+                self.distance(mesh, na, nb, dist + 4)
+            } else {
+                None
+            };
+            let p = Probe {
+                tag,
+                cancels,
+                a: na,
+                b: nb,
+                dist: d.unwrap_or(0),
+                space: mesh.positions[na.index()].distance(mesh.positions[nb.index()]),
+                faces: r.vertex_delta(),
+            };
+            // An exact undo of an edit just made cannot be refused.
+            let _ = z.undo(mesh);
+            if (cancels || d.is_some()) && best.as_ref().is_none_or(|b| p.better_than(b)) {
+                best = Some(p);
+            }
+        }
+        best
+    }
+
+    /// Relaxes the chain's scar and keeps the chain if the whole score falls and the
+    /// constraints hold; else restores the positions and undoes the steps.
+    fn keep_or_undo(
+        &mut self,
+        mesh: &mut Mesh,
+        steps: Vec<Step>,
+        total: &mut f64,
+        out: &mut ChainRun,
+    ) {
+        let mut region: Vec<Vert> = steps
+            .iter()
+            .flat_map(|s| s.region.iter().copied())
+            .collect();
+        region.retain(|&v| mesh.map.is_live_vertex(v));
+        region.sort_unstable();
+        region.dedup();
+        let saved = super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS);
+        let after = self.scorer.score(mesh).0;
+        if after < *total - self.eps && self.constraints.holds(mesh) {
+            *total = after;
+            out.kept += 1;
+            out.qzips += steps.len();
+            out.face_change += steps
+                .iter()
+                .map(|s| s.edit.record().vertex_delta())
+                .sum::<isize>();
+            out.paths.extend(steps.into_iter().map(|s| s.points));
+            out.scar.extend(region);
+            return;
+        }
+        for (v, p) in saved.into_iter().rev() {
+            mesh.positions[v.index()] = p;
+        }
+        self.undo_steps(mesh, &steps);
+    }
+
+    fn undo_steps(&mut self, mesh: &mut Mesh, steps: &[Step]) {
+        for s in steps.iter().rev() {
+            // Exact undos of edits just made, in reverse, cannot be refused.
+            let _ = s.edit.undo(mesh);
+        }
+        self.refresh_constraints(mesh);
+    }
+}
