@@ -112,3 +112,36 @@ fn refusals_leave_the_mesh_unchanged() {
     assert_eq!(r.unwrap_err(), TriOptimizeError::Positions(Vert::new(3)));
     assert_eq!(mesh.map, before.map);
 }
+
+/// `face_drift` as documented: NaN, 0 and negative drifts allow no face change, larger ones
+/// at most `floor(f F)` faces; and the campaign's oracle (with `campaign`), which reads the
+/// drift on its own, passes each run.
+#[test]
+fn the_face_drift_bounds_the_face_change() {
+    let input = gen::random_triangle(2000, 1, 0, 3);
+    let faces = input.map.num_faces();
+    for f in [f64::NAN, -1.0, 0.0, 0.003, 0.01] {
+        let options = TriOptimizeOptions {
+            face_drift: f,
+            ..TriOptimizeOptions::default()
+        };
+        let mut mesh = input.clone();
+        optimize_triangles(&mut mesh, &options, |_| {}).unwrap();
+        let slack = if f > 0.0 {
+            (f * faces as f64) as usize
+        } else {
+            0
+        };
+        let change = mesh.map.num_faces().abs_diff(faces);
+        assert!(
+            change <= slack,
+            "drift {f}: {faces} -> {}",
+            mesh.map.num_faces()
+        );
+        #[cfg(feature = "campaign")]
+        {
+            let oracle = zipmesh::campaign::check_optimize_triangles(&input, &options);
+            assert!(oracle.is_pass(), "drift {f}: {oracle:?}");
+        }
+    }
+}

@@ -49,7 +49,8 @@ pub struct TriOptimizeOptions {
     /// Relax the vertices each batch touched (three local sweeps, Sec. 8).
     pub relax: bool,
     /// How far the face count may drift from the input's, as a fraction: an edit that
-    /// would leave `[(1 - f) F, (1 + f) F]` is undone.
+    /// would leave `[F - s, F + s]`, `s = floor(f F)`, is undone. `f` is clamped to
+    /// `[0, 1]`; NaN reads as 0 (no drift).
     pub face_drift: f64,
 }
 
@@ -270,7 +271,8 @@ pub fn optimize_triangles(
     let surface = Surface::new(mesh);
     let input = TriCounts::of(&mesh.map);
     let drift = options.face_drift.clamp(0.0, 1.0);
-    // `as` truncates: the slack is the whole faces within the drift (no `floor` in no_std).
+    // `as` truncates, and reads NaN as 0: the slack is the whole faces within the drift
+    // (no `floor` in no_std).
     let slack = (drift * input.faces as f64) as usize;
     let budget = Budget {
         min: input.faces - slack.min(input.faces),
