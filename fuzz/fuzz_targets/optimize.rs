@@ -1,10 +1,11 @@
 //! The batch optimizer on small generated quad meshes (a cube, a torus or a grid with
 //! boundary, 4 to 25 faces, with fuzzer-chosen vertex splits making clustered v3/v5
 //! singularities), with a fuzzer-chosen seed, one or two batches, a search radius of 1 to
-//! 4 edges, smoothing switch and a few protected faces and feature edges. The library must
-//! never panic; the oracle: a valid pure-quad map with the input's Euler characteristic,
-//! boundary loops and components, a score that never rises, counts that match a recount,
-//! batch stats whose face change is the batch's, and the constraints holding.
+//! 4 edges, smoothing and chain switches and a few protected faces and feature edges. The
+//! library must never panic; the oracle: a valid pure-quad map with the input's Euler
+//! characteristic, boundary loops and components, a score that never rises, counts that
+//! match a recount, batch and chain stats whose face changes are the batch's, a chain stage
+//! only after a batch that executed nothing, and the constraints holding.
 //!
 //! The meshes are small on purpose: on the random meshes of hundreds of faces used before,
 //! one input took tens of milliseconds (12 exec/s); see `docs/fuzzing.md`.
@@ -72,7 +73,8 @@ fuzz_target!(|data: &[u8]| {
     let mut options = OptimizeOptions::default()
         .batches(1 + usize::from(byte(15) % 2))
         .seed(u64::from(byte(16)))
-        .smoothing(byte(17) % 2 == 0);
+        .smoothing(byte(17) % 2 == 0)
+        .chains(byte(19) % 4 != 3);
     // A singularity looks for targets at most 1 to 4 edges away (64 by default, more than
     // these meshes span), and smoothing takes one step: the batch's work stays small.
     options.search_radius = 1 + u32::from(byte(18) % 4);
@@ -97,9 +99,16 @@ fuzz_target!(|data: &[u8]| {
     for (i, b) in out.batches.iter().enumerate() {
         assert!(b.score <= last, "the score rose");
         last = b.score;
+        let c = b.chains;
+        assert!(
+            c.tried == 0 || b.qzips == 0,
+            "chains after a batch that executed Q-zips"
+        );
+        assert!(c.kept <= c.tried && c.qzips >= c.kept, "{c:?}");
         if let Some(prev) = i.checked_sub(1).map(|j| &out.batches[j]) {
             let change = b.counts.faces as isize - prev.counts.faces as isize;
-            assert_eq!(change, b.stats.face_change, "the stats miss a face change");
+            let stated = b.stats.face_change + c.face_change;
+            assert_eq!(change, stated, "the stats miss a face change");
         }
     }
     assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
