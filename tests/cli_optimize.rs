@@ -1,5 +1,5 @@
-//! `zipmesh optimize`: the JSON counts equal a recount of OUT, the same seed writes the same
-//! file, and bad input exits 2 without OUT.
+//! `zipmesh optimize`: the JSON counts equal a recount of OUT and its rows add up (kept
+//! chains included), the same seed writes the same file, and bad input exits 2 without OUT.
 #![cfg(feature = "cli")]
 
 mod common;
@@ -59,18 +59,53 @@ fn json_counts_match_a_recount_of_out() {
     ] {
         assert_eq!(last[k], v["final"][k], "{k}");
     }
+    rows_add_up(batches);
+    assert!(v["seconds"].as_f64().unwrap() >= 0.0);
+}
+
+/// Each JSON batch row's numbers add up: one path per Q-zip, the chain stage's share within
+/// the batch's, and the face change from the previous row's count to this one's.
+fn rows_add_up(batches: &[Value]) {
     for (i, b) in batches.iter().enumerate() {
         assert_eq!(b["batch"], i + 1);
         let paths = b["paths"].as_array().unwrap();
         assert_eq!(paths.len() as u64, b["qzips"].as_u64().unwrap());
+        let c = &b["chains"];
+        assert!(c["kept"].as_u64() <= c["tried"].as_u64());
+        assert!(c["qzips"].as_u64() <= b["qzips"].as_u64());
         if i > 0 {
-            // The executed Q-zips' face change is the batch's (smoothing changes no face).
+            // The executed Q-zips' face change, the chains' included, is the batch's
+            // (smoothing changes no face).
             let faces = |x: &Value| x["faces"].as_i64().unwrap();
             let change = faces(b) - faces(&batches[i - 1]);
             assert_eq!(b["face_change"].as_i64(), Some(change), "batch {}", i + 1);
         }
     }
-    assert!(v["seconds"].as_f64().unwrap() >= 0.0);
+}
+
+/// On cubespikes the batches stall after about 20 batches and the chain stage keeps chains
+/// (`docs/results.md`): the JSON reports them, and the rows still add up.
+#[test]
+fn kept_chains_are_reported_and_add_up() {
+    let dir = temp_dir("optimize-chains");
+    let inp =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/cubespikes.obj");
+    let out = dir.join("out.obj");
+    let args = ["optimize", s(&inp), "-o", s(&out), "--json", "--paths"];
+    let o = zipmesh(&[&args[..], &["--batches", "24"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let batches = v["batches"].as_array().unwrap();
+    rows_add_up(batches);
+    let kept: u64 = batches
+        .iter()
+        .map(|b| b["chains"]["kept"].as_u64().unwrap())
+        .sum();
+    assert!(kept > 0, "no chain kept in {} batches", batches.len());
+    let o = zipmesh(&[&args[..], &["--batches", "24", "--no-chains"]].concat());
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = v["batches"].as_array().unwrap();
+    assert!(rows.iter().all(|b| b["chains"]["tried"] == 0));
 }
 
 #[test]

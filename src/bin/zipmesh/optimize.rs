@@ -297,13 +297,16 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     let outcome = optimize(&mut mesh, c, options, |b| {
         let mut row = counts(&b.counts);
         row.insert("batch".into(), json!(b.batch));
-        row.insert("qzips".into(), json!(b.qzips));
+        // The batch's Q-zips and face change include the kept chains' (broken down under
+        // "chains"), so they add up to the counts from row to row.
+        row.insert("qzips".into(), json!(b.qzips + b.chains.qzips));
         row.insert("candidates".into(), json!(b.candidates));
         row.insert(
             "chains".into(),
             json!({"tried": b.chains.tried, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
         );
-        row.insert("face_change".into(), json!(b.stats.face_change));
+        let faces = b.stats.face_change + b.chains.face_change;
+        row.insert("face_change".into(), json!(faces));
         row.insert("score".into(), json!(b.score));
         row.insert("smoothed".into(), json!(b.smoothed));
         row.insert("seconds".into(), json!(last.elapsed().as_secs_f64()));
