@@ -203,6 +203,30 @@ fn endgame_chains_cancel_pairs_the_batches_cannot() {
     assert!(gauss_bonnet(&off.map, MeshKind::Quad).holds());
 }
 
+/// A chain stage that keeps nothing leaves the mesh exactly as it was (every chain it
+/// tried is undone step by step and the positions restored): the run stopped at that batch
+/// ends with the same mesh, positions bit for bit, as the run stopped one batch before.
+#[test]
+fn a_chain_stage_that_keeps_nothing_changes_nothing() {
+    let input = subdivided(120, 2, 1, 5);
+    let run_to = |n: usize| {
+        let mut mesh = input.clone();
+        let o = OptimizeOptions::default().batches(n);
+        let out = optimize(&mut mesh, Constraints::default(), o, |_| {}).unwrap();
+        (mesh, out)
+    };
+    let (_, out) = run_to(40);
+    let idle = out
+        .batches
+        .iter()
+        .find(|b| b.qzips == 0 && b.chains.tried > 0 && b.chains.kept == 0)
+        .expect("no chain stage that kept nothing in 40 batches")
+        .batch;
+    let (before, _) = run_to(idle - 1);
+    let (after, _) = run_to(idle);
+    assert_eq!(after, before, "batch {idle} changed the mesh");
+}
+
 /// A mesh without singularities is left as it is (no batch finds a candidate).
 #[test]
 fn a_regular_torus_is_unchanged() {
