@@ -49,7 +49,7 @@ pub(crate) struct ChainRun {
     pub(crate) scar: Vec<Vert>,
 }
 
-/// A pair to walk together: vertices, their defects, their graph distance.
+/// A pair to walk together: its graph distance first (pairs sort closest first), its ends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Pair {
     dist: u32,
