@@ -330,3 +330,34 @@ fn one_quad_sweeps_add_only_regular_corners_off_the_path() {
     }
     assert!(listed >= 20, "only {listed} sweeps listed");
 }
+
+/// `wraps` sees a path round a handle and nothing else: never on a sphere or a disk (every
+/// loop there bounds a disk, the bends round swept quads included); on a 6 x 6 torus a row
+/// wraps exactly when it ends next to its start.
+#[test]
+fn only_paths_round_a_handle_wrap() {
+    let mut checked = 0;
+    let s = SketchOptions::default();
+    for map in [ico_cc(2), gen::grid(6, 6).map] {
+        let mut paths = pairs_within(&map, 7);
+        // The grid has no singularity: paths between interior vertices there.
+        for (a, b) in [(8u32, 26), (26, 8), (9, 29), (15, 17), (22, 10)] {
+            paths.extend(sketch(&map, Vert::new(a), Vert::new(b), &s).ok());
+        }
+        for p in paths {
+            assert!(!zipmesh::qzip::wraps(&map, &p), "{p}");
+            for (_, q) in one_quad_sweeps(&map, &p) {
+                assert!(!zipmesh::qzip::wraps(&map, &q), "{q}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 900, "{checked}");
+    let map = gen::torus_grid(6, 6).map;
+    let o = s;
+    for n in 2..=6u32 {
+        let row: Vec<Vert> = (0..n).map(Vert::new).collect();
+        let p = validate_path(&map, row[0], row[row.len() - 1], &row, &o).unwrap();
+        assert_eq!(zipmesh::qzip::wraps(&map, &p), n == 6, "{p}");
+    }
+}

@@ -1,7 +1,9 @@
 //! Homotopy invariance of Q-zip (Sec. 3.1) on fuzzer-chosen cases (`common/qzip_case.rs`):
 //! the path and one of its one-quad sweeps (`qzip::one_quad_sweeps`, picked by the fuzzer)
 //! give the same map up to isomorphism for matching movements (labels matched by
-//! `qzip::start_turn`) whenever both are done. Refusals leave the map untouched.
+//! `qzip::start_turn`) whenever both are done. Refusals leave the map untouched. Paths that
+//! wrap round a handle (`qzip::wraps`, where the theorem's lifting does not hold) list no
+//! sweep and are skipped.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;

@@ -5,7 +5,7 @@ use alloc::vec::Vec;
 
 use super::sketch::{validate_path, Path, SketchOptions};
 use crate::invariants::{is_regular_interior, MeshKind};
-use crate::{Dart, Map, Vert};
+use crate::{Dart, Face, Map, Vert};
 
 /// The turn, in quarter turns counter-clockwise, from the first edge of `a` to the first
 /// edge of `b` around their common start: the number of quads between them on the side with
@@ -66,9 +66,11 @@ pub fn start_turn(map: &Map, a: &Path, b: &Path) -> Option<i32> {
 /// `v[i] -> v[i+1]` is replaced by the quad's three other sides. Only sweeps that pass no
 /// third singularity are listed: the quad's two new corners are regular, interior and off
 /// the path, the edge's ends are regular unless they are the path's ends, and every
-/// neighbour of the quad's corners is regular or one of the path's ends. Each comes with the
-/// index `i` of the swept edge. Homotopy invariance (Sec. 3.1) says Q-zip gives the same maps
-/// along them, labels matched by [`start_turn`].
+/// neighbour of the quad's corners is regular or one of the path's ends. Both paths must
+/// not wrap round a handle or a hole ([`wraps`]): the theorem's proof lifts them to the
+/// universal cover, which is the same surgery only then.
+/// Each comes with the index `i` of the swept edge. Homotopy invariance (Sec. 3.1) says
+/// Q-zip gives the same maps along them, labels matched by [`start_turn`].
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
@@ -87,6 +89,9 @@ pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
     let v = path.vertices();
     let ends = [path.start(), path.end()];
     let mut out = Vec::new();
+    if wraps(map, path) {
+        return out;
+    }
     for (i, &d) in path.darts().iter().enumerate() {
         for left in [true, false] {
             let e = if left { d } else { d.twin() };
@@ -113,10 +118,171 @@ pub fn one_quad_sweeps(map: &Map, path: &Path) -> Vec<(usize, Path)> {
             q.extend([ni, nj]);
             q.extend_from_slice(&v[i + 1..]);
             let opts = SketchOptions::default();
-            if let Ok(p) = validate_path(map, path.start(), path.end(), &q, &opts) {
-                out.push((i, p));
+            match validate_path(map, path.start(), path.end(), &q, &opts) {
+                Ok(p) if !wraps(map, &p) => out.push((i, p)),
+                _ => {}
             }
         }
     }
     out
+}
+
+/// Whether `path` wraps round a handle or a hole: some face touches it at two places apart
+/// and closes, with the path between them, a loop that does not bound a disk. Homotopy
+/// invariance (Sec. 3.1) is proved by lifting to the universal cover, which is the same
+/// surgery only when no path wraps: otherwise two lifts of the path's strip meet (on a short
+/// loop of a torus the strip runs into itself). Loops that bound a disk, as the bend round
+/// a swept quad, are fine. Never true on a sphere or a disk.
+///
+/// ```
+/// use zipmesh::{gen, Vert};
+/// use zipmesh::qzip::{validate_path, wraps, SketchOptions};
+/// let map = gen::torus_grid(4, 4).map;
+/// let o = SketchOptions::default();
+/// let row = |n: u32| (0..n).map(Vert::new).collect::<Vec<_>>();
+/// let short = validate_path(&map, Vert::new(0), Vert::new(2), &row(3), &o).unwrap();
+/// assert!(!wraps(&map, &short));
+/// // 0 -> 1 -> 2 -> 3 ends next to its start: with edge 3 -> 0 it goes round the torus.
+/// let round = validate_path(&map, Vert::new(0), Vert::new(3), &row(4), &o).unwrap();
+/// assert!(wraps(&map, &round));
+/// ```
+pub fn wraps(map: &Map, path: &Path) -> bool {
+    let v = path.vertices();
+    let mut seen = Vec::new();
+    for &c in v {
+        for d in map.vertex_darts(c) {
+            let Some(f) = map.face(d) else { continue };
+            if seen.contains(&f) {
+                continue;
+            }
+            seen.push(f);
+            if gap_loops(map, path, f)
+                .iter()
+                .any(|lp| !bounds_disk(map, lp))
+            {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// The loops closed by face `f` across the gaps in its touches of `path`: for consecutive
+/// touches `a < b` with `b > a + 1`, the path's darts from `a` to `b`, then the shorter arc
+/// of `f` back to `a`. Simple, because no vertex of the arc is on the path between.
+fn gap_loops(map: &Map, path: &Path, f: Face) -> Vec<Vec<Dart>> {
+    let v = path.vertices();
+    let ring: Vec<Dart> = map.face_darts(f).collect();
+    // (position on the path, index in the ring) of each touch, by position.
+    let mut at: Vec<(usize, usize)> = (0..ring.len())
+        .filter_map(|k| Some((v.iter().position(|&x| x == map.origin(ring[k]))?, k)))
+        .collect();
+    at.sort_unstable();
+    let n = ring.len();
+    let gaps = at.windows(2).filter(|w| w[1].0 > w[0].0 + 1);
+    gaps.map(|w| {
+        let ((a, ia), (b, ib)) = (w[0], w[1]);
+        // Arc ib -> ia along `f`, or the twins of ia -> ib taken backwards.
+        let forward: Vec<Dart> = (0..(ia + n - ib) % n).map(|k| ring[(ib + k) % n]).collect();
+        let backward: Vec<Dart> = (0..(ib + n - ia) % n)
+            .map(|k| ring[(ia + k) % n].twin())
+            .rev()
+            .collect();
+        let mut lp = path.darts()[a..b].to_vec();
+        lp.extend(if forward.len() <= backward.len() {
+            forward
+        } else {
+            backward
+        });
+        lp
+    })
+    .collect()
+}
+
+/// Whether the simple loop of darts `lp` bounds a disk: cut along it, the faces on one side
+/// form a piece of Euler characteristic 1. A loop that does not separate its component
+/// (round a handle) bounds nothing. Both sides grow in turn, so a loop round a few faces
+/// costs a few faces, not the mesh.
+fn bounds_disk(map: &Map, lp: &[Dart]) -> bool {
+    let cut = |d: Dart| lp.iter().any(|&x| x == d || x == d.twin());
+    let (Some(left), Some(right)) = (map.face(lp[0]), map.face(lp[0].twin())) else {
+        return false;
+    };
+    if left == right {
+        return false;
+    }
+    // side[f]: 0 unreached, 1 left, 2 right.
+    let mut side = alloc::vec![0u8; map.face_slots()];
+    let mut grown = [alloc::vec![left], alloc::vec![right]];
+    side[left.index()] = 1;
+    side[right.index()] = 2;
+    let mut next = [0usize; 2];
+    loop {
+        for s in 0..2 {
+            let Some(&f) = grown[s].get(next[s]) else {
+                // Side `s` is complete: a disk, or not (then the other side may be one).
+                if euler(map, &grown[s]) == 1 {
+                    return true;
+                }
+                let other = 1 - s;
+                while let Some(&g) = grown[other].get(next[other]) {
+                    next[other] += 1;
+                    grow(map, g, other as u8 + 1, &mut side, &mut grown[other], &cut);
+                }
+                return euler(map, &grown[other]) == 1;
+            };
+            next[s] += 1;
+            if !grow(map, f, s as u8 + 1, &mut side, &mut grown[s], &cut) {
+                return false;
+            }
+        }
+    }
+}
+
+/// Adds the uncut neighbours of `f` to side `mark`; false when one is on the other side
+/// (the loop does not separate).
+fn grow(
+    map: &Map,
+    f: Face,
+    mark: u8,
+    side: &mut [u8],
+    grown: &mut Vec<Face>,
+    cut: &dyn Fn(Dart) -> bool,
+) -> bool {
+    for d in map.face_darts(f) {
+        let Some(g) = map.face(d.twin()) else {
+            continue;
+        };
+        if cut(d) {
+            continue;
+        }
+        match side[g.index()] {
+            0 => {
+                side[g.index()] = mark;
+                grown.push(g);
+            }
+            m if m != mark => return false,
+            _ => {}
+        }
+    }
+    true
+}
+
+/// V - E + F of the closure of the faces `fs`.
+fn euler(map: &Map, fs: &[Face]) -> i64 {
+    let mut inside = alloc::vec![false; map.face_slots()];
+    fs.iter().for_each(|f| inside[f.index()] = true);
+    let mut verts = Vec::new();
+    let mut half_edges = 0i64;
+    for &f in fs {
+        for d in map.face_darts(f) {
+            verts.push(map.origin(d));
+            // An edge between two faces of the set is seen twice, once from each.
+            let shared = map.face(d.twin()).is_some_and(|g| inside[g.index()]);
+            half_edges += if shared { 1 } else { 2 };
+        }
+    }
+    verts.sort_unstable();
+    verts.dedup();
+    verts.len() as i64 - half_edges / 2 + fs.len() as i64
 }

@@ -40,7 +40,7 @@ mod zip;
 
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
-pub use homotopy::{one_quad_sweeps, start_turn};
+pub use homotopy::{one_quad_sweeps, start_turn, wraps};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
 pub use reverse::{find_reverse, ReverseRun};
