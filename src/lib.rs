@@ -24,8 +24,10 @@
 //! ## Features
 //! * `std` (default): mesh files ([`io`]), `std::error::Error` for the error types.
 //! * `campaign`: [`campaign`], property campaigns over generated or given meshes (rayon).
+//! * `parallel`: the optimizer's candidate search on every core (rayon); the same output
+//!   without it.
 //! * `render`: [`render`], pictures of meshes (SVG, and PNG through resvg).
-//! * `cli`: the `zipmesh` command-line tool (includes `campaign` and `render`).
+//! * `cli`: the `zipmesh` command-line tool (includes `campaign`, `parallel` and `render`).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
 #![no_std]
 #![forbid(unsafe_code)]

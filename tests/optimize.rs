@@ -40,6 +40,19 @@ fn is_rotation(a: &[[u64; 3]], b: &[[u64; 3]]) -> bool {
     a.len() == b.len() && (0..a.len()).any(|k| a.iter().cycle().skip(k).take(a.len()).eq(b.iter()))
 }
 
+/// A score term without [`zipmesh::optimize::ScoreTerm::fork`]: always 0.
+#[derive(Debug)]
+struct Unforkable;
+
+impl zipmesh::optimize::ScoreTerm for Unforkable {
+    fn name(&self) -> &str {
+        "unforkable"
+    }
+    fn score(&mut self, _: &zipmesh::optimize::Context<'_>) -> f64 {
+        0.0
+    }
+}
+
 fn run(mesh: &mut Mesh, c: Constraints, batches: usize, seed: u64) -> zipmesh::optimize::Outcome {
     let o = OptimizeOptions::default().batches(batches).seed(seed);
     optimize(mesh, c, o, |_| {}).unwrap()
@@ -79,6 +92,23 @@ proptest! {
         run(&mut a, Constraints::default(), 3, seed);
         run(&mut b, Constraints::default(), 3, seed);
         prop_assert_eq!(a, b);
+    }
+
+    /// The candidate search cut into parts, each on its own copy of the mesh and run on any
+    /// number of threads, gives the same mesh as one part searched on the mesh itself (a
+    /// user term that cannot be copied, and scores 0, forces that).
+    #[test]
+    fn same_mesh_whatever_the_threads(faces in 80usize..160, seed in any::<u64>()) {
+        let input = subdivided(faces, 1, 0, seed);
+        let opts = || OptimizeOptions::default().batches(3).seed(seed);
+        let (mut a, mut b, mut c) = (input.clone(), input.clone(), input);
+        optimize(&mut a, Constraints::default(), opts(), |_| {}).unwrap();
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        one.install(|| optimize(&mut b, Constraints::default(), opts(), |_| {}).unwrap());
+        let serial = opts().term(1.0, Box::new(Unforkable));
+        optimize(&mut c, Constraints::default(), serial, |_| {}).unwrap();
+        prop_assert_eq!(&a, &b);
+        prop_assert_eq!(&a, &c);
     }
 
     /// Protected faces keep their corner positions bit for bit in the same cyclic order;

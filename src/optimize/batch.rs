@@ -25,6 +25,14 @@ const WINDOW: u32 = 4;
 /// At most this many singularities left, a batch samples every one of them.
 const FULL_SAMPLE: usize = 64;
 
+/// At most this many parts of a batch's candidate search ([`Batcher::search`]), each on its
+/// own copy of the mesh: enough to keep a few cores busy, few enough that the copies cost
+/// little next to the search.
+const PARTS: usize = 16;
+
+/// At least this many singularities per part, so that a small sample is not cut for nothing.
+const MIN_PART: usize = 8;
+
 /// Laplacian steps on a candidate's scar before it is scored.
 pub(super) const RELAX_STEPS: usize = 2;
 
@@ -62,7 +70,7 @@ pub(crate) struct Batcher<'q> {
     pub(crate) eps: f64,
 }
 
-impl Batcher<'_> {
+impl<'q> Batcher<'q> {
     pub(super) fn is_locked(&self, v: Vert) -> bool {
         self.locked.get(v.index()).copied().unwrap_or(false)
     }
@@ -257,6 +265,67 @@ impl Batcher<'_> {
         best
     }
 
+    /// The best candidate of each singularity of `sample`, in sampling order. The sample is
+    /// cut into at most [`PARTS`] parts, each searched on its own copy of the mesh by its own
+    /// copy of the batcher: on every core with the `parallel` feature, and the same parts one
+    /// after the other without it, so the result never depends on the threads. A user score
+    /// term that cannot be copied ([`super::ScoreTerm::fork`]) makes it one part.
+    fn search(
+        &mut self,
+        mesh: &mut Mesh,
+        sample: &[Vert],
+        defects: &[i64],
+        stats: &mut BatchStats,
+    ) -> Vec<Candidate> {
+        let size = sample.len().div_ceil(PARTS).max(MIN_PART);
+        let workers: Option<Vec<Batcher<'q>>> = sample.chunks(size).map(|_| self.fork()).collect();
+        let Some(workers) = workers.filter(|w| w.len() > 1) else {
+            return sample
+                .iter()
+                .filter_map(|&s| self.best_candidate(mesh, s, defects, stats))
+                .collect();
+        };
+        let jobs: Vec<(Batcher<'q>, &[Vert])> =
+            workers.into_iter().zip(sample.chunks(size)).collect();
+        let shared: &Mesh = mesh;
+        let part = |(mut w, part): (Batcher<'q>, &[Vert])| {
+            let mut copy = shared.clone();
+            let mut st = BatchStats::default();
+            let found: Vec<Candidate> = part
+                .iter()
+                .filter_map(|&s| w.best_candidate(&mut copy, s, defects, &mut st))
+                .collect();
+            (found, st)
+        };
+        #[cfg(feature = "parallel")]
+        let parts: Vec<(Vec<Candidate>, BatchStats)> = {
+            use rayon::prelude::*;
+            jobs.into_par_iter().map(part).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let parts: Vec<(Vec<Candidate>, BatchStats)> = jobs.into_iter().map(part).collect();
+        let mut out = Vec::new();
+        for (found, st) in parts {
+            stats.add_tried(&st);
+            out.extend(found);
+        }
+        out
+    }
+
+    /// A copy of the batcher for another thread, or `None` if a score term cannot be copied.
+    fn fork(&self) -> Option<Batcher<'q>> {
+        Some(Batcher {
+            qzip: Qzip::with_options(self.qzip.options().clone())
+                .allow_cancellation(self.qzip.allows_cancellation()),
+            scorer: self.scorer.fork()?,
+            constraints: self.constraints.clone(),
+            locked: self.locked.clone(),
+            bfs: Bfs::default(),
+            search_radius: self.search_radius,
+            eps: self.eps,
+        })
+    }
+
     /// One batch: returns what it executed; the score never rises (each executed Q-zip is
     /// re-scored on the current mesh and kept only if it lowers the score).
     pub(crate) fn run(&mut self, mesh: &mut Mesh, rng: &mut Rng, total: &mut f64) -> BatchRun {
@@ -282,11 +351,7 @@ impl Batcher<'_> {
             let j = i + rng.below(order.len() - i);
             order.swap(i, j);
         }
-        let mut candidates: Vec<Candidate> = Vec::new();
-        for &s in &order[..sample] {
-            let found = self.best_candidate(mesh, s, &defects, &mut out.stats);
-            candidates.extend(found);
-        }
+        let mut candidates = self.search(mesh, &order[..sample], &defects, &mut out.stats);
         // Most negative first; ties keep sampling order (a stable sort).
         candidates.sort_by(|a, b| a.delta.total_cmp(&b.delta));
         candidates.truncate(candidates.len().div_ceil(2));

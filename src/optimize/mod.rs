@@ -276,6 +276,19 @@ impl BatchStats {
         slot.1 += usize::from(improving);
     }
 
+    /// Adds the candidate counts of `o` (a part of the same batch's search).
+    fn add_tried(&mut self, o: &BatchStats) {
+        self.candidates += o.candidates;
+        for (a, b) in [
+            (&mut self.removing, o.removing),
+            (&mut self.keeping, o.keeping),
+            (&mut self.adding, o.adding),
+        ] {
+            a.0 += b.0;
+            a.1 += b.1;
+        }
+    }
+
     fn executed(&mut self, faces: isize) {
         match faces.signum() {
             -1 => self.executed.0 += 1,

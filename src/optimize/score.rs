@@ -93,6 +93,12 @@ pub trait ScoreTerm: core::fmt::Debug {
     fn name(&self) -> &str;
     /// The term's value on `ctx.mesh`.
     fn score(&mut self, ctx: &Context<'_>) -> f64;
+    /// A copy for another thread, or `None` (the default) if the term cannot be copied: the
+    /// optimizer's candidate search then runs on one thread. Results are the same either
+    /// way; every built-in term can be copied.
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        None
+    }
 }
 
 /// The singularity count: the sum of |defect| over every vertex (interior valence against 4,
@@ -110,6 +116,9 @@ pub trait ScoreTerm: core::fmt::Debug {
 pub struct Count;
 
 impl ScoreTerm for Count {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(*self))
+    }
     fn name(&self) -> &str {
         "count"
     }
@@ -154,6 +163,9 @@ impl Default for FaceBudget {
 }
 
 impl ScoreTerm for FaceBudget {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(*self))
+    }
     fn name(&self) -> &str {
         "faces"
     }
@@ -313,6 +325,9 @@ impl Default for Electric {
 }
 
 impl ScoreTerm for Electric {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(self.clone()))
+    }
     fn name(&self) -> &str {
         "electric"
     }
@@ -366,6 +381,9 @@ fn log_ratio_sq(a: f64, b: f64) -> f64 {
 }
 
 impl ScoreTerm for Isotropy {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(*self))
+    }
     fn name(&self) -> &str {
         "isotropy"
     }
@@ -397,6 +415,9 @@ impl ScoreTerm for Isotropy {
 pub struct Sizing;
 
 impl ScoreTerm for Sizing {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(*self))
+    }
     fn name(&self) -> &str {
         "sizing"
     }
@@ -472,6 +493,9 @@ impl Separatrix {
 }
 
 impl ScoreTerm for Separatrix {
+    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
+        Some(Box::new(self.clone()))
+    }
     fn name(&self) -> &str {
         "separatrix"
     }
@@ -515,6 +539,22 @@ pub(crate) struct Scorer {
 }
 
 impl Scorer {
+    /// A copy for another thread, if every term can be copied ([`ScoreTerm::fork`]).
+    pub(crate) fn fork(&self) -> Option<Scorer> {
+        let terms = self
+            .terms
+            .iter()
+            .map(|(w, t)| Some((*w, t.fork()?)))
+            .collect::<Option<Vec<_>>>()?;
+        Some(Scorer {
+            terms,
+            features: self.features.clone(),
+            target_area: self.target_area,
+            target_faces: self.target_faces,
+            walls: self.walls,
+        })
+    }
+
     /// The weighted total, and each term's unweighted value.
     pub(crate) fn score(&mut self, mesh: &Mesh) -> (f64, Vec<f64>) {
         let s = singularities(mesh);
