@@ -14,7 +14,9 @@
 //! movements, and takes the one that cancels the pair, else the one that leaves the pair
 //! closest (graph distance, then distance in space, then the smaller face change). A chain
 //! gives up after [`STALLS`] steps that did not shorten the distance, or `3 d + 8` steps in
-//! all; a failed or unprofitable chain is undone exactly, step by step in reverse.
+//! all, and is then tried the other way round (from `b` to `a`: a Q-zip from one end is not
+//! one from the other); a failed or unprofitable chain is undone exactly, step by step in
+//! reverse.
 
 use alloc::vec::Vec;
 
@@ -37,6 +39,8 @@ const STALLS: usize = 8;
 pub(crate) struct ChainRun {
     /// Chains started.
     pub(crate) tried: usize,
+    /// Chains that cancelled their pair (kept or not).
+    pub(crate) cancelled: usize,
     /// Chains kept (each cancelled its pair and lowered the score).
     pub(crate) kept: usize,
     /// Q-zips of the kept chains.
@@ -114,7 +118,12 @@ impl Batcher<'_> {
                 continue;
             };
             out.tried += 1;
-            if let Some(steps) = self.walk(mesh, p.a, p.b, dist) {
+            // A Q-zip from a to b is not one from b to a: if one way stalls, try the other.
+            let walked = self
+                .walk(mesh, p.a, p.b, dist)
+                .or_else(|| self.walk(mesh, p.b, p.a, dist));
+            if let Some(steps) = walked {
+                out.cancelled += 1;
                 self.keep_or_undo(mesh, steps, total, &mut out);
             }
         }

@@ -321,7 +321,9 @@ impl BatchStats {
 pub struct ChainStats {
     /// Chains started.
     pub tried: usize,
-    /// Chains kept.
+    /// Chains that walked their pair until it cancelled (kept or not: the rest stalled).
+    pub cancelled: usize,
+    /// Chains kept (cancelled, and the whole score fell).
     pub kept: usize,
     /// Q-zips of the kept chains.
     pub qzips: usize,
@@ -521,6 +523,7 @@ pub fn optimize(
             let c = b.chains(mesh, &mut total);
             chains = ChainStats {
                 tried: c.tried,
+                cancelled: c.cancelled,
                 kept: c.kept,
                 qzips: c.qzips,
                 face_change: c.face_change,

@@ -303,7 +303,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         row.insert("candidates".into(), json!(b.candidates));
         row.insert(
             "chains".into(),
-            json!({"tried": b.chains.tried, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
+            json!({"tried": b.chains.tried, "cancelled": b.chains.cancelled, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
         );
         let faces = b.stats.face_change + b.chains.face_change;
         row.insert("face_change".into(), json!(faces));
