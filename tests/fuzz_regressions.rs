@@ -107,13 +107,11 @@ fn the_bent_path_regression_is_bent_and_makes_two_movements_isomorphic() {
 }
 
 /// The input found before `qzip::wraps`: on a 4 x 3 torus with one vertex split, the path
-/// from the v3 11 to the v5 7 goes round the short loop and ends next to its start. Swept
-/// across quad 8-4-5-9 it gives a different map for the matching movement (the lifting of
-/// Sec. 3.1 fails: the path's strip runs into itself), so it wraps and lists no sweep.
+/// from the v3 11 to the v5 7 goes round the short loop and ends next to its start, so it
+/// wraps and lists no sweep (`tests/qzip_homotopy.rs` shows that its sweep changes the map).
 #[test]
-fn the_torus_loop_regression_wraps_and_its_sweep_changes_the_map() {
-    use zipmesh::qzip::{one_quad_sweeps, start_turn, validate_path, wraps};
-    use zipmesh::Vert;
+fn the_torus_loop_regression_wraps() {
+    use zipmesh::qzip::{one_quad_sweeps, wraps};
     let files = regressions("qzip_homotopy");
     let file = files
         .iter()
@@ -121,16 +119,7 @@ fn the_torus_loop_regression_wraps_and_its_sweep_changes_the_map() {
         .expect("the torus-loop regression");
     let data = fs::read(file).unwrap();
     let c = qzip_case::case(&data).unwrap();
+    assert_eq!(c.path.to_string(), "11 -> 8 -> 9 -> 10 -> 12 -> 7");
     assert!(wraps(&c.original, &c.path), "{}", c.path);
     assert!(one_quad_sweeps(&c.original, &c.path).is_empty());
-    let q = [11u32, 8, 4, 5, 9, 10, 12, 7].map(Vert::new);
-    let o = SketchOptions::default();
-    let swept = validate_path(&c.original, c.path.start(), c.path.end(), &q, &o).unwrap();
-    let k = start_turn(&c.original, &c.path, &swept).unwrap();
-    let run = |p, t| {
-        let mut m = c.original.clone();
-        Qzip::new().zip_along(&mut m, p, t).unwrap();
-        CanonicalCode::of(&m)
-    };
-    assert!(run(&c.path, c.tag) != run(&swept, c.tag.turned(k)));
 }

@@ -361,3 +361,45 @@ fn only_paths_round_a_handle_wrap() {
         assert_eq!(zipmesh::qzip::wraps(&map, &p), n == 6, "{p}");
     }
 }
+
+/// The fuzz target's find (`fuzz/regressions/qzip_homotopy/path-round-a-short-torus-loop`):
+/// a 4 x 3 torus with vertex 11 split into 11 and 12 (v3s; 3 and 7 become v5s). The path
+/// from 11 to 7 goes once round the short loop and ends next to its start; swept across the
+/// regular quad 8 4 5 9, `RC` gives a different map. It wraps, so no sweep is listed.
+#[test]
+fn a_path_round_a_short_torus_loop_wraps_and_its_sweep_differs() {
+    let faces: [[u32; 4]; 13] = [
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 9, 8],
+        [5, 6, 10, 9],
+        [6, 7, 12, 10],
+        [7, 4, 8, 11],
+        [8, 9, 1, 0],
+        [9, 10, 2, 1],
+        [10, 12, 3, 2],
+        [11, 8, 0, 3],
+        [11, 3, 12, 7],
+    ];
+    let map = Map::from_polygons(13, &faces).unwrap();
+    let o = SketchOptions::default();
+    let path = |xs: &[u32]| {
+        let vs: Vec<Vert> = xs.iter().map(|&x| Vert::new(x)).collect();
+        validate_path(&map, vs[0], vs[vs.len() - 1], &vs, &o).unwrap()
+    };
+    let (p, q) = (
+        path(&[11, 8, 9, 10, 12, 7]),
+        path(&[11, 8, 4, 5, 9, 10, 12, 7]),
+    );
+    assert!(zipmesh::qzip::wraps(&map, &p) && zipmesh::qzip::wraps(&map, &q));
+    assert!(one_quad_sweeps(&map, &p).is_empty());
+    let k = start_turn(&map, &p, &q).unwrap();
+    let (mut x, mut y) = (map.clone(), map.clone());
+    Qzip::new().zip_along(&mut x, &p, Tag::RC).unwrap();
+    Qzip::new()
+        .zip_along(&mut y, &q, Tag::RC.turned(k))
+        .unwrap();
+    assert_ne!(canonical_hash(&x), canonical_hash(&y));
+}

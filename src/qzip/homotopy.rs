@@ -168,8 +168,9 @@ pub fn wraps(map: &Map, path: &Path) -> bool {
 }
 
 /// The loops closed by face `f` across the gaps in its touches of `path`: for consecutive
-/// touches `a < b` with `b > a + 1`, the path's darts from `a` to `b`, then the shorter arc
-/// of `f` back to `a`. Simple, because no vertex of the arc is on the path between.
+/// touches `a < b` with `b > a + 1`, the path's darts from `a` to `b`, then `f`'s darts
+/// from `b` on round to `a`. Simple, because no vertex of that arc is on the path between
+/// `a` and `b`. (Either arc of `f` would do: `f` is a disk, so both give loops of one kind.)
 fn gap_loops(map: &Map, path: &Path, f: Face) -> Vec<Vec<Dart>> {
     let v = path.vertices();
     let ring: Vec<Dart> = map.face_darts(f).collect();
@@ -178,22 +179,11 @@ fn gap_loops(map: &Map, path: &Path, f: Face) -> Vec<Vec<Dart>> {
         .filter_map(|k| Some((v.iter().position(|&x| x == map.origin(ring[k]))?, k)))
         .collect();
     at.sort_unstable();
-    let n = ring.len();
     let gaps = at.windows(2).filter(|w| w[1].0 > w[0].0 + 1);
     gaps.map(|w| {
         let ((a, ia), (b, ib)) = (w[0], w[1]);
-        // Arc ib -> ia along `f`, or the twins of ia -> ib taken backwards.
-        let forward: Vec<Dart> = (0..(ia + n - ib) % n).map(|k| ring[(ib + k) % n]).collect();
-        let backward: Vec<Dart> = (0..(ib + n - ia) % n)
-            .map(|k| ring[(ia + k) % n].twin())
-            .rev()
-            .collect();
         let mut lp = path.darts()[a..b].to_vec();
-        lp.extend(if forward.len() <= backward.len() {
-            forward
-        } else {
-            backward
-        });
+        lp.extend(ring.iter().cycle().skip(ib).take_while(|&&d| d != ring[ia]));
         lp
     })
     .collect()
