@@ -104,7 +104,10 @@ fuzz_target!(|data: &[u8]| {
             c.tried == 0 || b.qzips == 0,
             "chains after a batch that executed Q-zips"
         );
-        assert!(c.kept <= c.tried && c.qzips >= c.kept, "{c:?}");
+        assert!(
+            c.kept <= c.cancelled && c.cancelled <= c.tried && c.qzips >= c.kept,
+            "{c:?}"
+        );
         if let Some(prev) = i.checked_sub(1).map(|j| &out.batches[j]) {
             let change = b.counts.faces as isize - prev.counts.faces as isize;
             let stated = b.stats.face_change + c.face_change;
