@@ -360,6 +360,18 @@ fn only_paths_round_a_handle_wrap() {
         let p = validate_path(&map, row[0], row[row.len() - 1], &row, &o).unwrap();
         assert_eq!(zipmesh::qzip::wraps(&map, &p), n == 6, "{p}");
     }
+    // A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4
+    // swept down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such
+    // sweeps are not listed.
+    let map = gen::torus_grid(3, 3).map;
+    let vs = |xs: &[u32]| xs.iter().map(|&x| Vert::new(x)).collect::<Vec<_>>();
+    let p = validate_path(&map, Vert::new(0), Vert::new(4), &vs(&[0, 1, 4]), &o).unwrap();
+    let q = validate_path(&map, Vert::new(0), Vert::new(4), &vs(&[0, 6, 7, 1, 4]), &o).unwrap();
+    assert!(!zipmesh::qzip::wraps(&map, &p) && zipmesh::qzip::wraps(&map, &q));
+    let listed = one_quad_sweeps(&map, &p);
+    assert!(listed
+        .iter()
+        .all(|(_, s)| s != &q && !zipmesh::qzip::wraps(&map, s)));
 }
 
 /// The fuzz target's find (`fuzz/regressions/qzip_homotopy/path-round-a-short-torus-loop`):
