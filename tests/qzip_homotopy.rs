@@ -360,6 +360,19 @@ fn only_paths_round_a_handle_wrap() {
         let p = validate_path(&map, row[0], row[row.len() - 1], &row, &o).unwrap();
         assert_eq!(zipmesh::qzip::wraps(&map, &p), n == 6, "{p}");
     }
+    // A loop whose smaller side is not a disk: on a 7 x 7 grid, round the ring one in from
+    // the boundary, the annulus outside (24 faces) is complete before the disk inside (25),
+    // which then decides. Both ways round, so either side can be the annulus.
+    let grid = gen::grid(7, 7).map;
+    let at = |i: u32, j: u32| Vert::new(8 * j + i);
+    let mut ring: Vec<Vert> = (1..=6).map(|i| at(i, 1)).collect();
+    ring.extend((2..=6).map(|j| at(6, j)));
+    ring.extend((1..=5).rev().map(|i| at(i, 6)));
+    ring.extend((2..=5).rev().map(|j| at(1, j)));
+    for vs in [ring.clone(), ring.into_iter().rev().collect::<Vec<_>>()] {
+        let p = validate_path(&grid, vs[0], vs[vs.len() - 1], &vs, &o).unwrap();
+        assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
+    }
     // A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4
     // swept down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such
     // sweeps are not listed.
