@@ -373,6 +373,13 @@ fn only_paths_round_a_handle_wrap() {
         let p = validate_path(&grid, vs[0], vs[vs.len() - 1], &vs, &o).unwrap();
         assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
     }
+    // A loop that starts along the boundary: on a 4 x 4 grid, 0 -> 1 -> 2 -> 7 -> 12 -> 11
+    // -> 10 -> 5 comes back next to its start; the loop the first quad closes begins on the
+    // bottom edge 1 -> 2 (no face below) and bounds the four quads in the corner.
+    let grid = gen::grid(4, 4).map;
+    let vs: Vec<Vert> = [0u32, 1, 2, 7, 12, 11, 10, 5].map(Vert::new).to_vec();
+    let p = validate_path(&grid, vs[0], vs[7], &vs, &o).unwrap();
+    assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
     // A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4
     // swept down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such
     // sweeps are not listed.

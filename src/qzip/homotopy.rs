@@ -195,7 +195,12 @@ fn gap_loops(map: &Map, path: &Path, f: Face) -> Vec<Vec<Dart>> {
 /// costs a few faces, not the mesh.
 fn bounds_disk(map: &Map, lp: &[Dart]) -> bool {
     let cut = |d: Dart| lp.iter().any(|&x| x == d || x == d.twin());
-    let (Some(left), Some(right)) = (map.face(lp[0]), map.face(lp[0].twin())) else {
+    // The sides are seeded across a dart with a face on each (a loop may run along the
+    // boundary for a while); a loop that is boundary all along bounds nothing.
+    let seeds = lp
+        .iter()
+        .find_map(|&d| Some((map.face(d)?, map.face(d.twin())?)));
+    let Some((left, right)) = seeds else {
         return false;
     };
     if left == right {
