@@ -380,10 +380,11 @@ fn only_paths_round_a_handle_wrap() {
     let vs: Vec<Vert> = [0u32, 1, 2, 7, 12, 11, 10, 5].map(Vert::new).to_vec();
     let p = validate_path(&grid, vs[0], vs[7], &vs, &o).unwrap();
     assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
-    // Round a hole: an annulus of three rings of 8 vertices; the middle ring, all but one
-    // edge, closes a loop that separates two annuli, neither a disk: it wraps.
+    // Round a hole: an annulus of nine rings of 8 vertices; the second ring, all but one
+    // edge, closes a loop that separates two annuli, neither a disk: it wraps, both ways
+    // round (the narrow side is complete while the wide one is still growing).
     let n = 8u32;
-    let quads: Vec<[u32; 4]> = (0..2)
+    let quads: Vec<[u32; 4]> = (0..8)
         .flat_map(|r| {
             (0..n).map(move |i| {
                 [
@@ -395,10 +396,12 @@ fn only_paths_round_a_handle_wrap() {
             })
         })
         .collect();
-    let annulus = Map::from_polygons(3 * n as usize, &quads).unwrap();
-    let middle: Vec<Vert> = (n..2 * n).map(Vert::new).collect();
-    let p = validate_path(&annulus, middle[0], middle[7], &middle, &o).unwrap();
-    assert!(zipmesh::qzip::wraps(&annulus, &p), "{p}");
+    let annulus = Map::from_polygons(9 * n as usize, &quads).unwrap();
+    let ring: Vec<Vert> = (n..2 * n).map(Vert::new).collect();
+    for vs in [ring.clone(), ring.into_iter().rev().collect::<Vec<_>>()] {
+        let p = validate_path(&annulus, vs[0], vs[7], &vs, &o).unwrap();
+        assert!(zipmesh::qzip::wraps(&annulus, &p), "{p}");
+    }
     // A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4
     // swept down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such
     // sweeps are not listed.

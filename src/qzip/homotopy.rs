@@ -206,11 +206,12 @@ fn bounds_disk(map: &Map, lp: &[Dart]) -> bool {
     if left == right {
         return false;
     }
-    // side[f]: 0 unreached, 1 left, 2 right.
+    // side[f]: 0 unreached, else the mark of the side that reached it.
+    const MARK: [u8; 2] = [1, 2];
     let mut side = alloc::vec![0u8; map.face_slots()];
     let mut grown = [alloc::vec![left], alloc::vec![right]];
-    side[left.index()] = 1;
-    side[right.index()] = 2;
+    side[left.index()] = MARK[0];
+    side[right.index()] = MARK[1];
     let mut next = [0usize; 2];
     loop {
         for s in 0..2 {
@@ -222,12 +223,12 @@ fn bounds_disk(map: &Map, lp: &[Dart]) -> bool {
                 let other = 1 - s;
                 while let Some(&g) = grown[other].get(next[other]) {
                     next[other] += 1;
-                    grow(map, g, other as u8 + 1, &mut side, &mut grown[other], &cut);
+                    grow(map, g, MARK[other], &mut side, &mut grown[other], &cut);
                 }
                 return euler(map, &grown[other]) == 1;
             };
             next[s] += 1;
-            if !grow(map, f, s as u8 + 1, &mut side, &mut grown[s], &cut) {
+            if !grow(map, f, MARK[s], &mut side, &mut grown[s], &cut) {
                 return false;
             }
         }
