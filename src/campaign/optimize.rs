@@ -100,8 +100,8 @@ fn check(case: &Case) -> Outcome {
 
 /// What is wrong with the batch reports, if anything: the score rose; a chain stage ran
 /// after a batch that executed Q-zips, or kept more chains than cancelled their pair or
-/// cancelled more than it tried, or fewer Q-zips than chains; or the face count changed by other than the batch's and the chains' face
-/// changes (the smoothing changes no face).
+/// cancelled more than it tried, or fewer Q-zips than chains; or the face count changed
+/// by other than the batch's and the chains' face changes (the smoothing changes no face).
 fn batches_add_up(out: &crate::optimize::Outcome) -> Option<std::string::String> {
     let mut last = (out.initial_score, None::<usize>);
     for b in &out.batches {

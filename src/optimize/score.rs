@@ -96,6 +96,19 @@ pub trait ScoreTerm: core::fmt::Debug {
     /// A copy for another thread, or `None` (the default) if the term cannot be copied: the
     /// optimizer's candidate search then runs on one thread. Results are the same either
     /// way; every built-in term can be copied.
+    ///
+    /// ```
+    /// use zipmesh::optimize::{Context, Count, Electric, ScoreTerm};
+    /// assert_eq!(Count.fork().unwrap().name(), "count");
+    /// assert_eq!(Electric::default().fork().unwrap().name(), "electric");
+    /// #[derive(Debug)]
+    /// struct Mine;
+    /// impl ScoreTerm for Mine {
+    ///     fn name(&self) -> &str { "mine" }
+    ///     fn score(&mut self, _: &Context<'_>) -> f64 { 0.0 }
+    /// }
+    /// assert!(Mine.fork().is_none());
+    /// ```
     fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
         None
     }
