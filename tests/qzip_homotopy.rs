@@ -331,6 +331,22 @@ fn one_quad_sweeps_add_only_regular_corners_off_the_path() {
     assert!(listed >= 20, "only {listed} sweeps listed");
 }
 
+/// The path through `vs`, in order (validated, nothing forbidden).
+fn through(map: &Map, vs: &[Vert]) -> Path {
+    let o = SketchOptions::default();
+    validate_path(map, vs[0], vs[vs.len() - 1], vs, &o).unwrap()
+}
+
+fn verts(xs: &[u32]) -> Vec<Vert> {
+    xs.iter().map(|&x| Vert::new(x)).collect()
+}
+
+/// `wraps` of the path through `ring` and of the path through it backwards.
+fn wraps_both_ways(map: &Map, ring: &[Vert]) -> [bool; 2] {
+    let back: Vec<Vert> = ring.iter().rev().copied().collect();
+    [ring, &back[..]].map(|vs| zipmesh::qzip::wraps(map, &through(map, vs)))
+}
+
 /// `wraps` sees a path round a handle and nothing else: never on a sphere or a disk (every
 /// loop there bounds a disk, the bends round swept quads included); on a 6 x 6 torus a row
 /// wraps exactly when it ends next to its start.
@@ -354,61 +370,64 @@ fn only_paths_round_a_handle_wrap() {
     }
     assert!(checked >= 900, "{checked}");
     let map = gen::torus_grid(6, 6).map;
-    let o = s;
     for n in 2..=6u32 {
-        let row: Vec<Vert> = (0..n).map(Vert::new).collect();
-        let p = validate_path(&map, row[0], row[row.len() - 1], &row, &o).unwrap();
+        let p = through(&map, &verts(&(0..n).collect::<Vec<_>>()));
         assert_eq!(zipmesh::qzip::wraps(&map, &p), n == 6, "{p}");
     }
-    // A loop whose smaller side is not a disk: on a 7 x 7 grid, round the ring one in from
-    // the boundary, the annulus outside (24 faces) is complete before the disk inside (25),
-    // which then decides. Both ways round, so either side can be the annulus.
+}
+
+/// A loop whose smaller side is not a disk: on a 7 x 7 grid, round the ring one in from the
+/// boundary, the annulus outside (24 faces) is complete before the disk inside (25), which
+/// then decides. Both ways round, so either side can be the annulus.
+#[test]
+fn a_loop_whose_smaller_side_is_an_annulus_bounds_the_other() {
     let grid = gen::grid(7, 7).map;
     let at = |i: u32, j: u32| Vert::new(8 * j + i);
     let mut ring: Vec<Vert> = (1..=6).map(|i| at(i, 1)).collect();
     ring.extend((2..=6).map(|j| at(6, j)));
     ring.extend((1..=5).rev().map(|i| at(i, 6)));
     ring.extend((2..=5).rev().map(|j| at(1, j)));
-    for vs in [ring.clone(), ring.into_iter().rev().collect::<Vec<_>>()] {
-        let p = validate_path(&grid, vs[0], vs[vs.len() - 1], &vs, &o).unwrap();
-        assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
-    }
-    // A loop that starts along the boundary: on a 4 x 4 grid, 0 -> 1 -> 2 -> 7 -> 12 -> 11
-    // -> 10 -> 5 comes back next to its start; the loop the first quad closes begins on the
-    // bottom edge 1 -> 2 (no face below) and bounds the four quads in the corner.
+    assert_eq!(wraps_both_ways(&grid, &ring), [false, false]);
+}
+
+/// A loop that starts along the boundary: on a 4 x 4 grid, 0 -> 1 -> 2 -> 7 -> 12 -> 11 ->
+/// 10 -> 5 comes back next to its start; the loop the first quad closes begins on the
+/// bottom edge 1 -> 2 (no face below) and bounds the four quads in the corner.
+#[test]
+fn a_loop_along_the_boundary_is_judged() {
     let grid = gen::grid(4, 4).map;
-    let vs: Vec<Vert> = [0u32, 1, 2, 7, 12, 11, 10, 5].map(Vert::new).to_vec();
-    let p = validate_path(&grid, vs[0], vs[7], &vs, &o).unwrap();
+    let p = through(&grid, &verts(&[0, 1, 2, 7, 12, 11, 10, 5]));
     assert!(!zipmesh::qzip::wraps(&grid, &p), "{p}");
-    // Round a hole: an annulus of nine rings of 8 vertices; the second ring, all but one
-    // edge, closes a loop that separates two annuli, neither a disk: it wraps, both ways
-    // round (the narrow side is complete while the wide one is still growing).
+}
+
+/// Round a hole: an annulus of nine rings of 8 vertices; the second ring, all but one edge,
+/// closes a loop that separates two annuli, neither a disk: it wraps, both ways round (the
+/// narrow side is complete while the wide one is still growing).
+#[test]
+fn a_path_round_a_hole_wraps() {
     let n = 8u32;
+    let quad = |r: u32, i: u32| {
+        let j = (i + 1) % n;
+        [r * n + i, r * n + j, (r + 1) * n + j, (r + 1) * n + i]
+    };
     let quads: Vec<[u32; 4]> = (0..8)
-        .flat_map(|r| {
-            (0..n).map(move |i| {
-                [
-                    r * n + i,
-                    r * n + (i + 1) % n,
-                    (r + 1) * n + (i + 1) % n,
-                    (r + 1) * n + i,
-                ]
-            })
-        })
+        .flat_map(|r| (0..n).map(move |i| quad(r, i)))
         .collect();
     let annulus = Map::from_polygons(9 * n as usize, &quads).unwrap();
     let ring: Vec<Vert> = (n..2 * n).map(Vert::new).collect();
-    for vs in [ring.clone(), ring.into_iter().rev().collect::<Vec<_>>()] {
-        let p = validate_path(&annulus, vs[0], vs[7], &vs, &o).unwrap();
-        assert!(zipmesh::qzip::wraps(&annulus, &p), "{p}");
-    }
-    // A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4
-    // swept down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such
-    // sweeps are not listed.
+    assert_eq!(wraps_both_ways(&annulus, &ring), [true, true]);
+}
+
+/// A path that does not wrap can have a sweep that does: on a 3 x 3 torus, 0 -> 1 -> 4 swept
+/// down across 0 1 7 6 passes 7, next to 4 round the short vertical loop. Such sweeps are
+/// not listed.
+#[test]
+fn a_sweep_that_wraps_is_not_listed() {
     let map = gen::torus_grid(3, 3).map;
-    let vs = |xs: &[u32]| xs.iter().map(|&x| Vert::new(x)).collect::<Vec<_>>();
-    let p = validate_path(&map, Vert::new(0), Vert::new(4), &vs(&[0, 1, 4]), &o).unwrap();
-    let q = validate_path(&map, Vert::new(0), Vert::new(4), &vs(&[0, 6, 7, 1, 4]), &o).unwrap();
+    let (p, q) = (
+        through(&map, &verts(&[0, 1, 4])),
+        through(&map, &verts(&[0, 6, 7, 1, 4])),
+    );
     assert!(!zipmesh::qzip::wraps(&map, &p) && zipmesh::qzip::wraps(&map, &q));
     let listed = one_quad_sweeps(&map, &p);
     assert!(listed
@@ -438,14 +457,9 @@ fn a_path_round_a_short_torus_loop_wraps_and_its_sweep_differs() {
         [11, 3, 12, 7],
     ];
     let map = Map::from_polygons(13, &faces).unwrap();
-    let o = SketchOptions::default();
-    let path = |xs: &[u32]| {
-        let vs: Vec<Vert> = xs.iter().map(|&x| Vert::new(x)).collect();
-        validate_path(&map, vs[0], vs[vs.len() - 1], &vs, &o).unwrap()
-    };
     let (p, q) = (
-        path(&[11, 8, 9, 10, 12, 7]),
-        path(&[11, 8, 4, 5, 9, 10, 12, 7]),
+        through(&map, &verts(&[11, 8, 9, 10, 12, 7])),
+        through(&map, &verts(&[11, 8, 4, 5, 9, 10, 12, 7])),
     );
     assert!(zipmesh::qzip::wraps(&map, &p) && zipmesh::qzip::wraps(&map, &q));
     assert!(one_quad_sweeps(&map, &p).is_empty());
