@@ -26,6 +26,13 @@ fn regressions(target: &str) -> Vec<PathBuf> {
     files
 }
 
+/// The bytes of the regression `name` of `target`.
+fn regression(target: &str, name: &str) -> Vec<u8> {
+    let files = regressions(target);
+    let file = files.iter().find(|f| f.ends_with(name));
+    fs::read(file.unwrap_or_else(|| panic!("no regression {target}/{name}"))).unwrap()
+}
+
 #[test]
 fn every_fuzz_target_directory_of_regressions_names_a_target() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz");
@@ -74,12 +81,7 @@ fn qzip_regressions_keep_the_qzip_targets_oracle() {
 /// (which requires a shortest path) skips it.
 #[test]
 fn the_bent_path_regression_is_bent_and_makes_two_movements_isomorphic() {
-    let files = regressions("qzip_four_moves");
-    let file = files
-        .iter()
-        .find(|f| f.ends_with("bent-path-rs-equals-lc"))
-        .expect("the bent-path regression");
-    let data = fs::read(file).unwrap();
+    let data = regression("qzip_four_moves", "bent-path-rs-equals-lc");
     let c = qzip_case::case(&data).unwrap();
     let shortest = sketch(
         &c.original,
@@ -112,12 +114,7 @@ fn the_bent_path_regression_is_bent_and_makes_two_movements_isomorphic() {
 #[test]
 fn the_torus_loop_regression_wraps() {
     use zipmesh::qzip::{one_quad_sweeps, wraps};
-    let files = regressions("qzip_homotopy");
-    let file = files
-        .iter()
-        .find(|f| f.ends_with("path-round-a-short-torus-loop"))
-        .expect("the torus-loop regression");
-    let data = fs::read(file).unwrap();
+    let data = regression("qzip_homotopy", "path-round-a-short-torus-loop");
     let c = qzip_case::case(&data).unwrap();
     assert_eq!(c.path.to_string(), "11 -> 8 -> 9 -> 10 -> 12 -> 7");
     assert!(wraps(&c.original, &c.path), "{}", c.path);
