@@ -278,8 +278,11 @@ impl<'q> Batcher<'q> {
         stats: &mut BatchStats,
     ) -> Vec<Candidate> {
         let size = sample.len().div_ceil(PARTS).max(MIN_PART);
-        let workers: Option<Vec<Batcher<'q>>> = sample.chunks(size).map(|_| self.fork()).collect();
-        let Some(workers) = workers.filter(|w| w.len() > 1) else {
+        // One part, or a term that cannot be copied: no copies, the mesh itself.
+        let workers: Option<Vec<Batcher<'q>>> = (sample.len() > size)
+            .then(|| sample.chunks(size).map(|_| self.fork()).collect())
+            .flatten();
+        let Some(workers) = workers else {
             return sample
                 .iter()
                 .filter_map(|&s| self.best_candidate(mesh, s, defects, stats))
