@@ -4,8 +4,9 @@
 //! search radius 1 to 8, relaxation on or off, face drift 0 to 15 %). The library must
 //! never panic; the oracle is the `optimize-triangles` campaign property's
 //! (`campaign::check_optimize_triangles`): a valid all-triangle map with the input's
-//! Euler characteristic, boundary loops, components and boundary valences, a score and an
-//! irregular count that never rise, the face count within the drift, counts that match.
+//! Euler characteristic, boundary loops, components and boundary valences, an irregular
+//! count that never rises (nor the score while it stays), the face count within the drift,
+//! counts that match. The look-ahead is on or off by the fuzzer's choice.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -40,6 +41,7 @@ fuzz_target!(|data: &[u8]| {
         max_batches: 1 + usize::from(byte(5) % 3),
         search_radius: 1 + usize::from(byte(6) % 8),
         relax: byte(7) % 2 == 0,
+        lookahead: byte(7) & 2 == 0,
         face_drift: f64::from(byte(8) % 16) / 100.0,
     };
     let outcome = check_optimize_triangles(&mesh, &options);

@@ -18,6 +18,7 @@ pub mod constraints;
 pub mod defect;
 pub mod score;
 pub mod smooth;
+mod tri_lookahead;
 mod tri_mesh;
 mod triangles;
 

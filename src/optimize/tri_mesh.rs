@@ -1,12 +1,14 @@
 //! Automatic singularity reduction of pure triangle meshes (issue 13, "beyond the paper"):
-//! batches of valence-improving edge flips, triple cancellations (Sec. 7.2) and 5-7 pair
+//! batches of valence-improving edge flips, triple cancellations (Sec. 7.2), 5-7 pair
 //! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
-//! each followed by local relaxation (Sec. 8) of what it touched. `docs/optimize.md` gives
-//! the reading.
+//! and a two-edit look-ahead ([`super::tri_lookahead`]), each followed by local relaxation
+//! (Sec. 8) of what it touched. `docs/optimize.md` gives the reading.
 //!
 //! A flip, collapse or cancellation is kept only when it lowers the sum of
 //! `(valence - 6)^2` over the interior vertices ([`tri_score`]) and makes no new irregular
-//! vertex, so neither ever rises. Boundary vertices
+//! vertex; a look-ahead edit only when it lowers the number of irregular vertices (it may
+//! raise the score); a pair move changes neither. So the count never rises, nor the score
+//! while the count stays. Boundary vertices
 //! keep their valences (no edit changes one), and an edit that would turn a triangle over
 //! (its normal against the old one's) is undone.
 //!
@@ -27,6 +29,7 @@ use core::fmt;
 use glam::DVec3;
 
 use super::smooth::Surface;
+use super::tri_lookahead::Lookahead;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
 use crate::tri_edit::{
     can_cancel_triple, cancel_triple_with, move_pair_with, relax_local, Direction,
@@ -52,6 +55,10 @@ pub struct TriOptimizeOptions {
     /// would leave `[F - s, F + s]`, `s = floor(f F)`, is undone. `f` is clamped to
     /// `[0, 1]`; NaN reads as 0 (no drift).
     pub face_drift: f64,
+    /// When the greedy passes find nothing, try every edit and pair of edits round each
+    /// irregular vertex and make the best that leaves fewer irregular vertices (the
+    /// look-ahead, `docs/optimize.md`).
+    pub lookahead: bool,
 }
 
 impl Default for TriOptimizeOptions {
@@ -61,6 +68,7 @@ impl Default for TriOptimizeOptions {
             search_radius: 8,
             relax: true,
             face_drift: 0.05,
+            lookahead: true,
         }
     }
 }
@@ -130,6 +138,8 @@ pub struct TriBatch {
     pub flips: usize,
     /// Triple cancellations kept.
     pub cancellations: usize,
+    /// Look-ahead edits (one or two atomic edits each) kept.
+    pub lookaheads: usize,
     /// 5-7 pair moves made.
     pub pair_moves: usize,
     /// The score after the batch ([`tri_score`]).
@@ -172,13 +182,13 @@ impl fmt::Display for TriOptimizeError {
 impl std::error::Error for TriOptimizeError {}
 
 /// The face counts an edit may leave.
-struct Budget {
+pub(super) struct Budget {
     min: usize,
     max: usize,
 }
 
 impl Budget {
-    fn holds(&self, map: &Map) -> bool {
+    pub(super) fn holds(&self, map: &Map) -> bool {
         (self.min..=self.max).contains(&map.num_faces())
     }
 }
@@ -216,7 +226,8 @@ impl core::iter::Sum for Cost {
 }
 
 /// The score: the sum of `(valence - 6)^2` over the interior vertices. Every edit the
-/// optimizer keeps lowers it without raising the number of irregular vertices.
+/// optimizer keeps lowers the number of irregular vertices, or lowers the score and keeps
+/// that number.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::tri_score};
@@ -237,8 +248,9 @@ fn vertex_cost(map: &Map, v: Vert) -> Cost {
 /// Reduces the interior irregular vertices of a triangle mesh by batches; `progress` sees
 /// each batch. A batch keeps the flips, collapses and triple cancellations (Sec. 7.2) that
 /// lower [`tri_score`] without adding an irregular vertex; when none is left it moves each
-/// adjacent 5-7 pair (Sec. 6.2) towards its nearest other irregular vertex; then it relaxes
-/// what it touched. An edit that turns a triangle over or lets the face count drift past
+/// adjacent 5-7 pair (Sec. 6.2) towards its nearest other irregular vertex; when none moves
+/// either, it makes the look-ahead's edits ([`TriOptimizeOptions::lookahead`]) that leave
+/// fewer irregular vertices; then it relaxes what it touched. An edit that turns a triangle over or lets the face count drift past
 /// [`TriOptimizeOptions::face_drift`] is undone. Every edit keeps the map valid; the mesh's
 /// topology (genus, boundary) and its boundary valences are kept. `docs/optimize.md` gives
 /// the reading and measurements.
@@ -279,12 +291,19 @@ pub fn optimize_triangles(
         max: input.faces + slack,
     };
     let mut batches = Vec::new();
+    let mut lookahead = Lookahead::default();
     for batch in 1..=options.max_batches {
         let mut touched = Vec::new();
         let flips = flip_pass(mesh, &mut touched) + collapse_pass(mesh, &budget, &mut touched);
         let cancellations = cancel_pass(mesh, &budget, &mut touched);
         let pair_moves = if flips + cancellations == 0 {
             move_pass(mesh, options.search_radius, &budget, &mut touched)
+        } else {
+            0
+        };
+        lookahead.forget_near(&mesh.map, &touched);
+        let lookaheads = if flips + cancellations + pair_moves == 0 && options.lookahead {
+            lookahead.pass(mesh, &budget, &mut touched)
         } else {
             0
         };
@@ -299,13 +318,14 @@ pub fn optimize_triangles(
             batch,
             flips,
             cancellations,
+            lookaheads,
             pair_moves,
             score: tri_score(&mesh.map),
             counts: TriCounts::of(&mesh.map),
         };
         progress(&row);
         batches.push(row);
-        if flips + cancellations + pair_moves == 0 {
+        if flips + cancellations + lookaheads + pair_moves == 0 {
             break;
         }
     }
@@ -441,7 +461,7 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
 
 /// The summed unit normals of the triangles round `verts` (a reference direction for
 /// [`folds`]).
-fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
+pub(super) fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
     verts
         .iter()
         .filter(|&&v| mesh.map.is_live_vertex(v))
@@ -453,7 +473,7 @@ fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
 
 /// Whether a triangle round `verts` is degenerate or faces away from `reference` (more
 /// than about 70 degrees off): the edit folded the surface there.
-fn folds(mesh: &Mesh, verts: &[Vert], reference: DVec3) -> bool {
+pub(super) fn folds(mesh: &Mesh, verts: &[Vert], reference: DVec3) -> bool {
     verts
         .iter()
         .filter(|&&v| mesh.map.is_live_vertex(v))

@@ -49,6 +49,10 @@ pub struct OptimizeArgs {
     /// No chains of Q-zips walking v3/v5 pairs together after an idle batch (quad meshes).
     #[arg(long)]
     no_chains: bool,
+    /// No look-ahead (pairs of edits round each irregular vertex) when the greedy passes stall
+    /// (triangle meshes).
+    #[arg(long)]
+    no_lookahead: bool,
     /// With --json: each batch's executed surgery paths (vertex positions).
     #[arg(long)]
     paths: bool,
@@ -104,6 +108,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         ("--sharp-angle", args.sharp_angle.is_some()),
         ("--paths", args.paths),
         ("--weight", !args.weights.is_empty()),
+        ("--no-chains", args.no_chains),
     ];
     if let Some((flag, _)) = quad_only.iter().find(|(_, set)| *set) {
         return Err(InputError(format!(
@@ -113,6 +118,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
     let options = TriOptimizeOptions {
         max_batches: args.batches,
         relax: !args.no_smooth,
+        lookahead: !args.no_lookahead,
         ..TriOptimizeOptions::default()
     };
     let bar = progress(args.batches);
@@ -124,6 +130,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
             m.insert("batch".into(), json!(b.batch));
             m.insert("flips".into(), json!(b.flips));
             m.insert("cancellations".into(), json!(b.cancellations));
+            m.insert("lookaheads".into(), json!(b.lookaheads));
             m.insert("pair_moves".into(), json!(b.pair_moves));
             m.insert("score".into(), json!(b.score));
         }
@@ -280,6 +287,11 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     }
     if map.num_faces() > 0 && map.faces().all(|f| map.degree(f) == 3) {
         return run_triangles(&args, mesh, &name);
+    }
+    if args.no_lookahead {
+        return Err(InputError(format!(
+            "{name}: --no-lookahead applies to triangle meshes only (this one has quads)"
+        )));
     }
     let c = constraints(&args, &mesh)?;
     let mut options = OptimizeOptions::default()

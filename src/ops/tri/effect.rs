@@ -25,6 +25,13 @@ impl TriOp {
     /// ```
     pub fn effect(self, m: &Map) -> Result<Effect, Refusal> {
         self.can(m)?;
+        Ok(self.effect_unchecked(m))
+    }
+
+    /// [`TriOp::effect`] without the `can` check, for searches that score many operators and
+    /// check only the few they pick: the darts must be live and, for a vertex split, leave
+    /// one origin; what it says of an operator that `can` refuses is not an effect.
+    pub(crate) fn effect_unchecked(self, m: &Map) -> Effect {
         let val = |v: Vert| m.valence(v) as i64;
         // The third corner of the face of `d`, if `d` is not a boundary dart.
         let apex = |d: Dart| m.face(d).map(|_| m.dest(m.next(d)));
@@ -39,7 +46,7 @@ impl TriOp {
             }
         };
         let interior = |h: Dart| m.face(h).is_some() && m.face(h.twin()).is_some();
-        Ok(match self {
+        match self {
             TriOp::Flip(h) => apexes(
                 Effect::new([0, 0, 0], 3)
                     .change(m, m.origin(h), "end a", -1)
@@ -75,7 +82,7 @@ impl TriOp {
                 };
                 apexes(e, h, 1)
             }
-        })
+        }
     }
 }
 
