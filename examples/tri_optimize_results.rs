@@ -11,14 +11,14 @@ fn row(name: &str, mut mesh: Mesh) {
     let out = optimize_triangles(&mut mesh, &TriOptimizeOptions::default(), |_| {})
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     let (a, b) = (out.input, out.final_counts);
-    let (flips, cancels, looks, moves) = out.batches.iter().fold((0, 0, 0, 0), |s, x| {
-        (
-            s.0 + x.flips,
-            s.1 + x.cancellations,
-            s.2 + x.lookaheads,
-            s.3 + x.pair_moves,
-        )
-    });
+    let sum =
+        |f: fn(&zipmesh::optimize::TriBatch) -> usize| out.batches.iter().map(f).sum::<usize>();
+    let (flips, cancels, looks) = (
+        sum(|x| x.flips),
+        sum(|x| x.cancellations),
+        sum(|x| x.lookaheads),
+    );
+    let (moves, far) = (sum(|x| x.pair_moves), sum(|x| x.far_pair_moves));
     let cut = match a.irregular() {
         0 => "none to remove".to_string(),
         n => format!(
@@ -27,7 +27,7 @@ fn row(name: &str, mut mesh: Mesh) {
         ),
     };
     println!(
-        "| {name} | {} -> {} | {} -> {} ({cut}) | v5 {} v7 {} v4- {} v8+ {} | {} | {flips} / {cancels} / {looks} / {moves} | {:.3} |",
+        "| {name} | {} -> {} | {} -> {} ({cut}) | v5 {} v7 {} v4- {} v8+ {} | {} | {flips} / {cancels} / {looks} / {moves} / {far} | {:.3} |",
         a.faces,
         b.faces,
         a.irregular(),
@@ -43,7 +43,7 @@ fn row(name: &str, mut mesh: Mesh) {
 
 fn main() {
     println!(
-        "| mesh | faces | irregular | left | batches | flips / cancellations / look-aheads / pair moves | s |"
+        "| mesh | faces | irregular | left | batches | flips / cancellations / look-aheads / pair moves / far pair moves | s |"
     );
     println!("|---|---|---|---|---|---|---|");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri");

@@ -76,7 +76,8 @@ fn generated_meshes_lose_most_of_their_irregular_vertices() {
 }
 
 /// The triangle meshes of `../shared/data/tri/`: every kept triangle faces the way the
-/// surface did (no fold), and the irregular vertices at least halve where there are some.
+/// surface did (no fold), and the irregular vertices fall by at least 70 % (issue 13's
+/// goal; measured 73 % and 72 %, docs/optimize.md) where there are some.
 #[test]
 fn shared_triangle_meshes() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri");
@@ -90,7 +91,7 @@ fn shared_triangle_meshes() {
         let (mut mesh, _) = io::read_mesh(&p).unwrap();
         let (b, a) = run_and_check(&mut mesh);
         eprintln!("{}: {b:?} -> {a:?}", p.display());
-        assert!(a.irregular() * 2 <= b.irregular(), "{}", p.display());
+        assert!(a.irregular() * 10 <= b.irregular() * 3, "{}", p.display());
         for f in mesh.map.faces() {
             let d = mesh.map.face_dart(f);
             let [x, y, z] = [d, mesh.map.next(d), mesh.map.prev(d)]
@@ -148,22 +149,32 @@ fn the_face_drift_bounds_the_face_change() {
     }
 }
 
-/// Where the greedy passes and the pair moves stop (a run without the look-ahead), the
+/// Where the greedy passes and the pair moves stop (a run without the look-ahead, to its
+/// end), the
 /// look-ahead still finds edits that leave fewer irregular vertices, and every batch that
 /// keeps one lowers the count.
 #[test]
 fn the_lookahead_goes_on_where_the_greedy_passes_stop() {
+    // The face budget is taken from each run's input, so it must not bind in either run
+    // for the second to start where the first stopped.
+    let wide = TriOptimizeOptions {
+        face_drift: 1.0,
+        ..TriOptimizeOptions::default()
+    };
     let greedy = TriOptimizeOptions {
         lookahead: false,
-        ..TriOptimizeOptions::default()
+        max_batches: 1000,
+        ..wide.clone()
     };
     let mut kept = 0;
     for seed in 0..4 {
         let mut mesh = gen::random_triangle(1200, (seed % 3) as usize, 0, seed);
-        optimize_triangles(&mut mesh, &greedy, |_| {}).unwrap();
+        // Run until a batch changes nothing, so that what follows starts where it stopped.
+        let first = optimize_triangles(&mut mesh, &greedy, |_| {}).unwrap();
+        assert!(first.batches.len() < greedy.max_batches);
         let stuck = TriCounts::of(&mesh.map).irregular();
         let mut last = stuck;
-        let out = optimize_triangles(&mut mesh, &TriOptimizeOptions::default(), |b| {
+        let out = optimize_triangles(&mut mesh, &wide, |b| {
             if b.lookaheads > 0 {
                 assert!(b.counts.irregular() < last, "batch {}", b.batch);
             }

@@ -1,13 +1,13 @@
 //! Automatic singularity reduction of pure triangle meshes (issue 13, "beyond the paper"):
 //! batches of valence-improving edge flips, triple cancellations (Sec. 7.2), 5-7 pair
 //! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
-//! and a two-edit look-ahead ([`super::tri_lookahead`]), each followed by local relaxation
-//! (Sec. 8) of what it touched. `docs/optimize.md` gives the reading.
+//! a two-edit look-ahead ([`super::tri_lookahead`]) and far pair moves (Sec. 7.1.1) of 5-7
+//! pairs two edges apart, each followed by local relaxation (Sec. 8) of what it touched. `docs/optimize.md` gives the reading.
 //!
 //! A flip, collapse or cancellation is kept only when it lowers the sum of
 //! `(valence - 6)^2` over the interior vertices ([`tri_score`]) and makes no new irregular
 //! vertex; a look-ahead edit only when it lowers the number of irregular vertices (it may
-//! raise the score); a pair move changes neither. So the count never rises, nor the score
+//! raise the score); a pair move, adjacent or far, changes neither. So the count never rises, nor the score
 //! while the count stays. Boundary vertices
 //! keep their valences (no edit changes one), and an edit that would turn a triangle over
 //! (its normal against the old one's) is undone.
@@ -32,7 +32,8 @@ use super::smooth::Surface;
 use super::tri_lookahead::Lookahead;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
 use crate::tri_edit::{
-    can_cancel_triple, cancel_triple_with, move_pair_with, relax_local, Direction,
+    can_cancel_triple, cancel_triple_with, move_far_pair_with, move_pair_with, relax_local,
+    Direction, FarStart, Moved, Start,
 };
 use crate::{Dart, Map, Mesh, Vert};
 
@@ -140,8 +141,10 @@ pub struct TriBatch {
     pub cancellations: usize,
     /// Look-ahead edits (one or two atomic edits each) kept.
     pub lookaheads: usize,
-    /// 5-7 pair moves made.
+    /// 5-7 pair moves made (adjacent pairs, Sec. 6.2).
     pub pair_moves: usize,
+    /// Far 5-7 pair moves made (pairs two edges apart, Sec. 7.1.1).
+    pub far_pair_moves: usize,
     /// The score after the batch ([`tri_score`]).
     pub score: u64,
     /// The counts after the batch.
@@ -250,7 +253,8 @@ fn vertex_cost(map: &Map, v: Vert) -> Cost {
 /// lower [`tri_score`] without adding an irregular vertex; when none is left it moves each
 /// adjacent 5-7 pair (Sec. 6.2) towards its nearest other irregular vertex; when none moves
 /// either, it makes the look-ahead's edits ([`TriOptimizeOptions::lookahead`]) that leave
-/// fewer irregular vertices; then it relaxes what it touched. An edit that turns a triangle over or lets the face count drift past
+/// fewer irregular vertices; when there are none, it moves each 5-7 pair two edges apart
+/// (Sec. 7.1.1) towards its nearest other irregular vertex; then it relaxes what it touched. An edit that turns a triangle over or lets the face count drift past
 /// [`TriOptimizeOptions::face_drift`] is undone. Every edit keeps the map valid; the mesh's
 /// topology (genus, boundary) and its boundary valences are kept. `docs/optimize.md` gives
 /// the reading and measurements.
@@ -307,6 +311,11 @@ pub fn optimize_triangles(
         } else {
             0
         };
+        let far_pair_moves = if flips + cancellations + pair_moves + lookaheads == 0 {
+            far_move_pass(mesh, options.search_radius, &budget, &mut touched)
+        } else {
+            0
+        };
         if options.relax && !touched.is_empty() {
             touched.retain(|&v| mesh.map.is_live_vertex(v));
             touched.sort_unstable();
@@ -320,12 +329,13 @@ pub fn optimize_triangles(
             cancellations,
             lookaheads,
             pair_moves,
+            far_pair_moves,
             score: tri_score(&mesh.map),
             counts: TriCounts::of(&mesh.map),
         };
         progress(&row);
         batches.push(row);
-        if flips + cancellations + lookaheads + pair_moves == 0 {
+        if flips + cancellations + lookaheads + pair_moves + far_pair_moves == 0 {
             break;
         }
     }
@@ -596,11 +606,7 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
         };
         let kind = vertex_cost_kind(map, target);
         let dist = Near::from(map, &[target], radius + 2);
-        let now = match kind {
-            Some(5) => dist.at(q),
-            Some(7) => dist.at(p),
-            _ => dist.at(p).min(dist.at(q)),
-        };
+        let now = lead(kind, dist.at(p), dist.at(q));
         let mut best: Option<(usize, Direction)> = None;
         for dir in Direction::ALL {
             let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) else {
@@ -617,11 +623,7 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
                 via.fold(old, usize::min)
             };
             let (np, nq) = (e.record().p(), e.record().q());
-            let at = match kind {
-                Some(5) => seen(nq),
-                Some(7) => seen(np),
-                _ => seen(np).min(seen(nq)),
-            };
+            let at = lead(kind, seen(np), seen(nq));
             let _ = e.undo(mesh);
             if at < now && best.is_none_or(|(b, _)| at < b) {
                 best = Some((at, dir));
@@ -642,6 +644,17 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
     }
     touched.retain(|&v| mesh.map.is_live_vertex(v));
     moved
+}
+
+/// The distance that counts for a 5-7 pair whose v5 and v7 are `at_p` and `at_q` from a
+/// target of valence `kind`: a target v5 cancels with the v7 (5-5-7), a target v7 with the
+/// v5 (5-7-7), any other with the nearer of the two.
+fn lead(kind: Option<usize>, at_p: usize, at_q: usize) -> usize {
+    match kind {
+        Some(5) => at_q,
+        Some(7) => at_p,
+        _ => at_p.min(at_q),
+    }
 }
 
 /// Adjacent interior (v5, v7) pairs, each v5 with its first v7 neighbour.
@@ -686,4 +699,171 @@ fn nearest_other(map: &Map, p: Vert, q: Vert, radius: usize) -> Option<Vert> {
         ring = next;
     }
     None
+}
+
+/// Interior (v5, v7) pairs two edges apart, each v5 that has no v7 neighbour with its
+/// first v7 two edges away.
+fn far_five_seven_pairs(map: &Map) -> Vec<(Vert, Vert)> {
+    let seven = |q: Vert| vertex_cost_kind(map, q) == Some(7);
+    map.vertices()
+        .filter(|&p| vertex_cost_kind(map, p) == Some(5))
+        .filter(|&p| !map.vertex_darts(p).any(|d| seven(map.dest(d))))
+        .filter_map(|p| {
+            map.vertex_darts(p)
+                .flat_map(|d| map.vertex_darts(map.dest(d)))
+                .map(|d| map.dest(d))
+                .find(|&q| seven(q))
+                .map(|q| (p, q))
+        })
+        .collect()
+}
+
+/// How many atomic 5-7 movements a far pair move's walk may take.
+const FAR_STEPS: usize = 8;
+
+/// The start of the far pair move (Sec. 7.1.1) of `(p, q)` that brings it nearest to
+/// `target` ([`lead`]), if one brings it strictly nearer: every start at the v5 `p` (its
+/// darts, the three generations, both readings), each applied and undone.
+fn best_far_move(
+    mesh: &mut Mesh,
+    p: Vert,
+    q: Vert,
+    target: Vert,
+    radius: usize,
+) -> Option<FarStart> {
+    let kind = vertex_cost_kind(&mesh.map, target);
+    let now = {
+        let dist = Near::from(&mesh.map, &[target], radius + 4);
+        lead(kind, dist.at(p), dist.at(q))
+    };
+    let darts: Vec<Dart> = mesh.map.vertex_darts(p).collect();
+    let mut best: Option<(usize, FarStart)> = None;
+    for d in darts {
+        for &start in Start::all(5) {
+            for moved in [Moved::First, Moved::Second] {
+                let map = &mut mesh.map;
+                let Ok(e) =
+                    move_far_pair_with(map, &mut mesh.positions, d, start, moved, q, FAR_STEPS)
+                else {
+                    continue;
+                };
+                let (np, nq) = e.record().pair();
+                // The walk can pass far from the pair: the distances are measured again, as
+                // far as matters (nearer than now).
+                let dist = Near::from(&mesh.map, &[target], now.saturating_sub(1));
+                let at = lead(kind, dist.at(np), dist.at(nq));
+                let _ = e.undo(mesh);
+                if at < now && best.is_none_or(|b| at < b.0) {
+                    best = Some((at, (d, start, moved)));
+                }
+            }
+        }
+    }
+    best.map(|b| b.1)
+}
+
+/// Each 5-7 pair two edges apart makes the far pair move (Sec. 7.1.1, the generation, the
+/// walk and the removal of [`move_far_pair_with`]) that brings it nearest to the closest
+/// other irregular vertex within `radius`, as [`move_pass`] does for adjacent pairs; undone
+/// when it folds a triangle or leaves `budget`.
+fn far_move_pass(
+    mesh: &mut Mesh,
+    radius: usize,
+    budget: &Budget,
+    touched: &mut Vec<Vert>,
+) -> usize {
+    let mut moved = 0;
+    for (p, q) in far_five_seven_pairs(&mesh.map) {
+        let map = &mesh.map;
+        let pair = vertex_cost_kind(map, p) == Some(5) && vertex_cost_kind(map, q) == Some(7);
+        if !map.is_live_vertex(p) || !map.is_live_vertex(q) || !pair {
+            continue;
+        }
+        let Some(target) = nearest_other(map, p, q, radius) else {
+            continue;
+        };
+        let Some((d, start, m)) = best_far_move(mesh, p, q, target, radius) else {
+            continue;
+        };
+        let reference = region_normal(mesh, &[p, q]);
+        let Ok(e) = move_far_pair_with(
+            &mut mesh.map,
+            &mut mesh.positions,
+            d,
+            start,
+            m,
+            q,
+            FAR_STEPS,
+        ) else {
+            continue;
+        };
+        let (np, nq) = e.record().pair();
+        let four = [p, q, np, nq];
+        if folds(mesh, &four, reference) || !budget.holds(&mesh.map) {
+            let _ = e.undo(mesh);
+            continue;
+        }
+        touched.extend(four);
+        moved += 1;
+    }
+    touched.retain(|&v| mesh.map.is_live_vertex(v));
+    moved
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+
+    fn irregular_valences(map: &Map) -> Vec<usize> {
+        let mut v: Vec<usize> = map
+            .vertices()
+            .filter_map(|v| vertex_cost_kind(map, v))
+            .filter(|&k| k != 6)
+            .collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// A far pair move keeps the pair's valences and every irregular valence, brings the
+    /// pair strictly nearer its target, keeps the map valid and undoes to `==`.
+    #[test]
+    fn a_far_pair_move_brings_the_pair_nearer_and_changes_nothing_else() {
+        let mut moved = 0;
+        for seed in 0..6 {
+            let mut mesh = gen::random_triangle(600, (seed % 3) as usize, 0, seed);
+            let greedy = TriOptimizeOptions {
+                lookahead: false,
+                ..TriOptimizeOptions::default()
+            };
+            optimize_triangles(&mut mesh, &greedy, |_| {}).unwrap();
+            for (p, q) in far_five_seven_pairs(&mesh.map) {
+                let map = &mesh.map;
+                assert_eq!((map.valence(p), map.valence(q)), (5, 7));
+                let Some(target) = nearest_other(map, p, q, 8) else {
+                    continue;
+                };
+                let Some((d, start, m)) = best_far_move(&mut mesh, p, q, target, 8) else {
+                    continue;
+                };
+                let (before, valences) = (mesh.clone(), irregular_valences(&mesh.map));
+                let kind = vertex_cost_kind(&mesh.map, target);
+                let near = Near::from(&mesh.map, &[target], 12);
+                let was = lead(kind, near.at(p), near.at(q));
+                let (map, pos) = (&mut mesh.map, &mut mesh.positions);
+                let e = move_far_pair_with(map, pos, d, start, m, q, FAR_STEPS).unwrap();
+                let (np, nq) = e.record().pair();
+                let map = &mesh.map;
+                assert_eq!(map.check(), Ok(()));
+                assert_eq!((map.valence(np), map.valence(nq)), (5, 7));
+                assert_eq!(irregular_valences(map), valences);
+                let near = Near::from(map, &[target], 12);
+                assert!(lead(kind, near.at(np), near.at(nq)) < was);
+                e.undo(&mut mesh).unwrap();
+                assert_eq!(mesh, before);
+                moved += 1;
+            }
+        }
+        assert!(moved > 10, "{moved}");
+    }
 }

@@ -99,7 +99,8 @@ fn tri_summary(c: &TriCounts) -> String {
     )
 }
 
-/// A pure triangle mesh: flips, triple cancellations and pair moves (`optimize_triangles`).
+/// A pure triangle mesh: flips, triple cancellations, pair moves and the look-ahead
+/// (`optimize_triangles`).
 /// The quad-only options (constraints, weights, paths) are refused rather than ignored.
 fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<ExitCode, InputError> {
     let quad_only = [
@@ -132,6 +133,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
             m.insert("cancellations".into(), json!(b.cancellations));
             m.insert("lookaheads".into(), json!(b.lookaheads));
             m.insert("pair_moves".into(), json!(b.pair_moves));
+            m.insert("far_pair_moves".into(), json!(b.far_pair_moves));
             m.insert("score".into(), json!(b.score));
         }
         rows.push(row);
