@@ -1,9 +1,9 @@
 //! The runs of docs/results.md: `cargo run --release --example optimize_results`.
 //! Each row: mesh, counts before and after, batches, Q-zips, seconds, face count change.
 //! `ZIPMESH_WEIGHTS=name=w,...` changes weights; `ZIPMESH_TRACE=1` prints each batch's stats;
-//! `ZIPMESH_CHAINS=0` turns the chain stage off.
+//! `ZIPMESH_CHAINS=0` turns the chain stage off, `ZIPMESH_FOLD_GUARD=0` the fold guard.
 use std::time::Instant;
-use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::optimize::{folded_quads, optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, io, Mesh};
 
 /// The options: 40 batches (or `ZIPMESH_BATCHES`), seed 0 (or `ZIPMESH_SEED`), with the weights of `ZIPMESH_WEIGHTS` (`name=w,name=w`) if set.
@@ -16,11 +16,13 @@ fn options() -> OptimizeOptions {
         .ok()
         .and_then(|b| b.parse().ok())
         .unwrap_or(0);
-    let chains = std::env::var("ZIPMESH_CHAINS").map_or(true, |c| c != "0");
+    let on = |name: &str| std::env::var(name).map_or(true, |c| c != "0");
     let mut o = OptimizeOptions::default()
         .batches(batches)
         .seed(seed)
-        .chains(chains);
+        .chains(on("ZIPMESH_CHAINS"))
+        .fold_guard(on("ZIPMESH_FOLD_GUARD"))
+        .smoothing(on("ZIPMESH_SMOOTH"));
     if let Ok(w) = std::env::var("ZIPMESH_WEIGHTS") {
         for pair in w.split(',').filter(|p| !p.is_empty()) {
             if let Some((n, x)) = pair.split_once('=') {
@@ -37,6 +39,7 @@ fn row(name: &str, mesh: Mesh) {
 
 fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constraints) {
     let before = SingularityCounts::of(&mesh);
+    let folds_before = folded_quads(&mesh);
     let c = constraints(&mesh);
     let check = c.clone();
     let t = Instant::now();
@@ -53,18 +56,19 @@ fn row_with(name: &str, mut mesh: Mesh, constraints: impl Fn(&Mesh) -> Constrain
     assert!(check.holds(&mesh), "{name}: a constraint broke");
     let secs = t.elapsed().as_secs_f64();
     let Ok(out) = out else {
-        println!("| {name} | refused | | | | | |");
+        println!("| {name} | refused | | | | | | |");
         return;
     };
     let a = out.final_counts;
     let q: usize = out.batches.iter().map(|b| b.qzips + b.chains.qzips).sum();
     let nb = out.batches.len().max(1);
     println!(
-        "| {name} | {}/{}/{}/{} ({}) bd {} | {}/{}/{}/{} ({}) bd {} | {} | {q} | {secs:.1} ({:.2}/batch) | {} -> {} ({:+.1} %) |",
+        "| {name} | {}/{}/{}/{} ({}) bd {} | {}/{}/{}/{} ({}) bd {} | {} | {q} | {secs:.1} ({:.2}/batch) | {} -> {} ({:+.1} %) | {folds_before} -> {} |",
         before.v2, before.v3, before.v5, before.v6plus, before.singularities(), before.boundary_defects,
         a.v2, a.v3, a.v5, a.v6plus, a.singularities(), a.boundary_defects, out.batches.len(), secs / nb as f64,
         before.faces, a.faces,
-        100.0 * (a.faces as f64 - before.faces as f64) / before.faces.max(1) as f64
+        100.0 * (a.faces as f64 - before.faces as f64) / before.faces.max(1) as f64,
+        folded_quads(&mesh)
     );
 }
 
@@ -111,8 +115,8 @@ fn inputs() -> Vec<Input> {
 /// `constraints`, or `all`): those rows.
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    println!("| mesh | before v2/v3/v5/v6+ (total) boundary defects | after | batches | Q-zips | seconds (per batch) | faces |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| mesh | before v2/v3/v5/v6+ (total) boundary defects | after | batches | Q-zips | seconds (per batch) | faces | folded quads |");
+    println!("|---|---|---|---|---|---|---|---|");
     for (short, label, make) in inputs() {
         let wanted = if args.is_empty() {
             short != "spottri"
@@ -122,7 +126,7 @@ fn main() {
         if wanted {
             match make() {
                 Some(m) => row(&label, m),
-                None => println!("| {label} | unreadable | | | | | |"),
+                None => println!("| {label} | unreadable | | | | | | |"),
             }
         }
     }

@@ -144,6 +144,10 @@ fn bad_input_exits_2_without_out() {
         // All triangles is accepted, but the quad-only options are refused, not ignored.
         vec![s(&tri).into(), "--protect".into(), s(&bad_faces).into()],
         vec![s(&tri).into(), "--weight".into(), "count=1".into()],
+        vec![s(&tri).into(), "--fold-guard".into()],
+        vec![s(&tri).into(), "--no-chains".into()],
+        // And the triangle-only option on a quad mesh.
+        vec![s(&inp).into(), "--no-lookahead".into()],
         vec![s(&inp).into(), "--protect".into(), s(&bad_faces).into()],
         vec![s(&inp).into(), "--features".into(), s(&bad_edges).into()],
         vec![s(&inp).into(), "--sharp-angle".into(), "400".into()],

@@ -12,7 +12,7 @@ use common::cages;
 use glam::DVec3;
 use proptest::prelude::*;
 use zipmesh::invariants::{gauss_bonnet, Counts, MeshKind};
-use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::optimize::{folded_quads, optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, Face, Mesh, Vert};
 
 /// A quad mesh with many singularities: one Catmull-Clark step of a random triangle mesh.
@@ -81,6 +81,23 @@ proptest! {
             prop_assert!(b.score <= last, "batch {} raised the score {} -> {}", b.batch, last, b.score);
             last = b.score;
         }
+        prop_assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
+    }
+
+    /// With the fold guard and no preprocessing (whose splits are not guarded), a run never
+    /// leaves more folded quads than it started with, and still keeps the topology.
+    #[test]
+    fn the_fold_guard_never_adds_a_folded_quad(
+        faces in 40usize..160, genus in 0usize..3, holes in 0usize..2, seed in any::<u64>(),
+    ) {
+        let mut mesh = subdivided(faces, genus, holes, seed);
+        let (before, folds) = (Counts::of(&mesh.map), folded_quads(&mesh));
+        let mut o = OptimizeOptions::default().batches(6).seed(seed).fold_guard(true);
+        o.preprocess = false;
+        let out = optimize(&mut mesh, Constraints::default(), o, |_| {}).unwrap();
+        mesh.map.check().unwrap();
+        prop_assert!(folded_quads(&mesh) <= folds, "{} -> {}", folds, folded_quads(&mesh));
+        prop_assert_eq!(Counts::of(&mesh.map).euler_characteristic, before.euler_characteristic);
         prop_assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
     }
 

@@ -5,7 +5,9 @@
 //! library must never panic; the oracle: a valid pure-quad map with the input's Euler
 //! characteristic, boundary loops and components, a score that never rises, counts that
 //! match a recount, batch and chain stats whose face changes are the batch's, a chain stage
-//! only after a batch that executed nothing, and the constraints holding.
+//! only after a batch that executed nothing, and the constraints holding; with the fold
+//! guard (on for some inputs, with the preprocessing off), no more folded quads than the
+//! input had.
 //!
 //! The meshes are small on purpose: on the random meshes of hundreds of faces used before,
 //! one input took tens of milliseconds (12 exec/s); see `docs/fuzzing.md`.
@@ -14,7 +16,7 @@
 use libfuzzer_sys::fuzz_target;
 use zipmesh::invariants::Counts;
 use zipmesh::ops::quad;
-use zipmesh::optimize::{optimize, Constraints, OptimizeOptions, SingularityCounts};
+use zipmesh::optimize::{folded_quads, optimize, Constraints, OptimizeOptions, SingularityCounts};
 use zipmesh::{gen, Dart, Face, Mesh};
 
 /// The mesh bytes 0 to 4 ask for: a small cube, torus or grid with up to two vertex splits
@@ -79,7 +81,21 @@ fuzz_target!(|data: &[u8]| {
     // these meshes span), and smoothing takes one step: the batch's work stays small.
     options.search_radius = 1 + u32::from(byte(18) % 4);
     options.smooth_iterations = 1;
+    // With the fold guard (and no preprocessing, whose splits it does not guard) the
+    // folded quads never grow in number.
+    let guard = byte(19) & 4 != 0;
+    if guard {
+        options = options.fold_guard(true);
+        options.preprocess = false;
+    }
+    let folds = folded_quads(&mesh);
     let out = optimize(&mut mesh, c, options, |_| {}).expect("a quad mesh is accepted");
+    if guard {
+        assert!(
+            folded_quads(&mesh) <= folds,
+            "the fold guard let a fold through"
+        );
+    }
     mesh.map.check().expect("a valid map");
     let after = Counts::of(&mesh.map);
     assert_eq!(

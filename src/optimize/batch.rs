@@ -36,6 +36,11 @@ const MIN_PART: usize = 8;
 /// Laplacian steps on a candidate's scar before it is scored.
 pub(super) const RELAX_STEPS: usize = 2;
 
+/// How far (edges) round a Q-zip's path the fold guard counts folded quads: the scar's
+/// corners are at most one edge from the path, so every quad a Q-zip changes has a corner
+/// within this ball or among the vertices it made.
+const FOLD_REACH: u32 = 2;
+
 /// The four initial operations, in compass order.
 pub(super) const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
 
@@ -68,6 +73,7 @@ pub(crate) struct Batcher<'q> {
     pub(crate) bfs: Bfs,
     pub(crate) search_radius: u32,
     pub(crate) eps: f64,
+    pub(crate) fold_guard: bool,
 }
 
 impl<'q> Batcher<'q> {
@@ -125,6 +131,21 @@ impl<'q> Batcher<'q> {
             true
         });
         out
+    }
+
+    /// With the fold guard on, the vertices within [`FOLD_REACH`] edges of `verts`: where a
+    /// Q-zip along them can fold a quad.
+    fn fold_ball(&mut self, mesh: &Mesh, verts: &[Vert]) -> Option<Vec<Vert>> {
+        if !self.fold_guard {
+            return None;
+        }
+        let mut ball = Vec::new();
+        self.bfs
+            .run_from(mesh, verts.iter().copied(), FOLD_REACH, |v, _| {
+                ball.push(v);
+                true
+            });
+        Some(ball)
     }
 
     /// The three closest v3-like and the three closest v5-like singularities of `s`.
@@ -326,6 +347,7 @@ impl<'q> Batcher<'q> {
             bfs: Bfs::default(),
             search_radius: self.search_radius,
             eps: self.eps,
+            fold_guard: self.fold_guard,
         })
     }
 
@@ -401,12 +423,25 @@ impl<'q> Batcher<'q> {
                     .unwrap_or(DVec3::ZERO)
             })
             .collect();
+        let ball = self.fold_ball(mesh, path.vertices());
+        let folds = ball.as_ref().map(|b| super::folds::folded_near(mesh, b));
         let Some(z) = self.apply(mesh, &path, c.tag) else {
             return;
         };
         let saved = self.relax(mesh, z.record());
         let after = self.scorer.score(mesh).0;
-        if after >= *total - self.eps || !self.constraints.holds(mesh) {
+        let region = touched_region(mesh, &path, z.record());
+        // The same vertices as before, less the dead, plus what the Q-zip made and moved:
+        // every quad whose corners changed is counted both times.
+        let folded = match (folds, ball) {
+            (Some(n), Some(mut b)) => {
+                b.retain(|&v| mesh.map.is_live_vertex(v));
+                b.extend(&region);
+                super::folds::folded_near(mesh, &b) > n
+            }
+            _ => false,
+        };
+        if after >= *total - self.eps || !self.constraints.holds(mesh) || folded {
             for (v, p) in saved.into_iter().rev() {
                 mesh.positions[v.index()] = p;
             }
@@ -417,7 +452,6 @@ impl<'q> Batcher<'q> {
         *total = after;
         out.qzips += 1;
         out.paths.push(points);
-        let region = touched_region(mesh, &path, z.record());
         operated.resize(mesh.map.vertex_slots(), false);
         for &v in &region {
             operated[v.index()] = true;
@@ -496,6 +530,7 @@ mod tests {
             bfs: Bfs::default(),
             search_radius: 64,
             eps: 1e-9,
+            fold_guard: false,
         };
         b.refresh_constraints(&mesh);
         let sing = singularities(&mesh);

@@ -118,13 +118,16 @@ impl Batcher<'_> {
                 continue;
             };
             out.tried += 1;
+            // A chain walks far: the guard counts the folds of the whole mesh (a few chains
+            // per stage).
+            let folds = self.fold_guard.then(|| super::folds::folded_quads(mesh));
             // A Q-zip from a to b is not one from b to a: if one way stalls, try the other.
             let walked = self
                 .walk(mesh, p.a, p.b, dist)
                 .or_else(|| self.walk(mesh, p.b, p.a, dist));
             if let Some(steps) = walked {
                 out.cancelled += 1;
-                self.keep_or_undo(mesh, steps, total, &mut out);
+                self.keep_or_undo(mesh, steps, total, folds, &mut out);
             }
         }
         out
@@ -255,13 +258,15 @@ impl Batcher<'_> {
         best
     }
 
-    /// Relaxes the chain's scar and keeps the chain if the whole score falls and the
-    /// constraints hold; else restores the positions and undoes the steps.
+    /// Relaxes the chain's scar and keeps the chain if the whole score falls, the
+    /// constraints hold and the mesh has no more folded quads than `folds` (when given);
+    /// else restores the positions and undoes the steps.
     fn keep_or_undo(
         &mut self,
         mesh: &mut Mesh,
         steps: Vec<Step>,
         total: &mut f64,
+        folds: Option<usize>,
         out: &mut ChainRun,
     ) {
         let mut region: Vec<Vert> = steps
@@ -273,7 +278,8 @@ impl Batcher<'_> {
         region.dedup();
         let saved = super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS);
         let after = self.scorer.score(mesh).0;
-        if after < *total - self.eps && self.constraints.holds(mesh) {
+        let folded = folds.is_some_and(|n| super::folds::folded_quads(mesh) > n);
+        if after < *total - self.eps && self.constraints.holds(mesh) && !folded {
             *total = after;
             out.kept += 1;
             out.qzips += steps.len();

@@ -49,6 +49,10 @@ pub struct OptimizeArgs {
     /// No chains of Q-zips walking v3/v5 pairs together after an idle batch (quad meshes).
     #[arg(long)]
     no_chains: bool,
+    /// Keep no Q-zip, chain or smoothing that adds a folded quad (quad meshes; fewer
+    /// singularities go).
+    #[arg(long)]
+    fold_guard: bool,
     /// No look-ahead (pairs of edits round each irregular vertex) when the greedy passes stall
     /// (triangle meshes).
     #[arg(long)]
@@ -110,6 +114,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         ("--paths", args.paths),
         ("--weight", !args.weights.is_empty()),
         ("--no-chains", args.no_chains),
+        ("--fold-guard", args.fold_guard),
     ];
     if let Some((flag, _)) = quad_only.iter().find(|(_, set)| *set) {
         return Err(InputError(format!(
@@ -300,7 +305,8 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         .batches(args.batches)
         .seed(args.seed)
         .smoothing(!args.no_smooth)
-        .chains(!args.no_chains);
+        .chains(!args.no_chains)
+        .fold_guard(args.fold_guard);
     for (name, w) in &args.weights {
         options = options.weight(name, *w);
     }

@@ -1,0 +1,65 @@
+//! Folded quads: where the geometry of a quad mesh turns over. The optimizer's Q-zips make
+//! new vertices and move old ones; where the surface curves strongly, a new quad can come
+//! out folded (docs/results.md, "Pictures"). No score term sees it, so the batches guard
+//! against it ([`super::OptimizeOptions::fold_guard`]).
+
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use crate::map::Face;
+use crate::{Mesh, Vert};
+
+/// Whether face `f` is folded: a quad whose two triangles, for either diagonal, have
+/// normals pointing apart (a negative dot product); a face of another degree is never
+/// folded. Corners without a position read as the origin.
+///
+/// ```
+/// use glam::DVec3;
+/// use zipmesh::{optimize::is_folded, Map, Mesh};
+/// let map = Map::from_polygons(4, &[[0u32, 1, 2, 3]]).unwrap();
+/// let flat = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+/// let f = map.faces().next().unwrap();
+/// assert!(!is_folded(&Mesh { map: map.clone(), positions: flat }, f));
+/// // The third corner pulled across the first diagonal: a bow tie.
+/// let bow = vec![DVec3::ZERO, DVec3::X, DVec3::new(-1.0, -1.0, 0.0), DVec3::Y];
+/// assert!(is_folded(&Mesh { map, positions: bow }, f));
+/// ```
+pub fn is_folded(mesh: &Mesh, f: Face) -> bool {
+    let map = &mesh.map;
+    if !map.is_live_face(f) || map.degree(f) != 4 {
+        return false;
+    }
+    let p = |v: Vert| {
+        mesh.positions
+            .get(v.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    };
+    let c: Vec<DVec3> = map.face_darts(f).map(|d| p(map.origin(d))).collect();
+    let n = |a: usize, b: usize, d: usize| (c[b] - c[a]).cross(c[d] - c[a]);
+    n(0, 1, 2).dot(n(0, 2, 3)) < 0.0 || n(1, 2, 3).dot(n(1, 3, 0)) < 0.0
+}
+
+/// The folded quads of `mesh` ([`is_folded`]).
+///
+/// ```
+/// use zipmesh::{gen, optimize::folded_quads};
+/// assert_eq!(folded_quads(&gen::torus_grid(6, 6)), 0);
+/// ```
+pub fn folded_quads(mesh: &Mesh) -> usize {
+    mesh.map.faces().filter(|&f| is_folded(mesh, f)).count()
+}
+
+/// The folded quads with a corner among `verts` (each counted once).
+pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert]) -> usize {
+    let map = &mesh.map;
+    let mut faces: Vec<Face> = verts
+        .iter()
+        .filter(|&&v| map.is_live_vertex(v))
+        .flat_map(|&v| map.vertex_darts(v).filter_map(|d| map.face(d)))
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    faces.into_iter().filter(|&f| is_folded(mesh, f)).count()
+}
