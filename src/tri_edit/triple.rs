@@ -517,10 +517,15 @@ fn walk_and_cancel<A: VertexAttributes>(
                 return Err(TriEditError::Irregular);
             }
             // The direction whose lead vertex ends one edge closer to w.
-            let step = super::Direction::ALL.into_iter().find_map(|dir| {
-                let (np, nq) = next_pair(map, p, q, dir)?;
-                (distance(map, lead(np, nq), w) < left).then_some(dir)
-            });
+            let mut step = None;
+            for dir in super::Direction::ALL {
+                if let Some((np, nq)) = next_pair(map, p, q, dir) {
+                    if distance(map, lead(np, nq), w) < left {
+                        step = Some(dir);
+                        break;
+                    }
+                }
+            }
             let dir = step.ok_or(TriEditError::Irregular)?;
             let e = super::move_pair_with(map, attrs, p, q, dir)?;
             let (m, j) = e.into_parts();
@@ -548,13 +553,15 @@ fn cancel_step<A: VertexAttributes>(
     Ok(t)
 }
 
-/// Where a 5-7 move in `dir` would leave the pair, if it applies (read without moving).
-fn next_pair(map: &Map, p: Vert, q: Vert, dir: super::Direction) -> Option<(Vert, Vert)> {
-    super::can_move_pair(map, p, q, dir).ok()?;
-    let mut probe = map.clone();
-    let m = super::move_pair(&mut probe, p, q, dir).ok()?;
-    // A split creates no vertex of the pair (q stays), so the handles are `map`'s.
-    Some((m.p(), m.q()))
+/// Where a 5-7 move in `dir` would leave the pair, if it applies: the move is made and
+/// undone (a copy of the map per probe made long walks quadratic in the map's size).
+fn next_pair(map: &mut Map, p: Vert, q: Vert, dir: super::Direction) -> Option<(Vert, Vert)> {
+    let m = super::move_pair(map, p, q, dir).ok()?;
+    // A split creates no vertex of the pair (q stays), so the handles are the map's before.
+    let pair = (m.p(), m.q());
+    // The exact undo of a move just made is not refused.
+    let _ = m.undo(map);
+    Some(pair)
 }
 
 /// Record of a [`cancel_triple_along`]: the pair's moves, then the cancellation.
