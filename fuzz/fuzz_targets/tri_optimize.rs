@@ -6,7 +6,7 @@
 //! (`campaign::check_optimize_triangles`): a valid all-triangle map with the input's
 //! Euler characteristic, boundary loops, components and boundary valences, an irregular
 //! count that never rises (nor the score while it stays), the face count within the drift,
-//! counts that match. The look-ahead is on or off by the fuzzer's choice.
+//! counts that match. The look-ahead is on for one input in four.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -41,7 +41,8 @@ fuzz_target!(|data: &[u8]| {
         max_batches: 1 + usize::from(byte(5) % 3),
         search_radius: 1 + usize::from(byte(6) % 8),
         relax: byte(7) % 2 == 0,
-        lookahead: byte(7) & 2 == 0,
+        // One input in four: a look-ahead pass costs about 1 ms per irregular vertex here.
+        lookahead: byte(7) & 6 == 0,
         face_drift: f64::from(byte(8) % 16) / 100.0,
     };
     let outcome = check_optimize_triangles(&mesh, &options);

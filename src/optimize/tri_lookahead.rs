@@ -380,7 +380,7 @@ mod tests {
                 assert_eq!(map, before);
             }
         }
-        // Pairs occur on these meshes (569 of 569 found with their seeds 0..6).
+        std::eprintln!("{found:?} single edits and pairs checked");
         assert!(found[1] > 100, "{found:?}");
     }
 }

@@ -702,8 +702,8 @@ fn nearest_other(map: &Map, p: Vert, q: Vert, radius: usize) -> Option<Vert> {
     None
 }
 
-/// How far apart (edges) the v5 and v7 of a far pair may be: 3 left 43 irregular vertices
-/// on the disk and 168 on Spot, where 2 left 49 and 183 (docs/optimize.md).
+/// How far apart (edges) the v5 and v7 of a far pair may be: 3 leaves 43 irregular vertices
+/// on the disk and 164 on Spot, where 2 left 49 and 183 (docs/optimize.md).
 const FAR_PAIR: usize = 3;
 
 /// Interior (v5, v7) pairs 2 to [`FAR_PAIR`] edges apart: each v5 that has no v7
