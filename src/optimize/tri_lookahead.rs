@@ -1,6 +1,7 @@
 //! The triangle optimizer's two-edit look-ahead ([`super::optimize_triangles`]): around an
 //! interior irregular vertex, every atomic edit (edge flip, edge collapse, vertex split) and
-//! every pair of them, the second next to what the first changed, is scored by the valence
+//! every pair of them that can do better than one edit (the first adds no irregular vertex,
+//! the second changes a vertex the first changed and an irregular one), is scored by the valence
 //! changes the operators' documented effects give ([`TriOp::effect`]); the pair (or single
 //! edit) that leaves the fewest irregular vertices, then the least spread, is made if it
 //! leaves fewer than before. It reaches what the greedy passes cannot: a flip that gains
