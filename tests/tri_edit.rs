@@ -38,6 +38,13 @@ fn vert(i: usize) -> Vert {
     Vert::new(i as u32)
 }
 
+/// The third corner of `d`'s face when it is a triangle.
+fn tri_apex(map: &Map, d: zipmesh::Dart) -> Option<Vert> {
+    map.face(d)?;
+    let n = map.next(d);
+    (map.next(map.next(n)) == d).then(|| map.dest(n))
+}
+
 fn irregular(map: &Map) -> Vec<(usize, bool)> {
     irregular_valences(map, MeshKind::Triangle)
 }
@@ -380,14 +387,45 @@ fn check_type_split(map: &Map, v: Vert, back: bool) -> bool {
     true
 }
 
+/// The vk `v` split into k - 6 v7 and those gathered back by [`aggregate_type`]: one vk,
+/// the irregular multiset as before, `check()`, exact undo. Returns whether the result is
+/// isomorphic to `map`.
+fn split_and_gather(map: &Map, v: Vert) -> bool {
+    let k = map.valence(v);
+    let mut m = map.clone();
+    let s = split_type(&mut m, v).unwrap();
+    let mut a = m.clone();
+    assert_eq!(can_aggregate_type(&a, s.vertices()), Ok(()));
+    let g = aggregate_type(&mut a, s.vertices()).unwrap();
+    a.check().unwrap();
+    assert_eq!(
+        g.vertices()
+            .iter()
+            .map(|&x| a.valence(x))
+            .collect::<Vec<_>>(),
+        [k]
+    );
+    assert_eq!(irregular(&a), irregular(map));
+    g.undo(&mut a).unwrap();
+    assert_eq!(a, m);
+    let mut again = m.clone();
+    aggregate_type(&mut again, s.vertices()).unwrap();
+    is_isomorphic(&again, map)
+}
+
 #[test]
 fn type_splitting_and_aggregation() {
+    let mut same = 0;
     for k in 8..=13 {
         let map = subdivided_bipyramid(k, 2);
         assert!(check_type_split(&map, vert(0), false), "v{k}");
+        same += usize::from(split_and_gather(&map, vert(0)));
         // The ring's v4s split into two v5 and aggregate back.
         assert!(check_type_split(&map, vert(2), true));
     }
+    // Gathering is a search: it may put the vk elsewhere than the split took it from.
+    println!("{same} of 6 apexes gathered back to an isomorphic map");
+    assert!(same >= 4, "{same}");
     let tet = subdivided_tetrahedron(2);
     for v in 0..4 {
         assert!(check_type_split(&tet, vert(v), true));
@@ -414,9 +452,12 @@ fn type_splits_on_random_meshes() {
         for v in map.vertices().collect::<Vec<_>>() {
             applied += usize::from(check_type_split(&map, v, false));
         }
-        // Aggregation refusals leave the map: random pairs and triples of v5.
-        let v5: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
-        for w in v5.windows(3).take(40) {
+        // Aggregation refusals leave the map: random pairs and triples of v5 and of v7.
+        let of =
+            |k: usize| -> Vec<Vert> { map.vertices().filter(|&v| map.valence(v) == k).collect() };
+        let (v5, v7) = (of(5), of(7));
+        let windows = v5.windows(3).take(40).chain(v7.windows(3).take(40));
+        for w in windows {
             for args in [&w[..2], w] {
                 let mut m = map.clone();
                 let can = can_aggregate_type(&m, args);
@@ -432,6 +473,50 @@ fn type_splits_on_random_meshes() {
         }
     }
     println!("{applied} type splits applied");
+}
+
+/// Two v7 that are the apexes of an edge with regular interior ends gather into a v8 (or
+/// the collapse is refused), on random meshes and on the v8 splits of bipyramids.
+#[test]
+fn two_v7_across_an_edge_gather() {
+    let (mut gathered, mut refused) = (0, 0);
+    let mut meshes: Vec<Map> = (0..6)
+        .map(|s| gen::random_triangle(500, 1, 0, s).map)
+        .collect();
+    for n in [8, 9, 10] {
+        let mut m = subdivided_bipyramid(n, 2);
+        split_type(&mut m, vert(0)).unwrap();
+        meshes.push(m);
+    }
+    for map in meshes {
+        for d in map.darts() {
+            let (Some(a), Some(b)) = (tri_apex(&map, d), tri_apex(&map, d.twin())) else {
+                continue;
+            };
+            let ends_regular = [map.origin(d), map.dest(d)]
+                .iter()
+                .all(|&v| map.valence(v) == 6 && !map.is_boundary_vertex(v));
+            let interior7 = |v: Vert| map.valence(v) == 7 && !map.is_boundary_vertex(v);
+            if !(ends_regular && interior7(a) && interior7(b) && a < b && d < d.twin()) {
+                continue;
+            }
+            let mut m = map.clone();
+            match aggregate_type(&mut m, &[a, b]) {
+                Ok(g) => {
+                    gathered += 1;
+                    assert_eq!(m.valence(g.vertices()[0]), 8);
+                    assert_eq!(irregular(&m).len() + 1, irregular(&map).len());
+                }
+                Err(e) => {
+                    refused += 1;
+                    assert_eq!(m, map);
+                    assert!(tri::can_collapse_edge(&map, d).is_err(), "{e:?}");
+                }
+            }
+        }
+    }
+    println!("{gathered} pairs of v7 gathered, {refused} refused by the collapse");
+    assert!(gathered >= 10, "{gathered}");
 }
 
 #[test]

@@ -64,6 +64,7 @@ use crate::ops::Refusal;
 use core::fmt;
 
 mod composite;
+mod gather;
 mod generate;
 mod pair;
 mod quadruple;

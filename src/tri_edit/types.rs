@@ -1,5 +1,6 @@
 //! Type splitting and aggregation (Sec. 6.3): a vk (k > 7) into k - 6 v7, a v4 into two
-//! v5, a v3 into three v5, and two or three v5 back into a v4 or a v3.
+//! v5, a v3 into three v5, and back: two or three v5 into a v4 or a v3, m v7 into a
+//! v(6 + m).
 //!
 //! The sequences (valences by Sec. 6.1's rules, the neighbours regular):
 //! * vk, k > 7: split it along two darts to regular neighbours with `s` darts inside the
@@ -12,6 +13,8 @@
 //!   between them: split `a`, the new vertex taking that dart (valence 1 + 3 = 4), `a` keeps
 //!   3 + 3 = 6, `b`, `c` gain one. Three v5 around a triangle: split one of them with an
 //!   empty moved arc between the other two (a new v3 inside the triangle).
+//! * Aggregation of m v7: collapses whose apexes are two of the v7 gather them into one
+//!   vertex (`gather`).
 
 use super::record::{map_only, turn};
 use super::{interior_of_valence, regular, TriEditError};
@@ -216,10 +219,11 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
     seen
 }
 
-/// Aggregates two v5 into a v4 or three v5 into a v3 (see the module documentation), or
-/// refuses with the map unchanged ([`TriEditError::NotAPair`] when the vertices are not
-/// two v5 with a regular common neighbour one dart apart, or three v5 around a triangle).
-/// [`TypeEdit::vertices`] is the new vertex.
+/// Aggregates two v5 into a v4, three v5 into a v3, or m >= 2 v7 into one v(6 + m) (see
+/// the module documentation), or refuses with the map unchanged
+/// ([`TriEditError::NotAPair`] when the vertices are not two v5 with a regular common
+/// neighbour one dart apart, three v5 around a triangle, or v7 that collapses can gather,
+/// each with two of the v7 as apexes). [`TypeEdit::vertices`] is the new vertex.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
@@ -231,13 +235,20 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// let a = aggregate_type(&mut map, s.vertices()).unwrap(); // and back
 /// assert_eq!(map.valence(a.vertices()[0]), 4);
 /// assert!(is_isomorphic(&map, &before));
+/// // A v11 into five v7 and back: the five gathered by collapses.
+/// let mut map = subdivided_bipyramid(11, 2);
+/// let before = map.clone();
+/// let s = split_type(&mut map, Vert::new(0)).unwrap();
+/// let a = aggregate_type(&mut map, s.vertices()).unwrap();
+/// assert_eq!(map.valence(a.vertices()[0]), 11);
+/// assert!(is_isomorphic(&map, &before));
 /// ```
-pub fn aggregate_type(map: &mut Map, v5s: &[Vert]) -> Result<TypeEdit, TriEditError> {
-    map_only(|none| aggregate_type_with(map, none, v5s))
+pub fn aggregate_type(map: &mut Map, vs: &[Vert]) -> Result<TypeEdit, TriEditError> {
+    map_only(|none| aggregate_type_with(map, none, vs))
 }
 
-/// [`aggregate_type`] on a map and its per-vertex data (the new vertex placed inside its
-/// fan, see [`TriOp::apply_with`]).
+/// [`aggregate_type`] on a map and its per-vertex data (a new vertex placed inside its
+/// fan, a gathered one where collapses put it, see [`TriOp::apply_with`]).
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
@@ -255,33 +266,40 @@ pub fn aggregate_type(map: &mut Map, v5s: &[Vert]) -> Result<TypeEdit, TriEditEr
 pub fn aggregate_type_with<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
-    v5s: &[Vert],
+    vs: &[Vert],
 ) -> Result<Edited<TypeEdit, A>, TriEditError> {
-    let op = aggregation_op(map, v5s)?;
-    let mut once = Some(op);
-    let ((steps, _), journal) = run_with(map, attrs, |_, _| Ok(once.take()))?;
-    let created = match steps.first() {
-        Some(TriRecord::SplitVertex(s)) => alloc::vec![s.created()],
+    let (ops, gathered) = aggregation_plan(map, vs)?;
+    let mut ops = ops.into_iter();
+    let ((steps, _), journal) = run_with(map, attrs, |_, _| Ok(ops.next()))?;
+    let vertices = match (gathered, steps.first()) {
+        (Some(g), _) => alloc::vec![g],
+        (None, Some(TriRecord::SplitVertex(s))) => alloc::vec![s.created()],
         _ => Vec::new(),
     };
-    let edit = TypeEdit {
-        vertices: created,
-        steps,
-    };
-    Ok(Edited::new(edit, journal))
+    Ok(Edited::new(TypeEdit { vertices, steps }, journal))
 }
 
-/// Checks whether [`aggregate_type`] applies, without changing anything.
+/// Checks whether [`aggregate_type`] applies, without changing anything. Gathering v7
+/// searches on a copy of the map (O(map) time and memory); the v5 cases are a pure check.
 ///
 /// See [`aggregate_type`] for an example.
-pub fn can_aggregate_type(map: &Map, v5s: &[Vert]) -> Result<(), TriEditError> {
-    aggregation_op(map, v5s).map(|_| ())
+pub fn can_aggregate_type(map: &Map, vs: &[Vert]) -> Result<(), TriEditError> {
+    aggregation_plan(map, vs).map(|_| ())
+}
+
+/// The operations of an aggregation, and the vertex that gathers the v7 (`None` for v5,
+/// where the new vertex is the split's).
+fn aggregation_plan(map: &Map, vs: &[Vert]) -> Result<(Vec<TriOp>, Option<Vert>), TriEditError> {
+    if !vs.iter().all(|&v| map.is_live_vertex(v)) {
+        return Err(TriEditError::DeadHandle);
+    }
+    if vs.len() >= 2 && vs.iter().all(|&v| interior_of_valence(map, v, 7)) {
+        return super::gather::gather_v7(map, vs).map(|(ops, g)| (ops, Some(g)));
+    }
+    aggregation_op(map, vs).map(|op| (alloc::vec![op], None))
 }
 
 fn aggregation_op(map: &Map, v5s: &[Vert]) -> Result<TriOp, TriEditError> {
-    if !v5s.iter().all(|&v| map.is_live_vertex(v)) {
-        return Err(TriEditError::DeadHandle);
-    }
     if !v5s.iter().all(|&v| interior_of_valence(map, v, 5)) {
         return Err(TriEditError::NotAPair);
     }
