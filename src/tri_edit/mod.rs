@@ -63,6 +63,7 @@ use crate::map::{Dart, Map, Vert};
 use crate::ops::Refusal;
 use core::fmt;
 
+mod apart;
 mod composite;
 mod gather;
 mod generate;
@@ -73,6 +74,10 @@ pub mod relax;
 mod triple;
 mod types;
 
+pub use apart::{
+    can_generate_quadruple_apart, generate_quadruple_apart, generate_quadruple_apart_with,
+    quadruple_sides,
+};
 pub use composite::{
     can_move_far_pair, far_pair_directions, move_far_pair, move_far_pair_with, FarPairMove,
     FarStart, Start,

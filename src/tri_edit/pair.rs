@@ -100,7 +100,12 @@ fn far(map: &Map, d: Dart) -> Result<Vert, TriEditError> {
 
 /// The graph operation of the move and the pair it leaves `(p', q')`, checking that the
 /// vertices that become the new pair are regular now.
-fn plan(map: &Map, p: Vert, q: Vert, dir: Direction) -> Result<(TriOp, Vert, Vert), TriEditError> {
+pub(super) fn plan(
+    map: &Map,
+    p: Vert,
+    q: Vert,
+    dir: Direction,
+) -> Result<(TriOp, Vert, Vert), TriEditError> {
     let d = pair_dart(map, p, q)?;
     let t = d.twin();
     let bad = TriEditError::Refused(Refusal::WrongDegree);

@@ -45,7 +45,11 @@ impl Quadruple {
 }
 
 /// The first operation, and the vertices it needs regular besides `v`.
-fn first(map: &Map, d: Dart, how: Quadruple) -> Result<(TriOp, Vec<Vert>), TriEditError> {
+pub(super) fn first(
+    map: &Map,
+    d: Dart,
+    how: Quadruple,
+) -> Result<(TriOp, Vec<Vert>), TriEditError> {
     let bad = TriEditError::Refused(Refusal::WrongDegree);
     let b = apex(map, d).ok_or(bad)?;
     let e = apex(map, d.twin()).ok_or(bad)?;
@@ -85,7 +89,7 @@ pub fn can_generate_quadruple(map: &Map, d: Dart, how: Quadruple) -> Result<(), 
     }
 }
 
-fn check_start(map: &Map, d: Dart) -> Result<(), TriEditError> {
+pub(super) fn check_start(map: &Map, d: Dart) -> Result<(), TriEditError> {
     if !map.is_live_dart(d) {
         return Err(TriEditError::DeadHandle);
     }
@@ -267,6 +271,10 @@ pub struct QuadrupleEdit {
 }
 
 impl QuadrupleEdit {
+    pub(super) fn new(vertices: Vec<Vert>, steps: Vec<TriRecord>) -> QuadrupleEdit {
+        QuadrupleEdit { vertices, steps }
+    }
+
     /// The irregular vertices the edit left among those it touched (the four after a
     /// generation; none after a removal in a regular neighbourhood).
     ///
