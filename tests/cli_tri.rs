@@ -233,6 +233,11 @@ fn tri_commands_refuse_bad_input() {
         format!("tri-cancel {f}"),
         format!("tri-generate {f} --at {q} --config collapse"),
         format!("tri-generate {f} --at 0 --config collapse"),
+        // Pairs apart: not from a v5, not the chain, not without a direction, not too far.
+        format!("tri-generate {f} --at {p} --apart 2 --direction 0"),
+        format!("tri-generate {f} --at 0 --config collapse-flip --apart 2 --direction 0"),
+        format!("tri-generate {f} --at 0 --apart 2"),
+        format!("tri-generate {f} --at 0 --apart 4000000000 --direction 0"),
     ]
     .iter()
     .map(|c| c.split_whitespace().map(String::from).collect())
@@ -320,8 +325,8 @@ fn tri_generate_and_cancel() {
     }
 }
 
-/// `tri-type`: a v9 apex splits into three v7 (no undo), a ring v4 into two v5 whose
-/// printed aggregation gives back a mesh isomorphic to the input.
+/// `tri-type`: a v9 apex splits into three v7, a ring v4 into two v5; the printed
+/// aggregation of each gives back a mesh isomorphic to the input.
 #[test]
 fn tri_type_split_and_aggregate() {
     let dir = temp_dir("tri-type");
@@ -338,8 +343,15 @@ fn tri_type_split_and_aggregate() {
         .map(|&x| split.map.valence(Vert::new(x)))
         .collect();
     assert_eq!(sevens, [7, 7, 7]);
-    assert!(v["undo"].is_null());
     assert!(positions_lost(&input, &split) <= 3);
+    // The printed undo gathers the three v7 back into the v9.
+    let sevens = numbers(&v["undo"]["aggregate"]);
+    assert_eq!(sevens, numbers(&v["vertices"]));
+    let back = dir.join("v9-back.obj");
+    let a = report(&["tri-type", s(&out), "--aggregate", &join(&sevens)], &back);
+    let agg = read(&back);
+    assert_eq!(agg.map.valence(Vert::new(numbers(&a["vertices"])[0])), 9);
+    assert!(is_isomorphic(&agg.map, &input.map));
 
     let v4 = (0..input.map.vertex_slots() as u32)
         .find(|&v| input.map.valence(Vert::new(v)) == 4)
@@ -355,6 +367,78 @@ fn tri_type_split_and_aggregate() {
     let agg = read(&back);
     assert_eq!(agg.map.valence(Vert::new(numbers(&a["vertices"])[0])), 4);
     assert!(is_isomorphic(&agg.map, &input.map));
+}
+
+/// `tri-generate --apart K --direction D` on a regular lattice: the four in polygon order
+/// are v5, v7, v5, v7 in OUT, opposite sides equal, not in two triangles; the printed walk
+/// back brings the moving pair next to the staying one.
+#[test]
+fn tri_generate_pairs_apart() {
+    let dir = temp_dir("tri-apart");
+    let (file, _, _) = lone_pair_file(&dir);
+    let input = read(&file);
+    // A regular vertex far from the file's pair: the lattice's middle row, a third across.
+    let at = (0..input.map.vertex_slots() as u32)
+        .filter(|&v| input.map.valence(Vert::new(v)) == 6)
+        .nth(input.map.vertex_slots() / 2)
+        .unwrap();
+    let mut applied = 0;
+    for (config, d) in [("flip", 0), ("flip", 2), ("split", 4), ("split", 5)] {
+        let out = dir.join(format!("apart-{config}-{d}.obj"));
+        let args = [
+            "tri-generate",
+            s(&file),
+            "--at",
+            &at.to_string(),
+            "--config",
+            config,
+        ];
+        let more = ["--apart", "3", "--direction", &d.to_string(), "--json"];
+        let o = zipmesh_to(&[&args[..], &more[..]].concat(), &out);
+        if o.status.code() == Some(2) {
+            assert!(!out.exists());
+            continue;
+        }
+        let v = json(&o);
+        let m = read(&out);
+        let four = numbers(&v["four"]);
+        let vals: Vec<usize> = four.iter().map(|&x| m.map.valence(Vert::new(x))).collect();
+        assert_eq!(vals, [5, 7, 5, 7], "{config} {d}");
+        assert_eq!(v["in_two_triangles"], false);
+        let sides = &v["sides"];
+        assert_eq!(sides[0], sides[2]);
+        assert_eq!(sides[1], sides[3], "{config} {d}: {sides}");
+        let w = &v["walk_back"];
+        assert_eq!(numbers(&w["pair"]), four[2..]);
+        let back = dir.join(format!("back-{config}-{d}.obj"));
+        let pair = join(&numbers(&w["pair"]));
+        let (dd, st) = (w["direction"].to_string(), w["steps"].to_string());
+        let b = report(
+            &[
+                "tri-move",
+                s(&out),
+                "--pair",
+                &pair,
+                "--direction",
+                &dd,
+                "--steps",
+                &st,
+            ],
+            &back,
+        );
+        let walked = read(&back);
+        let moved = numbers(&b["pair"]);
+        // The moving pair is back next to a v5 and a v7 of the staying pair.
+        let near: Vec<usize> = walked
+            .map
+            .vertex_darts(Vert::new(moved[0]))
+            .map(|h| walked.map.valence(walked.map.dest(h)))
+            .filter(|&k| k == 7)
+            .collect();
+        assert!(near.len() >= 2, "{config} {d}");
+        applied += 1;
+    }
+    assert!(applied >= 2, "{applied}");
 }
 
 /// Sec. 7.3 then 7.2 from the command line: `tri-generate` at a v5 (the geodesic sphere)

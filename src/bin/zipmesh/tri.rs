@@ -15,12 +15,13 @@ use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
 use zipmesh::optimize::Surface;
 use zipmesh::tri_edit::{
-    aggregate_type_with, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
-    cancel_triple_along_with, far_pair_directions, generate_pair, generate_pair_v7,
-    generate_pair_v7_with, generate_pair_with, generate_quadruple_with, move_far_pair,
-    move_far_pair_with, move_pair_with, relax_global, relax_local, relax_region,
-    remove_quadruple_with, split_type_with, touched_vertices, Direction, FarStart, Moved,
-    Quadruple, Relaxed, TriEditError, TripleEdit, Via, Via7,
+    aggregate_type, aggregate_type_with, can_generate_pair, can_generate_pair_v7,
+    can_generate_quadruple, can_generate_quadruple_apart, cancel_triple_along_with,
+    far_pair_directions, generate_pair, generate_pair_v7, generate_pair_v7_with,
+    generate_pair_with, generate_quadruple_apart_with, generate_quadruple_with, move_far_pair,
+    move_far_pair_with, move_pair_with, quadruple_sides, relax_global, relax_local, relax_region,
+    remove_quadruple_with, split_type, split_type_with, touched_vertices, Direction, FarStart,
+    Moved, Quadruple, Relaxed, TriEditError, TripleEdit, Via, Via7,
 };
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
@@ -169,6 +170,15 @@ pub struct GenerateArgs {
     /// The configuration.
     #[arg(long, value_enum, default_value = "flip")]
     config: Config,
+    /// A regular V with --config flip or split: then walk one of the two 5-7 pairs K atomic
+    /// moves away in --direction (Sec. 7.3; the four form a parallelogram, reported as
+    /// `sides`).
+    #[arg(long, requires = "direction")]
+    apart: Option<u32>,
+    /// The direction of --apart's walk, 0 to 5, numbered as tri-move's from the moving v5
+    /// to its v7.
+    #[arg(long, requires = "apart", value_parser = clap::value_parser!(u8).range(0..6))]
+    direction: Option<u8>,
 }
 
 /// `zipmesh tri-type`.
@@ -180,7 +190,7 @@ pub struct TypeArgs {
     /// Split an interior v3 (three v5), v4 (two v5) or vk, k > 7 (k - 6 v7).
     #[arg(long)]
     split: Option<u32>,
-    /// Aggregate two v5 into a v4 or three v5 into a v3.
+    /// Aggregate two v5 into a v4, three v5 into a v3, or m >= 2 v7 into a v(6 + m).
     #[arg(long, value_delimiter = ',', num_args = 1)]
     aggregate: Option<Vec<u32>>,
 }
@@ -566,6 +576,15 @@ fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart),
     } else {
         map.valence(at)
     };
+    let pairs_apart = matches!(args.config, Config::Flip | Config::Split) && k == 6;
+    if args.apart.is_some() && !pairs_apart {
+        return Err(err(format_args!(
+            "{}: --at {} --apart: the pairs walk apart only from a regular interior vertex \
+             with --config flip or split",
+            f.file.display(),
+            args.at
+        )));
+    }
     let how = Generation::of(k, args.config).ok_or_else(|| {
         err(format_args!(
             "{}: --at {} --config {}: no such generation at {}; a regular vertex takes flip, \
@@ -596,8 +615,17 @@ fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart),
         None => map.vertex_darts(at).collect(),
     };
     let mut last = TriEditError::WrongValence;
+    let apart = args
+        .apart
+        .zip(args.direction.and_then(|i| Direction::from_index(i.into())));
     for &d in &darts {
-        match how.can(map, d) {
+        let can = match (how, apart) {
+            (Generation::Quadruple(q), Some((k, dir))) => {
+                can_generate_quadruple_apart(map, d, q, dir, k as usize)
+            }
+            _ => how.can(map, d),
+        };
+        match can {
             Ok(()) => return Ok((how, d)),
             Err(e) => last = e,
         }
@@ -630,8 +658,28 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
         let (p, q) = pair.unwrap_or((moved, moved));
         [moved, p, q]
     };
-    let (made, steps): (Made, Vec<TriRecord>) = match how {
-        Generation::Quadruple(q) => {
+    let apart = match (
+        args.apart,
+        args.direction.and_then(|i| Direction::from_index(i.into())),
+    ) {
+        (Some(k), Some(dir)) => Some((k as usize, dir)),
+        _ => None,
+    };
+    let (made, steps): (Made, Vec<TriRecord>) = match (how, apart) {
+        (Generation::Quadruple(q), Some((k, dir))) => {
+            let g = generate_quadruple_apart_with(m, pos, d, q, dir, k)
+                .map_err(refused)?
+                .into_parts()
+                .0;
+            let four: Vec<Vert> = g.vertices().to_vec();
+            let sides = <[Vert; 4]>::try_from(four.as_slice())
+                .ok()
+                .and_then(|f| quadruple_sides(m, f, 4 * k + 8));
+            let back = (four[2], four[3], dir.opposite().index(), k);
+            (Made::Apart(four, sides, back), g.steps().to_vec())
+        }
+        (_, Some(_)) => return Err(refused(TriEditError::WrongValence)),
+        (Generation::Quadruple(q), None) => {
             let g = generate_quadruple_with(m, pos, d, q)
                 .map_err(refused)?
                 .into_parts()
@@ -642,12 +690,12 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
                 g.steps().to_vec(),
             )
         }
-        Generation::Five(via) => {
+        (Generation::Five(via), None) => {
             let g = generate_pair_with(m, pos, d, via, Moved::First).map_err(refused)?;
             let r = g.record();
             (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
         }
-        Generation::Seven(via) => {
+        (Generation::Seven(via), None) => {
             let g = generate_pair_v7_with(m, pos, d, via, Moved::First).map_err(refused)?;
             let r = g.record();
             (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
@@ -657,12 +705,56 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
     match made {
         Made::Four(four, in_two) => report_quadruple(f, mesh, &ops, four, in_two),
         Made::Three(three) => report_triple(f, mesh, &ops, three),
+        Made::Apart(four, sides, back) => report_apart(f, mesh, &ops, four, sides, back),
     }
 }
 
 enum Made {
     Four(Vec<Vert>, bool),
     Three([Vert; 3]),
+    /// The four in polygon order, their sides, and the walk back (pair, direction, steps).
+    Apart(
+        Vec<Vert>,
+        Option<[(usize, usize); 4]>,
+        (Vert, Vert, usize, usize),
+    ),
+}
+
+/// The report of `tri-generate --apart`: the four in polygon order (staying v5, v7, moving
+/// v5, v7), the sides, and the way back (a walk, then a removal).
+fn report_apart(
+    f: &Files,
+    mesh: Mesh,
+    ops: &Ops,
+    four: Vec<Vert>,
+    sides: Option<[(usize, usize); 4]>,
+    back: (Vert, Vert, usize, usize),
+) -> Result<ExitCode, InputError> {
+    finish(f, mesh, ops, |c| {
+        let four = renumber_all(c, &four);
+        let pair = renumber_all(c, &[back.0, back.1]);
+        let value = json!({
+            "four": four,
+            "v5": [four[0], four[2]],
+            "v7": [four[1], four[3]],
+            "in_two_triangles": false,
+            "sides": sides.map(|s| s.map(|(x, y)| [x, y])),
+            "undo": null,
+            "walk_back": {"pair": pair, "direction": back.2, "steps": back.3},
+        });
+        let text = format!(
+            "v5 at {}, v7 at {} (polygon {})\nundo: zipmesh tri-move {} --pair {} --direction {} \
+             --steps {}, then tri-cancel --quadruple on the four",
+            list(&[four[0], four[2]]),
+            list(&[four[1], four[3]]),
+            list(&four),
+            f.output.display(),
+            list(&pair),
+            back.2,
+            back.3
+        );
+        (value, text)
+    })
 }
 
 fn report_quadruple(
@@ -737,6 +829,7 @@ fn report_triple(
 pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
     let f = &args.files;
     let mut mesh = load(f)?;
+    let original = mesh.map.clone();
     let name = f.file.display();
     let (edit, what) = match (&args.split, &args.aggregate) {
         (Some(v), _) => {
@@ -757,7 +850,9 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
                     list(&vs.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
                     match e {
                         TriEditError::NotAPair => "not two interior v5 with a regular common \
-                             neighbour one dart apart, nor three interior v5 around a triangle"
+                             neighbour one dart apart, nor three interior v5 around a triangle, \
+                             nor interior v7 that collapses gather (each with two of them as \
+                             apexes)"
                             .to_string(),
                         e => e.to_string(),
                     }
@@ -767,6 +862,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
         }
         (None, None) => return Err(err("tri-type needs --split V or --aggregate A,B[,C]")),
     };
+    let undoable = inverse_restores(&mesh.map, &original, what, edit.vertices());
     let valences: Vec<usize> = edit
         .vertices()
         .iter()
@@ -775,11 +871,11 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
     let ops = Ops::of(edit.steps());
     finish(f, mesh, &ops, |c| {
         let vs = renumber_all(c, edit.vertices());
-        // A v3 or v4 split is undone by aggregation, an aggregation by a split; the v7 of a
-        // vk split have no aggregation (only the input file undoes it).
+        // A split is undone by aggregation, an aggregation by a split, when that gives back
+        // the input up to isomorphism (gathering v7 may put the vk elsewhere).
         let undo = match what {
-            "split" if valences.iter().all(|&k| k == 5) => Some(json!({"aggregate": vs})),
-            "aggregate" => Some(json!({"split": vs.first()})),
+            "split" if undoable => Some(json!({"aggregate": vs})),
+            "aggregate" if undoable => Some(json!({"split": vs.first()})),
             _ => None,
         };
         let undo_text = match &undo {
@@ -793,7 +889,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
                 f.output.display(),
                 list(&vs)
             ),
-            None => "undo: none (the v7 of a split have no aggregation)".to_string(),
+            None => "undo: none (the inverse edit does not give back the input)".to_string(),
         };
         let value = json!({
             "edit": what,
@@ -806,6 +902,18 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
             format!("irregular vertices left: {}\n{undo_text}", list(&vs)),
         )
     })
+}
+
+/// Whether the inverse of the type edit `what` (aggregating what a split left, splitting
+/// what an aggregation made) turns `edited` into a map isomorphic to `original`.
+fn inverse_restores(edited: &Map, original: &Map, what: &str, vs: &[Vert]) -> bool {
+    let mut m = edited.clone();
+    let done = match (what, vs.first()) {
+        ("split", _) => aggregate_type(&mut m, vs).is_ok(),
+        (_, Some(&v)) => split_type(&mut m, v).is_ok(),
+        _ => false,
+    };
+    done && is_isomorphic(&m, original)
 }
 
 fn type_why(e: TriEditError, map: &Map, v: Vert) -> String {
