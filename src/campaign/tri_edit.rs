@@ -11,6 +11,9 @@ use crate::map::{Dart, Map, Vert};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::rng::Rng;
 use crate::tri_edit::{
+    aggregate_type, can_aggregate_type, can_generate_quadruple_apart, generate_quadruple_apart,
+};
+use crate::tri_edit::{
     can_cancel_triple, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
     can_move_pair, can_split_type, cancel_triple, generate_pair, generate_pair_v7,
     generate_quadruple, move_pair, split_type, Direction, Moved, Quadruple, TripleEdit, Via, Via7,
@@ -52,7 +55,7 @@ pub fn tri_edit_properties() -> Vec<Property> {
         ),
         Property::new(
             "tri-quadruple",
-            "5-5-7-7 generation at a regular vertex: multiset + {5, 5, 7, 7}; exact undo",
+            "5-5-7-7 generation at a regular vertex, the pairs together or apart (Sec. 7.3): multiset + {5, 5, 7, 7}; exact undo",
             quadruple
         ),
         Property::new(
@@ -62,7 +65,7 @@ pub fn tri_edit_properties() -> Vec<Property> {
         ),
         Property::new(
             "tri-type",
-            "type splitting: vk into k-6 v7, v4 into two v5, v3 into three v5; exact undo",
+            "type splitting: vk into k-6 v7, v4 into two v5, v3 into three v5; aggregation of those back into one vk (or a refusal, map unchanged); exact undo",
             type_split
         ),
     ]
@@ -243,6 +246,9 @@ fn quadruple(case: &Case) -> Outcome {
     let sites = vertex_sites(case, 24, |k| k == 6);
     run(case, 24, sites, |before, work, d, rng| {
         let how = Quadruple::ALL[rng.below(3)];
+        if how != Quadruple::CollapseFlip && rng.below(2) == 1 {
+            return quadruple_apart(before, work, d, how, rng);
+        }
         let can = can_generate_quadruple(before, d, how);
         let result = generate_quadruple(work, d, how);
         settle(before, work, can, result, |after, g| {
@@ -254,6 +260,55 @@ fn quadruple(case: &Case) -> Outcome {
             same_multiset(before, after, &[5, 5, 7, 7], &[])
         })
     })
+}
+
+/// The pairs `1..=4` atomic moves apart in a random direction: v5, v7, v5, v7 in polygon
+/// order, the multiset + {5, 5, 7, 7}.
+fn quadruple_apart(
+    before: &Map,
+    work: &mut Map,
+    d: Dart,
+    how: Quadruple,
+    rng: &mut Rng,
+) -> Result<bool, String> {
+    let dir = Direction::ALL[rng.below(6)];
+    let k = 1 + rng.below(4);
+    let can = can_generate_quadruple_apart(before, d, how, dir, k);
+    let result = generate_quadruple_apart(work, d, how, dir, k);
+    settle(before, work, can, result, |after, g| {
+        let v = vals(after, g.vertices());
+        if v != [5, 7, 5, 7] {
+            return Err(format!(
+                "{how:?} apart {k} {dir:?}: the four have valences {v:?}"
+            ));
+        }
+        same_multiset(before, after, &[5, 5, 7, 7], &[])
+    })
+}
+
+/// Aggregation of what a split of a vk left (`split` the split's vertices): one vertex of
+/// valence `k` and `before`'s multiset, or a refusal equal to `can_aggregate_type`'s with
+/// the map unchanged.
+fn aggregate_back(before: &Map, after: &Map, split: &[Vert], k: usize) -> Result<(), String> {
+    let mut back = after.clone();
+    let can = can_aggregate_type(after, split);
+    match aggregate_type(&mut back, split) {
+        Ok(a) => {
+            if vals(&back, a.vertices()) != [k] {
+                return Err(format!(
+                    "v{k}: aggregated into {:?}",
+                    vals(&back, a.vertices())
+                ));
+            }
+            back.check()
+                .map_err(|v| format!("the aggregation fails check(): {v:?}"))?;
+            same_multiset(before, &back, &[], &[])
+        }
+        Err(e) if can == Err(e) && back == *after => Ok(()),
+        Err(e) => Err(format!(
+            "aggregation refused ({e}) but can_* said {can:?} or the map changed"
+        )),
+    }
 }
 
 fn type_split(case: &Case) -> Outcome {
@@ -269,7 +324,8 @@ fn type_split(case: &Case) -> Outcome {
             if vals(after, s.vertices()) != want {
                 return Err(format!("v{k}: left {:?}", vals(after, s.vertices())));
             }
-            same_multiset(before, after, &want, &[k])
+            same_multiset(before, after, &want, &[k])?;
+            aggregate_back(before, after, s.vertices(), k)
         })
     })
 }
