@@ -3,19 +3,95 @@
 //! fuzzer-chosen pairs of irregular vertices keep the contract (a refusal agrees with the
 //! `can_*` and leaves the map `==`; an application leaves a valid map with the pair's
 //! valences where the record says and the irregular multiset unchanged), and undoing
-//! everything, last first, gives the start back `==`.
+//! everything, last first, gives the start back `==`. One step in eight is instead a
+//! 5-5-7-7 generation with the pairs apart (Sec. 7.3: v5, v7, v5, v7, multiset + {5, 5, 7,
+//! 7}) or a type split and the aggregation of what it left (one vertex of the split's
+//! valence, the multiset as before), with the same contract.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use zipmesh::tri_edit::{
-    can_move_far_pair, can_move_pair, move_far_pair, move_pair, Direction, FarPairMove, Moved,
-    PairMove, Start,
+    aggregate_type, can_aggregate_type, can_generate_quadruple_apart, can_move_far_pair,
+    can_move_pair, can_split_type, generate_quadruple_apart, move_far_pair, move_pair, split_type,
+    Direction, FarPairMove, Moved, PairMove, Quadruple, QuadrupleEdit, Start, TypeEdit,
 };
 use zipmesh::{gen, Map, Vert};
 
 enum Done {
     Atomic(Box<PairMove>),
     Composite(Box<FarPairMove>),
+    Quadruple(QuadrupleEdit),
+    Type(TypeEdit),
+}
+
+/// Interior vertices whose valence `want` accepts.
+fn interior(map: &Map, want: impl Fn(usize) -> bool) -> Vec<Vert> {
+    map.vertices()
+        .filter(|&v| !map.is_boundary_vertex(v) && want(map.valence(v)))
+        .collect()
+}
+
+/// A quadruple with its pairs apart at the `pick`-th regular vertex.
+fn quadruple_apart(map: &mut Map, pick: usize, sel: usize, done: &mut Vec<Done>) {
+    let regular = interior(map, |k| k == 6);
+    let Some(&v) = regular.get(pick % regular.len().max(1)) else {
+        return;
+    };
+    let d = (0..sel % 6).fold(map.vertex_dart(v), |x, _| map.rotate_cw(x));
+    let how = [Quadruple::Flip, Quadruple::Split][(sel >> 1) & 1];
+    let dir = Direction::ALL[(sel >> 2) % 6];
+    let steps = 1 + (pick >> 4) % 4;
+    let (before, mut want) = (map.clone(), irregular(map));
+    let can = can_generate_quadruple_apart(map, d, how, dir, steps);
+    match generate_quadruple_apart(map, d, how, dir, steps) {
+        Err(e) => {
+            assert_eq!(can, Err(e));
+            assert!(*map == before, "a refused generation changed the map");
+        }
+        Ok(g) => {
+            assert_eq!(can, Ok(()));
+            let vals: Vec<usize> = g.vertices().iter().map(|&x| map.valence(x)).collect();
+            assert_eq!(vals, [5, 7, 5, 7]);
+            want.extend([5, 5, 7, 7]);
+            want.sort_unstable();
+            assert_eq!(irregular(map), want, "generation apart: multiset");
+            done.push(Done::Quadruple(g));
+        }
+    }
+}
+
+/// A type split of the `pick`-th v3, v4 or vk (k > 7), then the aggregation of what it left.
+fn split_and_aggregate(map: &mut Map, pick: usize, done: &mut Vec<Done>) {
+    let odd = interior(map, |k| k == 3 || k == 4 || k > 7);
+    let Some(&v) = odd.get(pick % odd.len().max(1)) else {
+        return;
+    };
+    let (before, multiset, k) = (map.clone(), irregular(map), map.valence(v));
+    let can = can_split_type(map, v);
+    let s = match split_type(map, v) {
+        Err(e) => {
+            assert_eq!(can, Err(e));
+            assert!(*map == before, "a refused split changed the map");
+            return;
+        }
+        Ok(s) => s,
+    };
+    assert_eq!(can, Ok(()));
+    let split = map.clone();
+    let can = can_aggregate_type(map, s.vertices());
+    match aggregate_type(map, s.vertices()) {
+        Err(e) => {
+            assert_eq!(can, Err(e));
+            assert!(*map == split, "a refused aggregation changed the map");
+            done.push(Done::Type(s));
+        }
+        Ok(a) => {
+            assert_eq!(can, Ok(()));
+            assert_eq!(map.valence(a.vertices()[0]), k);
+            assert_eq!(irregular(map), multiset, "aggregation: multiset");
+            done.extend([Done::Type(s), Done::Type(a)]);
+        }
+    }
 }
 
 fn irregular(map: &Map) -> Vec<usize> {
@@ -38,6 +114,17 @@ fuzz_target!(|data: &[u8]| {
     let start = map.clone();
     let mut done = Vec::new();
     for ch in data[5..].chunks(3).take(16) {
+        let sel = ch.get(2).copied().unwrap_or(0) as usize;
+        if sel % 8 == 7 {
+            let pick = ch.first().copied().unwrap_or(0) as usize;
+            if sel & 8 == 0 {
+                quadruple_apart(&mut map, pick, sel >> 4, &mut done);
+            } else {
+                split_and_aggregate(&mut map, pick, &mut done);
+            }
+            assert_eq!(map.check(), Ok(()));
+            continue;
+        }
         let odd: Vec<Vert> = map
             .vertices()
             .filter(|&v| !map.is_boundary_vertex(v) && matches!(map.valence(v), 5 | 7))
@@ -98,6 +185,8 @@ fuzz_target!(|data: &[u8]| {
         let r = match m {
             Done::Atomic(m) => m.undo(&mut map),
             Done::Composite(m) => m.undo(&mut map),
+            Done::Quadruple(g) => g.undo(&mut map),
+            Done::Type(t) => t.undo(&mut map),
         };
         assert_eq!(r, Ok(()));
     }
