@@ -473,6 +473,18 @@ fn type_splits_on_random_meshes() {
         }
     }
     println!("{applied} type splits applied");
+    // Too many v7, or one given twice: refused, the map unchanged.
+    let map = gen::random_triangle(2000, 1, 0, 9).map;
+    let v7: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 7).collect();
+    assert!(v7.len() > 64, "{}", v7.len());
+    for args in [&v7[..], &[v7[0], v7[0]][..]] {
+        let mut m = map.clone();
+        assert_eq!(
+            aggregate_type(&mut m, args).unwrap_err(),
+            TriEditError::NotAPair
+        );
+        assert_eq!(m, map);
+    }
 }
 
 /// Two v7 that are the apexes of an edge with regular interior ends gather into a v8 (or

@@ -26,6 +26,10 @@ use alloc::vec::Vec;
 /// The most collapses the search tries before it refuses.
 pub(super) const BUDGET: usize = 4096;
 
+/// The most v7 gathered at once (the search recurses once per collapse, at most `MOST / 2`
+/// deep, so the stack stays small).
+pub(super) const MOST: usize = 64;
+
 /// The search's state: the copy it edits, the v7 still to gather, the gathering vertex,
 /// the collapses kept so far and the collapses left to try.
 struct Search {
@@ -36,13 +40,13 @@ struct Search {
     budget: usize,
 }
 
-/// The collapses that gather the interior v7 `v7s` (distinct, at least two) into one
+/// The collapses that gather the interior v7 `v7s` (distinct, 2 to [`MOST`]) into one
 /// vertex, and that vertex, or [`TriEditError::NotAPair`] when the search finds none.
 pub(super) fn gather_v7(map: &Map, v7s: &[Vert]) -> Result<(Vec<TriOp>, Vert), TriEditError> {
     let mut left = v7s.to_vec();
     left.sort();
     left.dedup();
-    if left.len() != v7s.len() {
+    if left.len() != v7s.len() || left.len() > MOST {
         return Err(TriEditError::NotAPair);
     }
     let mut s = Search {

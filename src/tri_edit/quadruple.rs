@@ -271,12 +271,14 @@ pub struct QuadrupleEdit {
 }
 
 impl QuadrupleEdit {
+    /// A record of the given vertices and steps.
     pub(super) fn new(vertices: Vec<Vert>, steps: Vec<TriRecord>) -> QuadrupleEdit {
         QuadrupleEdit { vertices, steps }
     }
 
     /// The irregular vertices the edit left among those it touched (the four after a
-    /// generation; none after a removal in a regular neighbourhood).
+    /// generation, sorted, or in polygon order after [`super::generate_quadruple_apart`];
+    /// none after a removal in a regular neighbourhood).
     ///
     /// See [`generate_quadruple`] for an example.
     pub fn vertices(&self) -> &[Vert] {

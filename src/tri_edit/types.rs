@@ -219,11 +219,12 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
     seen
 }
 
-/// Aggregates two v5 into a v4, three v5 into a v3, or m >= 2 v7 into one v(6 + m) (see
-/// the module documentation), or refuses with the map unchanged
+/// Aggregates two v5 into a v4, three v5 into a v3, or m v7 (2 to 64) into one v(6 + m)
+/// (see the module documentation), or refuses with the map unchanged
 /// ([`TriEditError::NotAPair`] when the vertices are not two v5 with a regular common
 /// neighbour one dart apart, three v5 around a triangle, or v7 that collapses can gather,
-/// each with two of the v7 as apexes). [`TypeEdit::vertices`] is the new vertex.
+/// each with two of the v7 as apexes, found within 4,096 collapses tried).
+/// [`TypeEdit::vertices`] is the new vertex.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
