@@ -97,12 +97,12 @@ pub fn can_generate_quadruple_apart(
 /// let mut map = geodesic_sphere(4);
 /// let before = map.clone();
 /// let d = map.vertex_dart(Vert::new(400));
-/// let g = generate_quadruple_apart(&mut map, d, Quadruple::Flip, Direction::FlipLeft, 3)
+/// let g = generate_quadruple_apart(&mut map, d, Quadruple::Flip, Direction::FlipRight, 3)
 ///     .unwrap();
 /// let four: [Vert; 4] = g.vertices().try_into().unwrap();
 /// assert_eq!(four.map(|v| map.valence(v)), [5, 7, 5, 7]);
 /// let s = quadruple_sides(&map, four, 20).unwrap();
-/// assert_eq!((s[0], s[1]), (s[2], s[3])); // opposite sides equal
+/// assert_eq!(s, [(1, 0), (4, 0), (1, 0), (4, 0)]); // opposite sides equal
 /// assert!(!g.in_two_triangles(&map));
 /// g.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
@@ -179,13 +179,15 @@ pub fn generate_quadruple_apart_with<A: VertexAttributes>(
 /// edges and, after a bend of one sector clockwise, one of `y >= 0` edges, through regular
 /// interior vertices only (straight: the opposite dart of a regular vertex), as `(x, y)`;
 /// ties go to the smaller `x`. `None` when a side has no such path of at most `max` edges,
-/// or a vertex is not live.
+/// or a vertex is not live. Cost: O(valence x max^2) per side, `max` taken at most
+/// [`Map::dart_slots`] (a longer straight line repeats an edge).
 ///
 /// See [`generate_quadruple_apart`] for an example.
 pub fn quadruple_sides(map: &Map, four: [Vert; 4], max: usize) -> Option<[(usize, usize); 4]> {
     if !four.iter().all(|&v| map.is_live_vertex(v)) {
         return None;
     }
+    let max = max.min(map.dart_slots());
     let mut out = [(0, 0); 4];
     for (i, side) in out.iter_mut().enumerate() {
         *side = side_path(map, four[i], four[(i + 1) % 4], max)?;
