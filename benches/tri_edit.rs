@@ -1,7 +1,7 @@
 //! Criterion benches of the semantic triangle edits (`zipmesh::tri_edit`) on triangulated
 //! tori of two sizes: an atomic 5-7 move, and a composite move (Sec. 7.1) of a 5-7 pair at
-//! distance 2, each applied and undone so the mesh stays the same. The composite move
-//! probes each walk step on a copy of the map, so its cost grows with the map's size.
+//! distance 2, each applied and undone so the mesh stays the same. Timings of the composite
+//! move by path length: `cargo run --release --example workload -- 0 7 tri_moves`.
 //! Relaxation (Sec. 8): local (10 sweeps) and global (5 solves) on regions of 1 to 8 rings
 //! around a flip in a bumpy lattice.
 
@@ -15,19 +15,15 @@ use zipmesh::tri_edit::{
 };
 use zipmesh::{Map, Mesh, Vert};
 
+// The bench uses the flipped torus; `far_pair` (any distance) is the workload's.
+#[allow(dead_code)]
+#[path = "support/tri_torus.rs"]
+mod tri_torus;
+
 /// An `n x n` triangulated torus with one diagonal flipped and that flip's first pair moved
 /// 4 steps away; returns the map and that pair (v5, v7).
 fn flipped(n: usize) -> (Map, Vert, Vert) {
-    let tris: Vec<[u32; 3]> = zipmesh::gen::torus_quads(n, n)
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    let mut map = Map::from_polygons(n * n, &tris).expect("valid torus");
-    let d = map
-        .dart_between(Vert::new(0), Vert::new(n as u32 + 1))
-        .expect("diagonal");
-    tri::flip_edge(&mut map, d).expect("flip");
-    let (mut p, mut q) = (Vert::new(0), Vert::new(1));
+    let (mut map, [(mut p, mut q), _]) = tri_torus::flipped(n);
     for _ in 0..4 {
         let m = move_pair(&mut map, p, q, Direction::SplitRight).expect("move");
         (p, q) = (m.p(), m.q());

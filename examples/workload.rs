@@ -11,7 +11,8 @@
 //! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
 //! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
-//! (with `optimize`, only the optimizer rows: `optimize_rows`)
+//! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
+//! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused)
 //! are run.
 
 use std::time::Instant;
@@ -78,7 +79,7 @@ fn report(
 ) {
     let scale = match unit {
         "ns/face" | "ns/vertex" | "ns/dart" | "ns/op" => 1e9 / count as f64,
-        "us/chain" | "us/qzip" => 1e6 / count as f64,
+        "us/chain" | "us/qzip" | "us/move" => 1e6 / count as f64,
         "ms" => 1e3,
         _ => 1.0,
     };
@@ -133,6 +134,137 @@ fn optimize_rows(reps: usize) {
 
 #[path = "../benches/support/qzip_torus.rs"]
 mod qzip_torus;
+
+#[path = "../benches/support/tri_torus.rs"]
+mod tri_torus;
+
+/// Triangle-edit rows (issue 13), microseconds per edit with its undo (both timed; the map is
+/// the same after each), on the `n x n` triangulated torus for `n` = 48 and 192 (4,608 and
+/// 73,728 faces), with a lone 5-7 pair made by `tri_torus::far_pair`:
+///
+/// * `tri{n}_move_{D}`: the atomic 5-7 move (`move_pair`) of an adjacent pair in direction
+///   `D` (0 to 5), 2,000 per repetition;
+/// * `tri{n}_far{L}`: the composite move (`move_far_pair`, Sec. 7.1.1) of a pair `L` edges
+///   apart, started at its v5, every direction `far_pair_directions` finds, 20 each;
+/// * `tri{n}_triple{L}`: the same moves' steps 2 and 3 alone (`cancel_triple_along` of the
+///   generated pair and the v7; the generation done before, not timed).
+///
+/// A `#` line per `L` gives the directions found and the walk's atomic moves (mean, min, max).
+fn tri_moves_rows(reps: usize) {
+    use zipmesh::tri_edit::{move_pair, Direction};
+    for n in [48usize, 192] {
+        let (mut map, s, t) = tri_torus::far_pair(n, 1);
+        let before = map.clone();
+        let rounds = 2000;
+        for dir in Direction::ALL {
+            let time = measure(
+                reps,
+                || (),
+                |_| {
+                    for _ in 0..rounds {
+                        let r = move_pair(&mut map, s, t, dir).expect("a lone pair moves");
+                        r.undo(&mut map).expect("undo of a move just made");
+                    }
+                },
+            );
+            assert!(map == before, "undo restores the map");
+            let what = format!("tri{n}_move_{}", dir.index());
+            report("tri", &what, time, "us/move", rounds, reps);
+        }
+        for len in [2usize, 3, 4, 6, 8] {
+            far_rows(n, len, reps);
+        }
+    }
+}
+
+/// For each composite start towards `t` (untimed): the walk's length, and a copy of `map`
+/// with the start's generation done and the triple `[t, p, q]` it leaves.
+fn triple_cases(
+    map: &mut Map,
+    starts: &[zipmesh::tri_edit::FarStart],
+    t: Vert,
+) -> (Vec<usize>, Vec<(Map, [Vert; 3])>) {
+    use zipmesh::tri_edit::{generate_pair, generate_pair_v7, move_far_pair, Start};
+    let mut walks = Vec::new();
+    let mut cases = Vec::new();
+    for &(d, start, moved) in starts {
+        let m = move_far_pair(map, d, start, moved, t, 64).expect("a direction found");
+        walks.push(m.walk().moves().len());
+        m.undo(map).expect("undo");
+        let mut g = map.clone();
+        let made = match start {
+            Start::Five(via) => generate_pair(&mut g, d, via, moved),
+            Start::Seven(via) => generate_pair_v7(&mut g, d, via, moved),
+        };
+        let (p, q) = made.expect("its generation").pair().expect("a pair");
+        cases.push((g, [t, p, q]));
+    }
+    (walks, cases)
+}
+
+/// The `tri{n}_far{len}` and `tri{n}_triple{len}` rows of [`tri_moves_rows`].
+fn far_rows(n: usize, len: usize, reps: usize) {
+    use zipmesh::tri_edit::{cancel_triple_along, far_pair_directions, move_far_pair};
+    let (mut map, s, t) = tri_torus::far_pair(n, len);
+    let before = map.clone();
+    let starts = far_pair_directions(&map, s, t, 64).expect("the pair's directions");
+    assert!(
+        !starts.is_empty(),
+        "torus {n}, distance {len}: no direction"
+    );
+    let (walks, mut cases) = triple_cases(&mut map, &starts, t);
+    assert!(map == before, "undo restores the map");
+    let rounds = 20;
+    let count = starts.len() * rounds;
+    let time = measure(
+        reps,
+        || (),
+        |_| {
+            for _ in 0..rounds {
+                for &(d, start, moved) in &starts {
+                    let m = move_far_pair(&mut map, d, start, moved, t, 64).expect("applies");
+                    m.undo(&mut map).expect("undo");
+                }
+            }
+        },
+    );
+    report(
+        "tri",
+        &format!("tri{n}_far{len}"),
+        time,
+        "us/move",
+        count,
+        reps,
+    );
+    let time = measure(
+        reps,
+        || (),
+        |_| {
+            for _ in 0..rounds {
+                for (g, three) in &mut cases {
+                    let c = cancel_triple_along(g, &three[..], 64).expect("cancels");
+                    c.undo(g).expect("undo");
+                }
+            }
+        },
+    );
+    report(
+        "tri",
+        &format!("tri{n}_triple{len}"),
+        time,
+        "us/move",
+        count,
+        reps,
+    );
+    let mean = walks.iter().sum::<usize>() as f64 / walks.len() as f64;
+    let (lo, hi) = (walks.iter().min(), walks.iter().max());
+    println!(
+        "# tri{n}_far{len}: {} directions, walk of {mean:.2} moves ({}..{})",
+        starts.len(),
+        lo.unwrap_or(&0),
+        hi.unwrap_or(&0)
+    );
+}
 
 /// Times `op` on each case in turn, `rounds` times over, on the same map: only `op` is inside
 /// the timing; the Q-zip it returns is undone after the clock stops (so the map is the same
@@ -352,6 +484,10 @@ fn main() {
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     if args.get(3).is_some_and(|s| s == "qzip") {
         qzip_rows(n, reps);
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "tri_moves") {
+        tri_moves_rows(reps);
         return;
     }
     if args.get(3).is_some_and(|s| s == "optimize") {

@@ -4,7 +4,8 @@
 
 mod common;
 
-use common::cli::{s, shared, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
+use common::cli::{s, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
+use common::shared;
 use glam::DVec3;
 use serde_json::Value;
 use std::fs;

@@ -5,7 +5,8 @@
 
 mod common;
 
-use common::cli::{s, shared, stderr, stdout, temp_dir, zipmesh};
+use common::cli::{s, stderr, stdout, temp_dir, zipmesh};
+use common::shared;
 use common::svg::{assert_xmlish, circles, elements};
 use serde_json::{json, Value};
 use std::fs;

@@ -2,9 +2,11 @@
 //! regular triangulated torus and on random triangle meshes: valence effects, exact undo,
 //! refusals that leave the map unchanged, the six directions of a 5-7 movement, 5-7 generation, type splits, 5-5-7-7 quadruples.
 
+mod common;
+
+use common::tri_sweep::{adjacent_pairs, assert_pair_moved, tri_multiset, with_added};
 use proptest::prelude::*;
 use zipmesh::gen::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
-use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{
     aggregate_type, can_aggregate_type, can_generate_pair, can_generate_quadruple, can_move_pair,
@@ -45,46 +47,11 @@ fn tri_apex(map: &Map, d: zipmesh::Dart) -> Option<Vert> {
     (map.next(map.next(n)) == d).then(|| map.dest(n))
 }
 
-fn irregular(map: &Map) -> Vec<(usize, bool)> {
-    irregular_valences(map, MeshKind::Triangle)
-}
-
-/// The valence of every live vertex slot (0 for a dead slot).
-fn valences(map: &Map) -> Vec<usize> {
-    (0..map.vertex_slots())
-        .map(vert)
-        .map(|v| {
-            if map.is_live_vertex(v) {
-                map.valence(v)
-            } else {
-                0
-            }
-        })
-        .collect()
-}
-
-/// Asserts the documented effect of a 5-7 movement from `before` to `map`: a valid map, the
-/// new pair an adjacent interior v5 and v7, the irregular multiset unchanged, and every
-/// vertex other than the old and new pair (and a split's new vertex) with its old valence.
+/// Asserts the documented effect of a 5-7 movement from `before` to `map`: a valid map and
+/// `assert_pair_moved`.
 fn assert_moved(before: &Map, map: &Map, m: &PairMove) {
     map.check().unwrap();
-    assert_eq!((map.valence(m.p()), map.valence(m.q())), (5, 7), "{m:?}");
-    assert!(map.dart_between(m.p(), m.q()).is_some());
-    assert_eq!(irregular(before), irregular(map));
-    let (old, new) = (valences(before), valences(map));
-    let (p0, q0) = m.before();
-    for (i, (&a, &b)) in old.iter().zip(&new).enumerate() {
-        let v = vert(i);
-        // A split may reuse a freed slot for its new, regular vertex.
-        let created = a == 0 && b == 6;
-        if a != b && !created && ![p0, q0, m.p(), m.q()].contains(&v) {
-            panic!("{v:?} changed valence {a} -> {b} in {m:?}");
-        }
-    }
-    // Only a split creates a vertex, and it is regular.
-    for (i, &b) in new.iter().enumerate().skip(old.len()) {
-        assert!(b == 0 || b == 6, "new vertex {i} of valence {b}");
-    }
+    assert_pair_moved(before, map, m);
 }
 
 /// Moves the pair `k` steps in `dir`, asserting the documented effect at each step.
@@ -181,30 +148,13 @@ fn attributes_follow_and_come_back() {
     }
 }
 
-/// Every adjacent (v5, v7) pair of interior vertices.
-fn pairs(map: &Map) -> Vec<(Vert, Vert)> {
-    let mut out = Vec::new();
-    for p in map.vertices() {
-        if map.is_boundary_vertex(p) || map.valence(p) != 5 {
-            continue;
-        }
-        for d in map.vertex_darts(p) {
-            let q = map.dest(d);
-            if !map.is_boundary_vertex(q) && map.valence(q) == 7 {
-                out.push((p, q));
-            }
-        }
-    }
-    out
-}
-
 #[test]
 fn random_meshes_have_movable_pairs() {
     // The property below is not vacuous: random meshes have pairs that move.
     let mut moved = 0;
     for seed in 0..8 {
         let map = gen::random_triangle(400, 1, 1, seed).map;
-        for (p, q) in pairs(&map) {
+        for (p, q) in adjacent_pairs(&map) {
             moved += Direction::ALL
                 .into_iter()
                 .filter(|&d| can_move_pair(&map, p, q, d).is_ok())
@@ -220,7 +170,7 @@ proptest! {
     #[test]
     fn every_pair_every_direction(faces in 60usize..400, genus in 0usize..3, holes in 0usize..3, seed: u64) {
         let map = gen::random_triangle(faces, genus, holes, seed).map;
-        for (p, q) in pairs(&map) {
+        for (p, q) in adjacent_pairs(&map) {
             for dir in Direction::ALL {
                 let mut m = map.clone();
                 let can = can_move_pair(&m, p, q, dir);
@@ -236,14 +186,6 @@ proptest! {
             }
         }
     }
-}
-
-/// `before`'s irregular multiset with `add` added.
-fn with_added(before: &Map, add: &[(usize, bool)]) -> Vec<(usize, bool)> {
-    let mut v = irregular(before);
-    v.extend_from_slice(add);
-    v.sort();
-    v
 }
 
 /// Every generation at every v5 of `map`, every via, both readings: refused with the map
@@ -275,7 +217,7 @@ fn check_generations(map: &Map) -> usize {
                         (5, 5, 7)
                     );
                     assert!(m.dart_between(p, q).is_some() && g.moved() != p);
-                    assert_eq!(irregular(&m), with_added(map, &[(5, false), (7, false)]));
+                    assert_eq!(tri_multiset(&m), with_added(map, &[(5, false), (7, false)]));
                     let generated = m.clone();
                     g.undo(&mut m).unwrap();
                     assert_eq!(&m, map);
@@ -345,7 +287,7 @@ fn generation_with_attributes_comes_back() {
 
 /// `before`'s irregular multiset with one `(k, false)` removed and `add` added.
 fn replaced(before: &Map, k: usize, add: &[(usize, bool)]) -> Vec<(usize, bool)> {
-    let mut v = irregular(before);
+    let mut v = tri_multiset(before);
     let i = v.iter().position(|&x| x == (k, false)).unwrap();
     v.remove(i);
     v.extend_from_slice(add);
@@ -372,7 +314,7 @@ fn check_type_split(map: &Map, v: Vert, back: bool) -> bool {
     let (n, val) = if k > 7 { (k - 6, 7) } else { (6 - k, 5) };
     let got: Vec<usize> = s.vertices().iter().map(|&x| m.valence(x)).collect();
     assert_eq!(got, vec![val; n], "v{k}");
-    assert_eq!(irregular(&m), replaced(map, k, &vec![(val, false); n]));
+    assert_eq!(tri_multiset(&m), replaced(map, k, &vec![(val, false); n]));
     if back {
         let mut a = m.clone();
         let g = aggregate_type(&mut a, s.vertices()).unwrap();
@@ -405,7 +347,7 @@ fn split_and_gather(map: &Map, v: Vert) -> bool {
             .collect::<Vec<_>>(),
         [k]
     );
-    assert_eq!(irregular(&a), irregular(map));
+    assert_eq!(tri_multiset(&a), tri_multiset(map));
     g.undo(&mut a).unwrap();
     assert_eq!(a, m);
     let mut again = m.clone();
@@ -517,7 +459,7 @@ fn two_v7_across_an_edge_gather() {
                 Ok(g) => {
                     gathered += 1;
                     assert_eq!(m.valence(g.vertices()[0]), 8);
-                    assert_eq!(irregular(&m).len() + 1, irregular(&map).len());
+                    assert_eq!(tri_multiset(&m).len() + 1, tri_multiset(&map).len());
                 }
                 Err(e) => {
                     refused += 1;
@@ -561,7 +503,7 @@ fn quadruple_generation_and_removal() {
                 got.sort();
                 assert_eq!(got, [5, 5, 7, 7], "{how:?}");
                 let add = [(5, false), (5, false), (7, false), (7, false)];
-                assert_eq!(irregular(&m), with_added(&map, &add));
+                assert_eq!(tri_multiset(&m), with_added(&map, &add));
                 // Flip and split give a quadruple in two triangles; collapse-then-flip a chain.
                 assert_eq!(
                     g.in_two_triangles(&m),
@@ -605,7 +547,7 @@ fn quadruple_generation_on_random_meshes() {
                 if let Ok(g) = generate_quadruple(&mut m, d, how) {
                     m.check().unwrap();
                     let add = [(5, false), (5, false), (7, false), (7, false)];
-                    assert_eq!(irregular(&m), with_added(&map, &add));
+                    assert_eq!(tri_multiset(&m), with_added(&map, &add));
                     g.undo(&mut m).unwrap();
                 }
                 assert_eq!(m, map);

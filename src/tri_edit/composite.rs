@@ -89,7 +89,7 @@ fn check_pair(map: &Map, s: Vert, o: Vert, start: Start) -> Result<(), TriEditEr
 
 /// Checks whether [`move_far_pair`] applies, without changing anything. The walk's
 /// directions depend on where each step leaves the pair, so this runs the pipeline on a
-/// copy (O(map) per step).
+/// copy of the map (one O(map) copy; the walk itself does not depend on the map's size).
 ///
 /// See [`move_far_pair`] for an example.
 pub fn can_move_far_pair(

@@ -420,25 +420,84 @@ fn far_plan(map: &Map, three: &[Vert]) -> Result<(Vert, Vert, Vert, bool), TriEd
     }
 }
 
-/// Graph distance from `from` to `to` (`usize::MAX` when apart), by breadth-first search.
+/// Graph distance from `from` to `to` (`usize::MAX` when apart), by breadth-first search
+/// (see [`distance_within`]).
 pub(super) fn distance(map: &Map, from: Vert, to: Vert) -> usize {
-    let mut seen = alloc::collections::BTreeMap::new();
-    seen.insert(from, 0usize);
-    let mut queue = alloc::collections::VecDeque::from([from]);
-    while let Some(v) = queue.pop_front() {
-        let dv = seen[&v];
-        if v == to {
-            return dv;
+    distance_within(map, from, to, usize::MAX).unwrap_or(usize::MAX)
+}
+
+/// Graph distance from `from` to `to` when it is at most `limit`, `None` when it is more or
+/// they are apart. A breadth-first search from both ends, one whole layer of the smaller
+/// frontier at a time: it visits two balls of about half the distance's radius (on a
+/// triangle lattice half the vertices of one ball of the whole radius), and stops once the
+/// two radii add to `limit`; its cost does not depend on the map's size.
+pub(super) fn distance_within(map: &Map, from: Vert, to: Vert, limit: usize) -> Option<usize> {
+    if from == to {
+        return Some(0);
+    }
+    let mut a = Search::new(from);
+    let mut b = Search::new(to);
+    loop {
+        // No vertex is in both balls: every path is longer than the two radii together.
+        if a.depth + b.depth >= limit {
+            return None;
         }
-        for d in map.vertex_darts(v) {
-            let w = map.dest(d);
-            if let alloc::collections::btree_map::Entry::Vacant(e) = seen.entry(w) {
-                e.insert(dv + 1);
-                queue.push_back(w);
-            }
+        let (grow, other) = if a.frontier.len() <= b.frontier.len() {
+            (&mut a, &b)
+        } else {
+            (&mut b, &a)
+        };
+        if grow.frontier.is_empty() {
+            return None; // its component is exhausted
+        }
+        if let Some(d) = grow.expand(map, other) {
+            return (d <= limit).then_some(d);
         }
     }
-    usize::MAX
+}
+
+/// One end of [`distance_within`]'s search: the depth of every vertex seen, the last layer.
+struct Search {
+    seen: hashbrown::HashMap<Vert, usize>,
+    frontier: Vec<Vert>,
+    depth: usize,
+}
+
+impl Search {
+    fn new(v: Vert) -> Search {
+        let mut seen = hashbrown::HashMap::new();
+        seen.insert(v, 0);
+        Search {
+            seen,
+            frontier: alloc::vec![v],
+            depth: 0,
+        }
+    }
+
+    /// Adds the next layer; returns the shortest path through a vertex the other end has
+    /// seen, if any. When the layers first touch, every such path is a shortest one: a
+    /// vertex seen by both is found as the second end reaches it, and before this layer the
+    /// distance was more than the two radii.
+    fn expand(&mut self, map: &Map, other: &Search) -> Option<usize> {
+        let mut next = Vec::new();
+        let mut best: Option<usize> = None;
+        for &v in &self.frontier {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                if let hashbrown::hash_map::Entry::Vacant(e) = self.seen.entry(w) {
+                    e.insert(self.depth + 1);
+                    next.push(w);
+                    if let Some(&dw) = other.seen.get(&w) {
+                        let via = self.depth + 1 + dw;
+                        best = Some(best.map_or(via, |x| x.min(via)));
+                    }
+                }
+            }
+        }
+        self.depth += 1;
+        self.frontier = next;
+        best
+    }
 }
 
 /// Cancels a 5-5-7 or 5-7-7 triple whose third vertex is not next to the pair yet (Sec.
@@ -520,7 +579,7 @@ fn walk_and_cancel<A: VertexAttributes>(
             let mut step = None;
             for dir in super::Direction::ALL {
                 if let Some((np, nq)) = next_pair(map, p, q, dir) {
-                    if distance(map, lead(np, nq), w) < left {
+                    if distance_within(map, lead(np, nq), w, left - 1).is_some() {
                         step = Some(dir);
                         break;
                     }
@@ -608,5 +667,68 @@ impl TripleCancel {
 impl Undo for TripleCancel {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         TripleCancel::undo(self, map)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{distance, distance_within};
+    use crate::map::{Map, Vert};
+    use alloc::collections::VecDeque;
+    use alloc::vec::Vec;
+
+    /// Every vertex slot's distance from `from` by a plain breadth-first search.
+    fn plain(map: &Map, from: Vert) -> Vec<usize> {
+        let mut dist = alloc::vec![usize::MAX; map.vertex_slots()];
+        dist[from.index()] = 0;
+        let mut queue = VecDeque::from([from]);
+        while let Some(v) = queue.pop_front() {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                if dist[w.index()] == usize::MAX {
+                    dist[w.index()] = dist[v.index()] + 1;
+                    queue.push_back(w);
+                }
+            }
+        }
+        dist
+    }
+
+    #[test]
+    fn both_ends_search_agrees_with_a_plain_one() {
+        // Two components (a random mesh of genus 1 with holes next to a sphere), so that
+        // some pairs are apart.
+        let mut polys = Vec::new();
+        let a = crate::gen::random_triangle(300, 1, 2, 7);
+        let b = crate::gen::geodesic_sphere(1);
+        let na = a.map.vertex_slots() as u32;
+        polys.extend(a.polygons());
+        for f in b.faces() {
+            polys.push(
+                b.face_darts(f)
+                    .map(|d| b.origin(d).index() as u32 + na)
+                    .collect(),
+            );
+        }
+        let n = na as usize + b.vertex_slots();
+        let map = Map::from_polygons(n, &polys).unwrap();
+        let vs: Vec<Vert> = map.vertices().step_by(7).collect();
+        let mut checked = 0;
+        for &s in &vs {
+            let truth = plain(&map, s);
+            for &t in &vs {
+                let want = truth[t.index()];
+                assert_eq!(distance(&map, s, t), want, "{s:?} {t:?}");
+                for limit in [0, 1, 2, 3, 5, 8, 13] {
+                    let got = distance_within(&map, s, t, limit);
+                    assert_eq!(got, (want <= limit).then_some(want), "{s:?} {t:?} {limit}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 4_000, "{checked}"); // measured: 5,488
+        assert!(vs
+            .iter()
+            .any(|&t| plain(&map, vs[0])[t.index()] == usize::MAX));
     }
 }

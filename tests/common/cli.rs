@@ -39,12 +39,3 @@ pub fn stdout(o: &Output) -> String {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).unwrap()
 }
-
-/// A mesh of `../shared/data`, which must exist.
-pub fn shared(rel: &str) -> PathBuf {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
-        .join(rel);
-    assert!(p.is_file(), "missing shared test mesh {}", p.display());
-    p
-}

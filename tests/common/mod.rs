@@ -6,6 +6,7 @@ pub mod cli;
 #[cfg(feature = "render")]
 pub mod svg;
 pub mod tri;
+pub mod tri_sweep;
 
 use zipmesh::invariants::{irregular_valences, irregular_vertices, MeshKind};
 use zipmesh::ops::quad;
@@ -77,6 +78,15 @@ pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), Q
         panic!("{b}\n{}", r.surgery());
     }
     Ok((m, r))
+}
+
+/// A mesh of `../shared/data`, which must exist.
+pub fn shared(rel: &str) -> std::path::PathBuf {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data")
+        .join(rel);
+    assert!(p.is_file(), "missing shared test mesh {}", p.display());
+    p
 }
 
 /// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step (quads only,
