@@ -181,6 +181,14 @@ pub struct GenerateArgs {
     direction: Option<u8>,
 }
 
+impl GenerateArgs {
+    /// `--apart K --direction D`, when both are given (clap requires them together).
+    fn walk_apart(&self) -> Option<(usize, Direction)> {
+        let dir = Direction::from_index(self.direction?.into())?;
+        Some((self.apart? as usize, dir))
+    }
+}
+
 /// `zipmesh tri-type`.
 #[derive(Args)]
 #[group(id = "which", required = true, multiple = false, args = ["split", "aggregate"])]
@@ -615,13 +623,10 @@ fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart),
         None => map.vertex_darts(at).collect(),
     };
     let mut last = TriEditError::WrongValence;
-    let apart = args
-        .apart
-        .zip(args.direction.and_then(|i| Direction::from_index(i.into())));
     for &d in &darts {
-        let can = match (how, apart) {
+        let can = match (how, args.walk_apart()) {
             (Generation::Quadruple(q), Some((k, dir))) => {
-                can_generate_quadruple_apart(map, d, q, dir, k as usize)
+                can_generate_quadruple_apart(map, d, q, dir, k)
             }
             _ => how.can(map, d),
         };
@@ -658,23 +663,17 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
         let (p, q) = pair.unwrap_or((moved, moved));
         [moved, p, q]
     };
-    let apart = match (
-        args.apart,
-        args.direction.and_then(|i| Direction::from_index(i.into())),
-    ) {
-        (Some(k), Some(dir)) => Some((k as usize, dir)),
-        _ => None,
-    };
-    let (made, steps): (Made, Vec<TriRecord>) = match (how, apart) {
+    let (made, steps): (Made, Vec<TriRecord>) = match (how, args.walk_apart()) {
         (Generation::Quadruple(q), Some((k, dir))) => {
             let g = generate_quadruple_apart_with(m, pos, d, q, dir, k)
                 .map_err(refused)?
                 .into_parts()
                 .0;
-            let four: Vec<Vert> = g.vertices().to_vec();
-            let sides = <[Vert; 4]>::try_from(four.as_slice())
-                .ok()
-                .and_then(|f| quadruple_sides(m, f, 4 * k + 8));
+            let four: [Vert; 4] = g
+                .vertices()
+                .try_into()
+                .map_err(|_| refused(TriEditError::NotAPair))?;
+            let sides = quadruple_sides(m, four, 4 * k + 8);
             let back = (four[2], four[3], dir.opposite().index(), k);
             (Made::Apart(four, sides, back), g.steps().to_vec())
         }
@@ -714,7 +713,7 @@ enum Made {
     Three([Vert; 3]),
     /// The four in polygon order, their sides, and the walk back (pair, direction, steps).
     Apart(
-        Vec<Vert>,
+        [Vert; 4],
         Option<[(usize, usize); 4]>,
         (Vert, Vert, usize, usize),
     ),
@@ -726,7 +725,7 @@ fn report_apart(
     f: &Files,
     mesh: Mesh,
     ops: &Ops,
-    four: Vec<Vert>,
+    four: [Vert; 4],
     sides: Option<[(usize, usize); 4]>,
     back: (Vert, Vert, usize, usize),
 ) -> Result<ExitCode, InputError> {
