@@ -125,6 +125,10 @@ fn refusals_leave_the_map() {
     let too_many = map.vertex_slots() + 1;
     let r = generate_quadruple_apart(&mut m, d, Quadruple::Flip, Direction::FlipLeft, too_many);
     assert_eq!(r.unwrap_err(), TriEditError::Refused(Refusal::BadArguments));
+    // As many steps as vertex slots is not too many: the walk itself decides.
+    let (how, dir) = (Quadruple::Split, Direction::SplitLeft);
+    let r = generate_quadruple_apart(&mut m, d, how, dir, map.vertex_slots());
+    assert_ne!(r.unwrap_err(), TriEditError::Refused(Refusal::BadArguments));
     assert_eq!(m, map);
     // On a 12 x 12 torus a straight walk comes round and meets the staying pair.
     let errs: Vec<_> = HOWS

@@ -5,10 +5,10 @@
 //! each apex: with both apexes v7 of the set, the apexes become regular and their two units
 //! of `valence - 6` move into `y`, with those of `x` and `y`. So each step collapses an
 //! edge whose two apexes are v7 still to gather; its ends are the vertex gathered so far
-//! (kept), v7 of the set, or regular vertices (the first step: any two of these). Steps whose
-//! ends hold charge (the gathering vertex or v7 of the set) are tried first, so the v7 of a
-//! split gather back where they came from. The search is depth first on a copy of the map, each collapse undone on a dead end, and
-//! gives up after [`BUDGET`] collapses tried (a refusal, never a long run).
+//! (kept), v7 of the set, or regular vertices (the first step: any two of these). The search
+//! is depth first on a copy of the map, each collapse undone on a dead end; it keeps the
+//! first way found and gives up after [`BUDGET`] collapses tried (a refusal, never a long
+//! run).
 //!
 //! ```text
 //!        a(7)                 a(6)
@@ -79,9 +79,9 @@ impl Search {
             };
             self.budget -= 1;
             let (left, gathered) = (self.left.clone(), self.gathered);
+            // The apexes are now regular, a removed end dead, the kept end of valence 8+.
             self.left
-                .retain(|&v| self.map.is_live_vertex(v) && v != kept);
-            self.left.retain(|&v| self.map.valence(v) == 7);
+                .retain(|&v| self.map.is_live_vertex(v) && self.map.valence(v) == 7);
             self.gathered = Some(kept);
             self.ops.push(TriOp::Collapse(h));
             if self.step() {
@@ -116,19 +116,9 @@ impl Search {
                 .flat_map(|e| [e, e.twin()])
                 .collect(),
         };
-        let mut out: Vec<Dart> = darts
+        darts
             .into_iter()
             .filter(|&d| apexes_left(d) && end_ok(m.origin(d)) && end_ok(m.dest(d)))
-            .collect();
-        // Ends with a charge first (so a split's v7 gather back where they came from),
-        // the kept end before the removed one.
-        let charged = |v: Vert| Some(v) == self.gathered || self.left.contains(&v);
-        out.sort_by_key(|&d| {
-            (
-                !charged(m.origin(d)) as u8 + !charged(m.dest(d)) as u8,
-                !charged(m.dest(d)),
-            )
-        });
-        out
+            .collect()
     }
 }
