@@ -314,3 +314,29 @@ fn touched_vertices_of_a_flip() {
     want.sort();
     assert_eq!(touched_vertices(&before, &after), want);
 }
+
+/// `Surface::closest` is the nearest point of the surface, on small surfaces (searched
+/// whole, at most 64 triangles) and larger ones (searched by cells): its distance equals a
+/// brute-force distance to every triangle, and it lies on the surface.
+#[test]
+fn closest_point_is_the_nearest_small_or_large() {
+    let mut rng = Rng::new(11);
+    for n in [4, 6, 12, 20] {
+        let mesh = lattice(n, 0.8);
+        let s = Surface::new(&mesh);
+        for _ in 0..200 {
+            let u = |r: &mut Rng, k: f64| (r.below(10_000) as f64 / 10_000.0) * k;
+            let p = DVec3::new(
+                u(&mut rng, n as f64 * 1.5) - 1.0,
+                u(&mut rng, n as f64) - 1.0,
+                u(&mut rng, 4.0) - 2.0,
+            );
+            let q = s.closest(p);
+            assert!(
+                (q.distance(p) - to_surface(&mesh, p)).abs() < 1e-9,
+                "n {n}, {p}"
+            );
+            assert!(to_surface(&mesh, q) < 1e-9);
+        }
+    }
+}
