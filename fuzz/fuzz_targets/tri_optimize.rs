@@ -32,40 +32,30 @@ use zipmesh::{gen, Mesh};
 type Key = (usize, usize, Option<Option<u8>>, u16);
 
 thread_local! {
-    /// Meshes built by earlier runs: the generator is deterministic, and libFuzzer's
-    /// mutations mostly keep an input's first bytes (the mesh) and change the rest, so
-    /// most runs copy a mesh (the oracle's own copy) instead of building it.
+    /// Meshes built by earlier runs (`zipmesh_fuzz::cached`).
     static MESHES: RefCell<HashMap<Key, Mesh>> = RefCell::new(HashMap::new());
 }
 
-/// The mesh the key names: from the cache (at most 256 meshes, emptied when full).
+/// The mesh the key names, from the cache.
 fn generated(key: Key) -> Mesh {
     MESHES.with(|cache| {
-        let mut cache = cache.borrow_mut();
-        if let Some(m) = cache.get(&key) {
-            return m.clone();
-        }
-        let (faces, genus, hole, seed) = key;
-        let seed = u64::from(seed);
-        let m = match hole {
-            None => gen::random_triangle(faces, genus, 0, seed),
-            Some(None) => gen::random_triangle(faces, genus, 1, seed),
-            Some(Some(i)) => {
-                // A closed mesh with one triangle left out: one boundary loop of three
-                // vertices, each keeping at least two faces (every vertex had three).
-                let closed = gen::random_triangle(faces, genus, 0, seed);
-                let mut polygons = closed.polygons();
-                polygons.remove(usize::from(i) % polygons.len());
-                Mesh::from_polygons(closed.positions, &polygons)
-                    .expect("a closed manifold less one face is a manifold")
-                    .0
+        zipmesh_fuzz::cached(cache, key, |(faces, genus, hole, seed)| {
+            let seed = u64::from(seed);
+            match hole {
+                None => gen::random_triangle(faces, genus, 0, seed),
+                Some(None) => gen::random_triangle(faces, genus, 1, seed),
+                Some(Some(i)) => {
+                    // A closed mesh with one triangle left out: one boundary loop of three
+                    // vertices, each keeping at least two faces (every vertex had three).
+                    let closed = gen::random_triangle(faces, genus, 0, seed);
+                    let mut polygons = closed.polygons();
+                    polygons.remove(usize::from(i) % polygons.len());
+                    Mesh::from_polygons(closed.positions, &polygons)
+                        .expect("a closed manifold less one face is a manifold")
+                        .0
+                }
             }
-        };
-        if cache.len() >= 256 {
-            cache.clear();
-        }
-        cache.insert(key, m.clone());
-        m
+        })
     })
 }
 

@@ -1,7 +1,33 @@
 //! Checks shared by the fuzz targets: what every map the library hands out must satisfy.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::hash::Hash;
 use zipmesh::invariants::{gauss_bonnet, Counts, Histograms, MeshKind};
 use zipmesh::{is_isomorphic, Map, Mesh};
+
+/// The most meshes a target's cache keeps; it is emptied when full.
+const CACHED: usize = 256;
+
+/// The mesh `key` names: a copy from `cache`, or `make(key)`, kept there. Generators are
+/// deterministic, and libFuzzer's mutations mostly keep an input's first bytes (the mesh)
+/// and change the rest, so most runs copy a mesh instead of building it.
+pub fn cached<K: Eq + Hash + Copy>(
+    cache: &RefCell<HashMap<K, Mesh>>,
+    key: K,
+    make: impl FnOnce(K) -> Mesh,
+) -> Mesh {
+    if let Some(m) = cache.borrow().get(&key) {
+        return m.clone();
+    }
+    let m = make(key);
+    let mut cache = cache.borrow_mut();
+    if cache.len() >= CACHED {
+        cache.clear();
+    }
+    cache.insert(key, m.clone());
+    m
+}
 
 /// Asserts the axioms and the identities that hold on every valid map.
 pub fn assert_valid(map: &Map) {
