@@ -112,6 +112,7 @@ fn the_pair_walks_back_and_the_quadruple_goes() {
             checked += 1;
         }
     }
+    println!("{checked} walked back and removed");
     assert!(checked >= 8, "{checked}");
 }
 
