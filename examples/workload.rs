@@ -12,7 +12,9 @@
 //! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
 //! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
-//! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused)
+//! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `chains`,
+//! only the chain rows: `chain_rows`; with `ops [KIND_NAME]`, only the operator rows, or
+//! the one named like `tri_op_flip`, and the memory latency rows: `memory_latency`)
 //! are run.
 
 use std::time::Instant;
@@ -474,6 +476,167 @@ fn qzip_rows(n: usize, reps: usize) {
     report("quad", "qzip_spot", t, "us/qzip", cases.len(), reps);
 }
 
+/// Collapses `k` quads along grid row `row` from column `col` (each merging a quad's
+/// lower-left corner with its upper-right one, the strip collapse of Q-zip; columns wrap
+/// round the torus), then undoes them in reverse; false if any step was refused.
+fn collapse_chain(m: &mut Map, n: usize, row: usize, col: usize, k: usize) -> bool {
+    let mut records = Vec::with_capacity(k);
+    for i in 0..k {
+        let at = (row * n + (col + i) % n) as u32;
+        let corner = Vert::new(at);
+        let Some(d) = m.face_darts(Face::new(at)).find(|&d| m.origin(d) == corner) else {
+            return false;
+        };
+        match quad::collapse_quad(m, d) {
+            Ok(r) => records.push(r),
+            Err(_) => return false,
+        }
+    }
+    records.into_iter().rev().all(|r| r.undo(m).is_ok())
+}
+
+/// Chain rows (issues 3 and 15), in two forms. `chain{k}_collapse_restore`: one chain on a
+/// fresh copy of the torus (cold caches), as before. `chain{k}_random_places`: the peers'
+/// form, 10,000 chains at random places (row and column from a fixed seed) on one copy,
+/// each restored before the next, so the map is the same for every chain; per chain.
+fn chain_rows(quad_map: &Map, n: usize, reps: usize) {
+    const CHAINS: usize = 10_000;
+    // A chain longer than the row would wrap onto itself.
+    for k in [7usize, 100].into_iter().filter(|&k| k + 2 <= n) {
+        let mut ok = true;
+        let t = measure(
+            reps,
+            || quad_map.clone(),
+            |mut m| {
+                ok &= collapse_chain(&mut m, n, n / 2, 10, k);
+                m
+            },
+        );
+        assert!(ok, "the chain of {k} collapses applies and restores");
+        report(
+            "quad",
+            &format!("chain{k}_collapse_restore"),
+            t,
+            "us/chain",
+            1,
+            reps,
+        );
+        let mut rng = Rng::new(k as u64);
+        let places: Vec<(usize, usize)> =
+            (0..CHAINS).map(|_| (rng.below(n), rng.below(n))).collect();
+        let mut warm = quad_map.clone();
+        let t = measure(
+            reps,
+            || (),
+            |_| {
+                let done = places
+                    .iter()
+                    .filter(|&&(r, c)| collapse_chain(&mut warm, n, r, c, k))
+                    .count();
+                ok &= done == CHAINS;
+            },
+        );
+        assert!(ok, "every chain of {k} collapses applies and restores");
+        assert!(&warm == quad_map, "the chains leave the map as it was");
+        report(
+            "quad",
+            &format!("chain{k}_random_places"),
+            t,
+            "us/chain",
+            CHAINS,
+            reps,
+        );
+    }
+}
+
+/// Applies `op` at every dart in turn; the number applied. Not inlined, so that
+/// `valgrind --tool=callgrind --toggle-collect=*apply_all*` counts the operators alone.
+#[inline(never)]
+fn apply_all(m: &mut Map, darts: &[Dart], op: fn(&mut Map, Dart) -> bool) -> usize {
+    darts.iter().filter(|&&d| op(m, d)).count()
+}
+
+/// Operator rows (issue 3): 100,000 random darts from a fixed seed per repetition, each
+/// repetition on a fresh copy; refused attempts are included in the time. With `only`,
+/// just the rows whose name is `only` (`ops NAME` on the command line).
+fn operator_rows(tri_map: &Map, quad_map: &Map, reps: usize, only: Option<&str>) {
+    const OPS: usize = 100_000;
+    let random_darts = |m: &Map, seed: u64| -> Vec<Dart> {
+        let mut rng = Rng::new(seed);
+        (0..OPS)
+            .map(|_| Dart::new(rng.below(m.dart_slots()) as u32))
+            .collect()
+    };
+    type Op = fn(&mut Map, Dart) -> bool;
+    let tri_ops: [(&str, Op); 4] = [
+        ("op_flip", |m, d| tri::flip_edge(m, d).is_ok()),
+        ("op_collapse", |m, d| tri::collapse_edge(m, d).is_ok()),
+        ("op_edge_split", |m, d| tri::split_edge(m, d).is_ok()),
+        ("op_vertex_split", |m, d| {
+            let d2 = (0..3).fold(d, |x, _| m.rotate_cw(x));
+            tri::split_vertex(m, d, d2).is_ok()
+        }),
+    ];
+    let quad_ops: [(&str, Op); 4] = [
+        ("op_quad_collapse", |m, d| quad::collapse_quad(m, d).is_ok()),
+        ("op_vertex_split", |m, d| {
+            let d2 = m.rotate_cw(m.rotate_cw(d));
+            quad::split_vertex(m, d, d2).is_ok()
+        }),
+        ("op_rotate_edge", |m, d| {
+            quad::rotate_edge(m, d, quad::Rotation::Clockwise).is_ok()
+        }),
+        ("op_doublet_insert", |m, d| {
+            quad::insert_doublet(m, d).is_ok()
+        }),
+    ];
+    for (kind, base, ops) in [
+        ("tri", tri_map, &tri_ops[..]),
+        ("quad", quad_map, &quad_ops[..]),
+    ] {
+        for (k, &(what, op)) in ops.iter().enumerate() {
+            if only.is_some_and(|o| o != format!("{kind}_{what}")) {
+                continue;
+            }
+            let darts = random_darts(base, 1000 + k as u64);
+            let mut applied = 0;
+            let t = measure(
+                reps,
+                || base.clone(),
+                |mut m| {
+                    applied = apply_all(&mut m, &darts, op);
+                    m
+                },
+            );
+            report(kind, what, t, "ns/op", OPS, reps);
+            eprintln!("# {kind} {what}: {applied} of {OPS} applied");
+        }
+    }
+}
+
+/// Nanoseconds per load of a chain of dependent loads through `bytes` of memory in a
+/// random cyclic order (every load a cache miss once `bytes` is past the last-level
+/// cache): the latency that bounds an operator whose loads depend on each other.
+fn memory_latency(bytes: usize, reps: usize) {
+    let n = (bytes / 8).max(2);
+    // Sattolo's shuffle: one cycle through every slot.
+    let mut next: Vec<usize> = (0..n).collect();
+    let mut rng = Rng::new(7);
+    for i in (1..n).rev() {
+        next.swap(i, rng.below(i));
+    }
+    const LOADS: usize = 2_000_000;
+    let t = measure(reps, || (), |_| (0..LOADS).fold(0usize, |i, _| next[i]));
+    report(
+        "mem",
+        &format!("dependent_load_{}MiB", bytes >> 20),
+        t,
+        "ns/op",
+        LOADS,
+        reps,
+    );
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args
@@ -492,6 +655,22 @@ fn main() {
     }
     if args.get(3).is_some_and(|s| s == "optimize") {
         optimize_rows(reps);
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "ops") {
+        let quads = zipmesh::gen::torus_quads(n, n);
+        let quad_map = Map::from_polygons(n * n, &quads).expect("valid torus");
+        let tri_map = Map::from_polygons(n * n, &triangulate(&quads)).expect("valid torus");
+        operator_rows(&tri_map, &quad_map, reps, args.get(4).map(String::as_str));
+        for mib in [1, 8, 64, 256] {
+            memory_latency(mib << 20, reps);
+        }
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "chains") {
+        let quads = zipmesh::gen::torus_quads(n, n);
+        let map = Map::from_polygons(n * n, &quads).expect("valid torus");
+        chain_rows(&map, n, reps);
         return;
     }
     let quads = zipmesh::gen::torus_quads(n, n);
@@ -612,96 +791,9 @@ fn main() {
         );
     }
 
-    // Operators (issue 3): 100,000 random darts from a fixed seed per repetition, each
-    // repetition on a fresh copy; refused attempts are included in the time.
     let quad_map = Map::from_polygons(nv, &quads).expect("valid torus");
     let tri_map = Map::from_polygons(nv, &tris).expect("valid torus");
-    const OPS: usize = 100_000;
-    let random_darts = |m: &Map, seed: u64| -> Vec<Dart> {
-        let mut rng = Rng::new(seed);
-        (0..OPS)
-            .map(|_| Dart::new(rng.below(m.dart_slots()) as u32))
-            .collect()
-    };
-    type Op = fn(&mut Map, Dart) -> bool;
-    let tri_ops: [(&str, Op); 4] = [
-        ("op_flip", |m, d| tri::flip_edge(m, d).is_ok()),
-        ("op_collapse", |m, d| tri::collapse_edge(m, d).is_ok()),
-        ("op_edge_split", |m, d| tri::split_edge(m, d).is_ok()),
-        ("op_vertex_split", |m, d| {
-            let d2 = (0..3).fold(d, |x, _| m.rotate_cw(x));
-            tri::split_vertex(m, d, d2).is_ok()
-        }),
-    ];
-    let quad_ops: [(&str, Op); 4] = [
-        ("op_quad_collapse", |m, d| quad::collapse_quad(m, d).is_ok()),
-        ("op_vertex_split", |m, d| {
-            let d2 = m.rotate_cw(m.rotate_cw(d));
-            quad::split_vertex(m, d, d2).is_ok()
-        }),
-        ("op_rotate_edge", |m, d| {
-            quad::rotate_edge(m, d, quad::Rotation::Clockwise).is_ok()
-        }),
-        ("op_doublet_insert", |m, d| {
-            quad::insert_doublet(m, d).is_ok()
-        }),
-    ];
-    for (kind, base, ops) in [
-        ("tri", &tri_map, &tri_ops[..]),
-        ("quad", &quad_map, &quad_ops[..]),
-    ] {
-        for (k, (what, op)) in ops.iter().enumerate() {
-            let darts = random_darts(base, 1000 + k as u64);
-            let mut applied = 0;
-            let t = measure(
-                reps,
-                || base.clone(),
-                |mut m| {
-                    applied = darts.iter().filter(|&&d| op(&mut m, d)).count();
-                    m
-                },
-            );
-            report(kind, what, t, "ns/op", OPS, reps);
-            eprintln!("# {kind} {what}: {applied} of {OPS} applied");
-        }
-    }
-    // A chain of k quad collapses along a grid row (each merging a quad's lower-left corner
-    // with its upper-right one, the strip collapse of Q-zip), then the restoring splits.
-    let row = n / 2;
-    for k in [7usize, 100] {
-        let chain = |m: &mut Map| -> bool {
-            let mut records = Vec::with_capacity(k);
-            for i in 0..k {
-                let f = Face::new((row * n + 10 + i) as u32);
-                let corner = Vert::new((row * n + 10 + i) as u32);
-                let Some(d) = m.face_darts(f).find(|&d| m.origin(d) == corner) else {
-                    return false;
-                };
-                match quad::collapse_quad(m, d) {
-                    Ok(r) => records.push(r),
-                    Err(_) => return false,
-                }
-            }
-            records.into_iter().rev().all(|r| r.undo(m).is_ok())
-        };
-        let mut ok = true;
-        let t = measure(
-            reps,
-            || quad_map.clone(),
-            |mut m| {
-                ok &= chain(&mut m);
-                m
-            },
-        );
-        assert!(ok, "the chain of {k} collapses applies and restores");
-        report(
-            "quad",
-            &format!("chain{k}_collapse_restore"),
-            t,
-            "us/chain",
-            1,
-            reps,
-        );
-    }
+    operator_rows(&tri_map, &quad_map, reps, None);
+    chain_rows(&quad_map, n, reps);
     qzip_rows(n, reps);
 }
