@@ -442,7 +442,8 @@ fn qzip_rows(n: usize, reps: usize) {
         eprintln!("# qzip_spot skipped: cannot read {spot}");
         return;
     };
-    let mut map = mesh.map;
+    let bound = qzip::max_edge_length(&mesh);
+    let zipmesh::Mesh { mut map, positions } = mesh;
     let sing: Vec<Vert> =
         zipmesh::invariants::irregular_vertices(&map, zipmesh::invariants::MeshKind::Quad);
     let mut q = qzip::Qzip::new();
@@ -474,6 +475,71 @@ fn qzip_rows(n: usize, reps: usize) {
         q.zip(m, a, b, tag).expect("realizable")
     });
     report("quad", "qzip_spot", t, "us/qzip", cases.len(), reps);
+    // The same Q-zips with the sketch guided by Spot's own positions (A*), and without the
+    // sketch (paths found before): what the sketch costs on a real mesh.
+    let guide = SketchOptions::default().guide(qzip::Guide::new(&positions, bound));
+    let mut guided = qzip::Qzip::with_options(guide);
+    let t = measure_zips(reps, &mut map, &cases, 1, |m, &(a, b, tag, _)| {
+        guided.zip(m, a, b, tag).expect("realizable")
+    });
+    report("quad", "qzip_spot_guided", t, "us/qzip", cases.len(), reps);
+    let along: Vec<(qzip::Path, Tag)> = cases
+        .iter()
+        .map(|&(a, b, tag, _)| (qzip::sketch(&map, a, b, &opts).expect("a path"), tag))
+        .collect();
+    let t = measure_zips(reps, &mut map, &along, 1, |m, (p, tag)| {
+        q.zip_along(m, p, *tag).expect("realizable")
+    });
+    report("quad", "qzip_spot_along", t, "us/qzip", cases.len(), reps);
+    spot_movements(&mut map, &cases, reps);
+}
+
+/// The optimizer's form on Spot (issue 15's "per movement"): one sketch per pair, then
+/// each of its realizable movements along that path (each undone outside the clock), so a
+/// movement costs its share of the sketch plus one `zip_along`. Microseconds per movement.
+fn spot_movements(map: &mut Map, cases: &[(Vert, Vert, Tag, usize)], reps: usize) {
+    let mut groups: Vec<(Vert, Vert, Vec<Tag>)> = Vec::new();
+    for &(a, b, tag, _) in cases {
+        match groups.last_mut() {
+            Some(g) if (g.0, g.1) == (a, b) => g.2.push(tag),
+            _ => groups.push((a, b, vec![tag])),
+        }
+    }
+    let mut ws = qzip::SketchWorkspace::new();
+    let q = qzip::Qzip::new();
+    let opts = SketchOptions::default();
+    let mut times: Vec<f64> = (0..reps.max(1))
+        .map(|_| {
+            let mut total = 0.0;
+            for (a, b, tags) in &groups {
+                let t = Instant::now();
+                let path = ws.sketch(map, *a, *b, &opts).expect("a path");
+                total += t.elapsed().as_secs_f64();
+                for &tag in tags {
+                    let t = Instant::now();
+                    let r = q.zip_along(map, &path, tag).expect("realizable");
+                    total += t.elapsed().as_secs_f64();
+                    r.undo(map).expect("undo of a Q-zip just done");
+                }
+            }
+            total
+        })
+        .collect();
+    times.sort_by(|a, b| a.total_cmp(b));
+    let t = (times[times.len() / 2], times[0], times[times.len() - 1]);
+    report(
+        "quad",
+        "qzip_spot_per_movement",
+        t,
+        "us/qzip",
+        cases.len(),
+        reps,
+    );
+    eprintln!(
+        "# qzip_spot_per_movement: {} paths, {} movements",
+        groups.len(),
+        cases.len()
+    );
 }
 
 /// Collapses `k` quads along grid row `row` from column `col` (each merging a quad's
@@ -556,14 +622,15 @@ fn apply_all(m: &mut Map, darts: &[Dart], op: fn(&mut Map, Dart) -> bool) -> usi
     darts.iter().filter(|&&d| op(m, d)).count()
 }
 
-/// Operator rows (issue 3): 100,000 random darts from a fixed seed per repetition, each
+/// Operator rows (issue 3): 100,000 random darts from a fixed seed per repetition (one per
+/// eight quads on smaller tori, such as the 64 x 64 one that fits in the L2 cache), each
 /// repetition on a fresh copy; refused attempts are included in the time. With `only`,
 /// just the rows whose name is `only` (`ops NAME` on the command line).
 fn operator_rows(tri_map: &Map, quad_map: &Map, reps: usize, only: Option<&str>) {
-    const OPS: usize = 100_000;
+    let count = (quad_map.num_faces() / 8).clamp(1, 100_000);
     let random_darts = |m: &Map, seed: u64| -> Vec<Dart> {
         let mut rng = Rng::new(seed);
-        (0..OPS)
+        (0..count)
             .map(|_| Dart::new(rng.below(m.dart_slots()) as u32))
             .collect()
     };
@@ -608,8 +675,25 @@ fn operator_rows(tri_map: &Map, quad_map: &Map, reps: usize, only: Option<&str>)
                     m
                 },
             );
-            report(kind, what, t, "ns/op", OPS, reps);
-            eprintln!("# {kind} {what}: {applied} of {OPS} applied");
+            report(kind, what, t, "ns/op", count, reps);
+            eprintln!("# {kind} {what}: {applied} of {count} applied");
+            // The operators that add elements, with room reserved outside the clock: what
+            // the first growth of the freshly cloned arrays costs inside the row above.
+            if what.contains("split") || what.contains("doublet") {
+                let t = measure(
+                    reps,
+                    || {
+                        let mut m = base.clone();
+                        m.reserve(3 * count, count, 2 * count).expect("memory");
+                        m
+                    },
+                    |mut m| {
+                        apply_all(&mut m, &darts, op);
+                        m
+                    },
+                );
+                report(kind, &format!("{what}_reserved"), t, "ns/op", count, reps);
+            }
         }
     }
 }

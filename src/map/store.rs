@@ -22,6 +22,40 @@ pub struct Compaction {
 }
 
 impl Map {
+    /// Reserves room for at least `edges` more edges, `vertices` more vertices and `faces`
+    /// more faces than the map has slots, so that edits adding that many do not reallocate.
+    ///
+    /// The map is unchanged (`==` to what it was) whatever the outcome. Without it, the first
+    /// edit that adds an element to a freshly built or cloned map (whose arrays are full)
+    /// copies every per-dart array once: on a million-face map that copy, and touching the
+    /// fresh pages, cost more than the edit (`docs/benchmarks.md`, "Issue 15").
+    ///
+    /// # Errors
+    /// When the allocator cannot give that much memory, or the sizes overflow; the map may
+    /// then have reserved part of it.
+    ///
+    /// ```
+    /// let mut map = zipmesh::gen::torus_grid(8, 8).map;
+    /// let before = map.clone();
+    /// map.reserve(100, 50, 50).unwrap();
+    /// assert!(map.heap_bytes() >= before.heap_bytes() + 4 * (3 * 200 + 50 + 50));
+    /// assert_eq!(map, before);
+    /// assert!(map.reserve(usize::MAX, 0, 0).is_err());
+    /// ```
+    pub fn reserve(
+        &mut self,
+        edges: usize,
+        vertices: usize,
+        faces: usize,
+    ) -> Result<(), alloc::collections::TryReserveError> {
+        let darts = edges.saturating_mul(2);
+        self.next.try_reserve(darts)?;
+        self.vert.try_reserve(darts)?;
+        self.face.try_reserve(darts)?;
+        self.vdart.try_reserve(vertices)?;
+        self.fdart.try_reserve(faces)
+    }
+
     /// Removes every dead slot, keeping the order of live elements, and returns the
     /// old-to-new maps. Handles held before the call must be translated through them.
     ///
