@@ -88,18 +88,28 @@ pub(super) struct ArrayStore<'w> {
     pub(super) touched: &'w mut usize,
 }
 
+/// Grows `slots` to hold index `i`: only for handles past the map's slots, which live darts
+/// never reach, so kept out of line (inlined, it kept `get_mut` from being inlined, and the
+/// searches call `get_mut` a few hundred times per sketch).
+#[cold]
+#[inline(never)]
+fn grow(slots: &mut Vec<Slot>, i: usize) {
+    slots.resize(i + 1, Slot::default());
+}
+
 impl Store for ArrayStore<'_> {
+    #[inline]
     fn get(&self, v: Vert) -> Slot {
         match self.slots.get(v.index()) {
             Some(s) if s.tag >> 8 == *self.epoch => *s,
             _ => Slot::default(),
         }
     }
+    #[inline]
     fn get_mut(&mut self, v: Vert) -> &mut Slot {
         let i = v.index();
         if i >= self.slots.len() {
-            // Only for handles past the map's slots, which live darts never reach.
-            self.slots.resize(i + 1, Slot::default());
+            grow(self.slots, i);
         }
         let s = &mut self.slots[i];
         if s.tag >> 8 != *self.epoch {
@@ -131,4 +141,31 @@ pub(super) struct Buffers {
     pub(super) darts: Vec<Dart>,
     pub(super) astar: BinaryHeap<AEntry>,
     pub(super) dijkstra: BinaryHeap<Entry>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A handle past the arrays grows them and starts empty; a new pass forgets every
+    /// record, and stamps never leak from one pass into the next.
+    #[test]
+    fn array_store_grows_and_forgets() {
+        let (mut slots, mut epoch, mut touched) = (Vec::new(), 1, 0);
+        let mut st = ArrayStore {
+            slots: &mut slots,
+            epoch: &mut epoch,
+            touched: &mut touched,
+        };
+        let v = Vert::new(9);
+        assert!(!st.get(v).has(FWD));
+        st.get_mut(v).set(FWD);
+        st.get_mut(v).fwd = 3;
+        assert!(st.get(v).has(FWD) && st.get(v).fwd == 3);
+        assert!(!st.get(Vert::new(8)).has(FWD));
+        st.next_pass();
+        assert!(!st.get(v).has(FWD));
+        assert!(!st.get_mut(v).has(FWD));
+        assert_eq!((slots.len(), touched), (10, 2));
+    }
 }
