@@ -508,13 +508,16 @@ fn spot_movements(map: &mut Map, cases: &[(Vert, Vert, Tag, usize)], reps: usize
     let mut ws = qzip::SketchWorkspace::new();
     let q = qzip::Qzip::new();
     let opts = SketchOptions::default();
+    let mut sketching = 0.0;
     let mut times: Vec<f64> = (0..reps.max(1))
         .map(|_| {
             let mut total = 0.0;
             for (a, b, tags) in &groups {
                 let t = Instant::now();
                 let path = ws.sketch(map, *a, *b, &opts).expect("a path");
-                total += t.elapsed().as_secs_f64();
+                let s = t.elapsed().as_secs_f64();
+                total += s;
+                sketching += s;
                 for &tag in tags {
                     let t = Instant::now();
                     let r = q.zip_along(map, &path, tag).expect("realizable");
@@ -536,9 +539,10 @@ fn spot_movements(map: &mut Map, cases: &[(Vert, Vert, Tag, usize)], reps: usize
         reps,
     );
     eprintln!(
-        "# qzip_spot_per_movement: {} paths, {} movements",
+        "# qzip_spot_per_movement: {} paths, {} movements, {:.3} us per sketch",
         groups.len(),
-        cases.len()
+        cases.len(),
+        sketching * 1e6 / (groups.len() * reps.max(1)) as f64
     );
 }
 
