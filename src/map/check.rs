@@ -111,7 +111,7 @@ impl Map {
     pub fn check(&self) -> Result<(), Violation> {
         // Without the bitset that proves `next` a permutation (a quarter of the time): when
         // every other axiom holds, the vertex rotations covering every live dart imply it
-        // (docs/design.md, "Checking a map"). On any failure the full check runs, so the
+        // (docs/design.md, "Checking a map fast"). On any failure the full check runs, so the
         // violation reported is the first in the documented order, as before.
         if self.axioms::<false>().is_ok() {
             return Ok(());
@@ -304,7 +304,7 @@ mod tests {
     /// The fast path never accepts what the full check rejects: maps corrupted by random
     /// writes into their arrays (valid handles, out-of-range ones and `NONE`) and by merged
     /// vertices or faces, one to three corruptions each, on closed and bounded quad and
-    /// triangle meshes. The count of corrupted maps still valid is printed.
+    /// triangle meshes. How many of them are invalid is printed.
     #[test]
     fn fast_check_agrees_with_the_full_check() {
         let bases = [
@@ -332,7 +332,8 @@ mod tests {
         assert!(invalid > total / 2 && invalid < total);
     }
 
-    /// One random write into one of the map's arrays.
+    /// One random corruption: a write into one of the map's arrays, a swap of two `next`
+    /// entries, or two vertices (faces) merged into one.
     fn corrupt(m: &mut Map, rng: &mut Rng) {
         let nd = m.next.len() as u32;
         let value = match rng.below(4) {
