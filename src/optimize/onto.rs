@@ -63,13 +63,18 @@ struct Probe {
 }
 
 impl Probe {
-    /// Smaller is better: cancelling, then the distance to the target, then the chain's
-    /// running face change, then the distance in space.
+    /// Smaller is better: cancelling, then the distance to the target, then the distance
+    /// in space (as the pair chains), then the chain's running face change.
     fn better_than(&self, other: &Probe, run: isize) -> bool {
-        let key = |p: &Probe| (!p.cancels, p.dist, (run + p.faces).unsigned_abs());
+        let key = |p: &Probe| (!p.cancels, p.dist);
         key(self)
             .cmp(&key(other))
             .then(self.space.total_cmp(&other.space))
+            .then(
+                (run + self.faces)
+                    .unsigned_abs()
+                    .cmp(&(run + other.faces).unsigned_abs()),
+            )
             .is_lt()
     }
 }
