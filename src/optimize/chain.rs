@@ -53,6 +53,19 @@ pub(crate) struct ChainRun {
     pub(crate) scar: Vec<Vert>,
 }
 
+impl ChainRun {
+    /// Adds what another stage did (the walks onto a target after the pair chains).
+    pub(crate) fn absorb(&mut self, other: ChainRun) {
+        self.tried += other.tried;
+        self.cancelled += other.cancelled;
+        self.kept += other.kept;
+        self.qzips += other.qzips;
+        self.face_change += other.face_change;
+        self.paths.extend(other.paths);
+        self.scar.extend(other.scar);
+    }
+}
+
 /// A pair to walk together: its graph distance first (pairs sort closest first), its ends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Pair {
@@ -95,7 +108,7 @@ impl Probe {
 }
 
 /// One applied step of a chain, with what it needs to be undone and reported.
-struct Step {
+pub(super) struct Step {
     edit: Edited<ZipReport>,
     points: Vec<DVec3>,
     /// What the step touched, read right after it (later steps may reuse handles).
@@ -166,7 +179,7 @@ impl Batcher<'_> {
     }
 
     /// The graph distance from `a` to `b`, if at most `radius`.
-    fn distance(&mut self, mesh: &Mesh, a: Vert, b: Vert, radius: u32) -> Option<u32> {
+    pub(super) fn distance(&mut self, mesh: &Mesh, a: Vert, b: Vert, radius: u32) -> Option<u32> {
         let mut found = None;
         self.bfs.run(mesh, a, radius, |v, d| {
             if v == b {
@@ -190,21 +203,10 @@ impl Batcher<'_> {
             let Some(best) = self.probe(mesh, &path, a, b, dist) else {
                 break;
             };
-            let points = path
-                .vertices()
-                .iter()
-                .map(|v| mesh.positions[v.index()])
-                .collect();
-            let Some(edit) = self.apply(mesh, &path, best.tag) else {
+            let Some(step) = self.step(mesh, &path, best.tag) else {
                 break;
             };
-            let region = touched_region(mesh, &path, edit.record());
-            steps.push(Step {
-                edit,
-                points,
-                region,
-            });
-            self.refresh_constraints(mesh);
+            steps.push(step);
             if best.cancels {
                 return Some(steps);
             }
@@ -213,6 +215,23 @@ impl Batcher<'_> {
         }
         self.undo_steps(mesh, &steps);
         None
+    }
+
+    /// Applies the movement `tag` along `path` as a chain step (`None` if refused).
+    pub(super) fn step(&mut self, mesh: &mut Mesh, path: &Path, tag: Tag) -> Option<Step> {
+        let points = path
+            .vertices()
+            .iter()
+            .map(|v| mesh.positions[v.index()])
+            .collect();
+        let edit = self.apply(mesh, path, tag)?;
+        let region = touched_region(mesh, path, edit.record());
+        self.refresh_constraints(mesh);
+        Some(Step {
+            edit,
+            points,
+            region,
+        })
     }
 
     /// The best of the four movements along `path` (each applied and undone), or `None` if
@@ -261,7 +280,7 @@ impl Batcher<'_> {
     /// Relaxes the chain's scar and keeps the chain if the whole score falls, the
     /// constraints hold and the mesh has no more folded quads than `folds` (when given);
     /// else restores the positions and undoes the steps.
-    fn keep_or_undo(
+    pub(super) fn keep_or_undo(
         &mut self,
         mesh: &mut Mesh,
         steps: Vec<Step>,
@@ -297,7 +316,7 @@ impl Batcher<'_> {
         self.undo_steps(mesh, &steps);
     }
 
-    fn undo_steps(&mut self, mesh: &mut Mesh, steps: &[Step]) {
+    pub(super) fn undo_steps(&mut self, mesh: &mut Mesh, steps: &[Step]) {
         for s in steps.iter().rev() {
             // Exact undos of edits just made, in reverse, cannot be refused.
             let _ = s.edit.undo(mesh);

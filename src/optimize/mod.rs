@@ -17,6 +17,7 @@ mod chain;
 pub mod constraints;
 pub mod defect;
 mod folds;
+mod onto;
 pub mod score;
 pub mod smooth;
 mod tri_lookahead;
@@ -77,8 +78,8 @@ pub struct OptimizeOptions {
     pub preprocess: bool,
     /// How far (edges) a singularity looks for its six targets.
     pub search_radius: u32,
-    /// After a batch that executed nothing, walk v3/v5 pairs together by chains of Q-zips
-    /// ([`ChainStats`]).
+    /// After a batch that executed nothing, walk v3/v5 pairs together by chains of Q-zips,
+    /// then singularities onto opposite ones ([`ChainStats`]).
     pub chains: bool,
     /// Keep no Q-zip, chain or smoothing that leaves more folded quads ([`is_folded`])
     /// than there were: from the first batch on, the number of folded quads never rises.
@@ -325,7 +326,10 @@ impl BatchStats {
 /// "The endgame"). It runs after a batch that executed nothing: each v3-like singularity
 /// and its two closest v5-like ones (and the other way round), closest pairs first, are
 /// walked together by Q-zips, one movement at a time, until they cancel; a chain is kept
-/// only if it cancelled its pair and the whole score fell, else undone exactly.
+/// only if it cancelled its pair and the whole score fell, else undone exactly. If no pair
+/// chain is kept, each unit singularity is walked onto a close one of the opposite sign
+/// by Q-zips with a third singularity (a pair zipped with itself only translates), kept
+/// on the same terms; the counts here are both stages'.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
@@ -543,7 +547,11 @@ pub fn optimize(
         let mut run = b.run(mesh, &mut rng, &mut total);
         let mut chains = ChainStats::default();
         if run.qzips == 0 && options.chains && !chains_stale {
-            let c = b.chains(mesh, &mut total);
+            let mut c = b.chains(mesh, &mut total);
+            // Pairs that only translate (dislocations) may still cancel with a third.
+            if c.kept == 0 {
+                c.absorb(b.onto(mesh, &mut total));
+            }
             chains = ChainStats {
                 tried: c.tried,
                 cancelled: c.cancelled,

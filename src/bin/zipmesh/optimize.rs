@@ -46,7 +46,8 @@ pub struct OptimizeArgs {
     /// No smoothing after the batches.
     #[arg(long)]
     no_smooth: bool,
-    /// No chains of Q-zips walking v3/v5 pairs together after an idle batch (quad meshes).
+    /// No chains of Q-zips walking v3/v5 pairs together, or singularities onto opposite
+    /// ones, after an idle batch (quad meshes).
     #[arg(long)]
     no_chains: bool,
     /// Keep no Q-zip, chain or smoothing that adds a folded quad (quad meshes; fewer
