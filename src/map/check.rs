@@ -132,38 +132,43 @@ impl Map {
             return Err(Violation::FreeList);
         }
         // Each face record starts a cycle of its own face; the cycles cover all face darts.
-        let mut dead_faces = 0usize;
-        for (f, &d0) in self.fdart.iter().enumerate() {
-            if d0 == NONE {
-                dead_faces += 1;
-            } else if self.next.get(d0 as usize).is_none_or(|&n| n == NONE)
-                || self.face[d0 as usize] != f as u32
-            {
-                return Err(Violation::FaceRecord(Face(f as u32)));
-            }
-        }
-        if dead_faces != self.free_faces.len() {
-            return Err(Violation::FreeList);
-        }
+        self.records(&self.fdart, &self.face, self.free_faces.len(), |f| {
+            Violation::FaceRecord(Face(f))
+        })?;
         if self.cover(&self.fdart, 0, tally.face_darts) != tally.face_darts {
             return Err(Violation::FaceSplit);
         }
         // Each vertex record starts a rotation; the rotations cover all live darts.
-        let mut dead_verts = 0usize;
-        for (v, &d0) in self.vdart.iter().enumerate() {
-            if d0 == NONE {
-                dead_verts += 1;
-            } else if self.next.get(d0 as usize).is_none_or(|&n| n == NONE)
-                || self.vert[d0 as usize] != v as u32
-            {
-                return Err(Violation::VertexRecord(Vert(v as u32)));
-            }
-        }
-        if dead_verts != self.free_verts.len() {
-            return Err(Violation::FreeList);
-        }
+        self.records(&self.vdart, &self.vert, self.free_verts.len(), |v| {
+            Violation::VertexRecord(Vert(v))
+        })?;
         if self.cover(&self.vdart, 1, tally.live) != tally.live {
             return Err(Violation::VertexSplit);
+        }
+        Ok(())
+    }
+
+    /// Records of faces (or vertices): each live one names a live dart of its own
+    /// (`owner[dart]` is the element), and the dead ones are as many as the free list.
+    fn records(
+        &self,
+        records: &[u32],
+        owner: &[u32],
+        free: usize,
+        bad: impl Fn(u32) -> Violation,
+    ) -> Result<(), Violation> {
+        let mut dead = 0usize;
+        for (x, &d0) in records.iter().enumerate() {
+            if d0 == NONE {
+                dead += 1;
+            } else if self.next.get(d0 as usize).is_none_or(|&n| n == NONE)
+                || owner[d0 as usize] != x as u32
+            {
+                return Err(bad(x as u32));
+            }
+        }
+        if dead != free {
+            return Err(Violation::FreeList);
         }
         Ok(())
     }
