@@ -2,7 +2,6 @@
 //! `examples/workload.rs`: the n x n triangulated torus with a lone 5-7 pair, adjacent or
 //! at a chosen graph distance.
 
-use std::collections::VecDeque;
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{generate_pair_v7, move_pair, Direction, Moved, Via7};
 use zipmesh::{Map, Vert};
@@ -20,23 +19,6 @@ pub fn flipped(n: usize) -> (Map, [(Vert, Vert); 2]) {
     let d = map.dart_between(v(0), v(n + 1)).expect("diagonal");
     tri::flip_edge(&mut map, d).expect("flip");
     (map, [(v(0), v(1)), (v(n + 1), v(n))])
-}
-
-/// Graph distance from `from` to every vertex slot (`usize::MAX` when apart or dead).
-pub fn distances(map: &Map, from: Vert) -> Vec<usize> {
-    let mut dist = vec![usize::MAX; map.vertex_slots()];
-    dist[from.index()] = 0;
-    let mut queue = VecDeque::from([from]);
-    while let Some(v) = queue.pop_front() {
-        for d in map.vertex_darts(v) {
-            let w = map.dest(d);
-            if dist[w.index()] == usize::MAX {
-                dist[w.index()] = dist[v.index()] + 1;
-                queue.push_back(w);
-            }
-        }
-    }
-    dist
 }
 
 /// Whether `x` is clear of the pair `(s, t)` that is to end `want` edges apart, `t` having
@@ -97,14 +79,14 @@ fn others(map: &Map, s: Vert, t: Vert) -> Vec<Vert> {
 /// torus is too small for `want`.
 pub fn far_pair(n: usize, want: usize) -> (Map, Vert, Vert) {
     let (mut map, [a, (s, mut t)]) = flipped(n);
-    let (ds, dt) = (distances(&map, s), distances(&map, t));
+    let (ds, dt) = (map.distances(s), map.distances(t));
     assert!(
         send_away(&mut map, a, (&ds, &dt), (want, want - 1), n),
         "torus {n}: first pair"
     );
     let mut at = 1;
     while at < want {
-        let ds = distances(&map, s);
+        let ds = map.distances(s);
         let mut grown = None;
         'search: for d in map.vertex_darts(t).collect::<Vec<_>>() {
             for via in Via7::ALL {
@@ -116,10 +98,10 @@ pub fn far_pair(n: usize, want: usize) -> (Map, Vert, Vert) {
                 if ds.get(g.moved().index()) != Some(&(at + 1)) {
                     continue;
                 }
-                let dt = distances(&m, g.moved());
+                let dt = m.distances(g.moved());
                 // The walk can change distances (a 5-7 pair is a dislocation): measure again.
                 if send_away(&mut m, pair, (&ds, &dt), (want, want - at - 1), n)
-                    && distances(&m, s)[g.moved().index()] == at + 1
+                    && m.distances(s)[g.moved().index()] == at + 1
                 {
                     grown = Some((m, g.moved()));
                     break 'search;
@@ -129,7 +111,7 @@ pub fn far_pair(n: usize, want: usize) -> (Map, Vert, Vert) {
         (map, t) = grown.unwrap_or_else(|| panic!("torus {n}: no step from {at} to {}", at + 1));
         at += 1;
     }
-    let (ds, dt) = (distances(&map, s), distances(&map, t));
+    let (ds, dt) = (map.distances(s), map.distances(t));
     assert_eq!(ds[t.index()], want, "torus {n}");
     assert!((map.valence(s), map.valence(t)) == (5, 7));
     for x in others(&map, s, t) {

@@ -220,6 +220,37 @@ impl Map {
             .map(Face)
     }
 
+    /// The graph distance (edges) from `from` to every vertex slot, by breadth-first search:
+    /// `usize::MAX` for vertices in another component, for dead slots, and everywhere when
+    /// `from` is not a live vertex. O(vertices + darts).
+    ///
+    /// ```
+    /// use zipmesh::{gen, Vert};
+    /// let map = gen::grid(3, 3).map; // 4 x 4 vertices, row by row
+    /// let d = map.distances(Vert::new(0));
+    /// assert_eq!((d[0], d[1], d[5], d[15]), (0, 1, 2, 6));
+    /// assert!(map.distances(Vert::new(99)).iter().all(|&x| x == usize::MAX));
+    /// ```
+    pub fn distances(&self, from: Vert) -> alloc::vec::Vec<usize> {
+        let mut dist = alloc::vec![usize::MAX; self.vdart.len()];
+        if !self.is_live_vertex(from) {
+            return dist;
+        }
+        dist[from.index()] = 0;
+        let mut queue = alloc::collections::VecDeque::from([from]);
+        while let Some(v) = queue.pop_front() {
+            let next = dist[v.index()] + 1;
+            for d in self.vertex_darts(v) {
+                let w = self.dest(d).index();
+                if dist.get(w) == Some(&usize::MAX) {
+                    dist[w] = next;
+                    queue.push_back(Vert(w as u32));
+                }
+            }
+        }
+        dist
+    }
+
     /// One boundary dart of each boundary loop (the loop's smallest dart).
     ///
     /// ```
