@@ -305,6 +305,7 @@ impl Map {
 mod tests {
     use super::*;
     use crate::rng::Rng;
+    use alloc::vec::Vec;
 
     /// The fast path never accepts what the full check rejects: maps corrupted by random
     /// writes into their arrays (valid handles, out-of-range ones and `NONE`) and by merged
@@ -337,6 +338,22 @@ mod tests {
         assert!(invalid > total / 2 && invalid < total);
     }
 
+    /// Two random live elements made one: the darts of the second (by `owner`) relabelled
+    /// to the first, its record (`records`) freed onto `free`.
+    fn merge(owner: &mut [u32], records: &mut [u32], free: &mut Vec<u32>, rng: &mut Rng) {
+        let n = records.len().max(1);
+        let (a, b) = (rng.below(n), rng.below(n));
+        if a == b || records.get(a).is_none_or(|&d| d == NONE) || records[b] == NONE {
+            return;
+        }
+        owner
+            .iter_mut()
+            .filter(|x| **x == b as u32)
+            .for_each(|x| *x = a as u32);
+        records[b] = NONE;
+        free.push(b as u32);
+    }
+
     /// One random corruption: a write into one of the map's arrays, a swap of two `next`
     /// entries, or two vertices (faces) merged into one.
     fn corrupt(m: &mut Map, rng: &mut Rng) {
@@ -350,28 +367,8 @@ mod tests {
         match rng.below(7) {
             // Two vertices (faces) made one, their darts relabelled and a record freed: every
             // per-edge axiom still holds, only the covers see the two rotations (cycles).
-            5 => {
-                let (a, b) = (small(rng, m.vdart.len()), small(rng, m.vdart.len()));
-                if a != b && m.vdart[a] != NONE && m.vdart[b] != NONE {
-                    m.vert
-                        .iter_mut()
-                        .filter(|x| **x == b as u32)
-                        .for_each(|x| *x = a as u32);
-                    m.vdart[b] = NONE;
-                    m.free_verts.push(b as u32);
-                }
-            }
-            6 => {
-                let (f, g) = (small(rng, m.fdart.len()), small(rng, m.fdart.len()));
-                if f != g && m.fdart[f] != NONE && m.fdart[g] != NONE {
-                    m.face
-                        .iter_mut()
-                        .filter(|x| **x == g as u32)
-                        .for_each(|x| *x = f as u32);
-                    m.fdart[g] = NONE;
-                    m.free_faces.push(g as u32);
-                }
-            }
+            5 => merge(&mut m.vert, &mut m.vdart, &mut m.free_verts, rng),
+            6 => merge(&mut m.face, &mut m.fdart, &mut m.free_faces, rng),
             0 => {
                 let i = small(rng, m.next.len());
                 m.next[i] = value;
