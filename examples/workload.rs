@@ -13,7 +13,8 @@
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
 //! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
 //! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `chains`,
-//! only the chain rows: `chain_rows`; with `ops [KIND_NAME]`, only the operator rows, or
+//! only the chain rows: `chain_rows`; with `check`, the check beside a sequential read of
+//! as much memory: `check_rows`; with `ops [KIND_NAME]`, only the operator rows, or
 //! the one named like `tri_op_flip`, and the memory latency rows: `memory_latency`)
 //! are run.
 
@@ -702,6 +703,34 @@ fn operator_rows(tri_map: &Map, quad_map: &Map, reps: usize, only: Option<&str>)
     }
 }
 
+/// The validity check of the `n` x `n` quad torus beside what bounds it (issue 15): one
+/// sequential read of as many `u32`s as the map's five arrays hold (three per dart, one per
+/// vertex and per face), the least memory traffic of any check that reads every entry once.
+/// Milliseconds; with the third argument `check`.
+fn check_rows(n: usize, reps: usize) {
+    let quads = zipmesh::gen::torus_quads(n, n);
+    let map = Map::from_polygons(n * n, &quads).expect("valid torus");
+    let nf = map.num_faces();
+    // Both on a fresh copy, as the check row of the main table.
+    let t = measure(reps, || map.clone(), |m| m.check().is_ok());
+    report("quad", "check", t, "ms", nf, reps);
+    let words = 3 * map.dart_slots() + map.vertex_slots() + map.face_slots();
+    let data: Vec<u32> = (0..words as u32).collect();
+    let t = measure(
+        reps,
+        || data.clone(),
+        |d| d.iter().fold(0u32, |a, &x| a.wrapping_add(x)),
+    );
+    report(
+        "mem",
+        &format!("stream_read_{}MiB", (4 * words) >> 20),
+        t,
+        "ms",
+        nf,
+        reps,
+    );
+}
+
 /// Nanoseconds per load of a chain of dependent loads through `bytes` of memory in a
 /// random cyclic order (every load a cache miss once `bytes` is past the last-level
 /// cache): the latency that bounds an operator whose loads depend on each other.
@@ -739,6 +768,10 @@ fn main() {
     }
     if args.get(3).is_some_and(|s| s == "tri_moves") {
         tri_moves_rows(reps);
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "check") {
+        check_rows(n, reps);
         return;
     }
     if args.get(3).is_some_and(|s| s == "optimize") {

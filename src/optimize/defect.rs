@@ -91,6 +91,28 @@ pub fn defect(mesh: &Mesh, v: Vert) -> i64 {
     }
 }
 
+/// Whether the mesh already carries the least total |[`defect`]| that Gauss-Bonnet allows:
+/// every defect has the same sign (or there is none). The signed sum of the defects is fixed
+/// by the topology and the boundary's angles, and the total |defect| is at least its absolute
+/// value, so no edit can lower it; the optimizer leaves such a mesh as it is (its v6+
+/// would otherwise be split into v5 pairs, more singularities and more faces).
+///
+/// ```
+/// use zipmesh::{gen, optimize::at_defect_minimum};
+/// assert!(at_defect_minimum(&gen::cube(2))); // eight v3, all of one sign
+/// assert!(at_defect_minimum(&gen::torus_grid(4, 4))); // nothing to cancel
+/// assert!(!at_defect_minimum(&gen::subdivided_icosahedron(1))); // v3s and v5s
+/// ```
+pub fn at_defect_minimum(mesh: &Mesh) -> bool {
+    let (mut negative, mut positive) = (false, false);
+    for v in mesh.map.vertices() {
+        let d = defect(mesh, v);
+        negative |= d < 0;
+        positive |= d > 0;
+    }
+    !(negative && positive)
+}
+
 /// A vertex with a non-zero [`defect`].
 ///
 /// See [`singularities`] for an example.

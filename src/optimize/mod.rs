@@ -30,7 +30,9 @@ use alloc::vec::Vec;
 use glam::DVec3;
 
 pub use constraints::{ConstraintError, Constraints};
-pub use defect::{defect, ideal_boundary_valence, singularities, vertex_angle, Singularity};
+pub use defect::{
+    at_defect_minimum, defect, ideal_boundary_valence, singularities, vertex_angle, Singularity,
+};
 pub use folds::{folded_quads, is_folded};
 pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
@@ -399,6 +401,10 @@ pub struct Outcome {
     pub initial_score: f64,
     /// Whether the preprocessing ran and was kept.
     pub preprocessed: bool,
+    /// Whether the mesh already carried the least total defect Gauss-Bonnet allows
+    /// ([`at_defect_minimum`]), so that no batch ran and the mesh is returned as it was
+    /// (after the triangle stage, if any).
+    pub minimal: bool,
     /// One report per batch run (the last may have executed nothing).
     pub batches: Vec<BatchReport>,
     /// The counts of the result.
@@ -507,7 +513,10 @@ pub fn optimize(
     let surface = Surface::new(mesh);
     let triangles = triangles::pair_triangles(mesh, &constraints);
     let mut preprocessed = false;
-    if options.preprocess && MeshKind::of(&mesh.map) == MeshKind::Quad {
+    // Nothing can lower the total defect: leave the mesh as it is (no v6 splits either).
+    let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
+    let minimal = quad && at_defect_minimum(mesh);
+    if options.preprocess && quad && !minimal {
         if let Ok(p) = mesh_preprocess(mesh) {
             preprocessed = constraints.holds(mesh);
             if !preprocessed {
@@ -537,6 +546,18 @@ pub fn optimize(
     mark_features(&mut b, mesh);
     let mut total = b.scorer.score(mesh).0;
     let initial_score = total;
+    let mut outcome = Outcome {
+        input,
+        triangles,
+        initial_score,
+        preprocessed,
+        minimal,
+        batches: Vec::new(),
+        final_counts: SingularityCounts::of(mesh),
+    };
+    if minimal {
+        return Ok(outcome);
+    }
     let mut rng = Rng::new(options.seed);
     let mut batches = Vec::new();
     let mut idle = 0;
@@ -598,14 +619,9 @@ pub fn optimize(
     );
     scorer = b.scorer;
     let _ = scorer;
-    Ok(Outcome {
-        input,
-        triangles,
-        initial_score,
-        preprocessed,
-        batches,
-        final_counts: SingularityCounts::of(mesh),
-    })
+    outcome.batches = batches;
+    outcome.final_counts = SingularityCounts::of(mesh);
+    Ok(outcome)
 }
 
 fn mark_features(b: &mut batch::Batcher<'_>, mesh: &Mesh) {

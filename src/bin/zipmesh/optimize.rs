@@ -360,6 +360,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
             "refused_pairs": outcome.triangles.refused,
         },
         "preprocessed": outcome.preprocessed,
+        "minimal": outcome.minimal,
         "initial_score": outcome.initial_score,
         "batches": rows,
         "final": counts(&outcome.final_counts),
@@ -370,8 +371,13 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         .iter()
         .map(|b| b.qzips + b.chains.qzips)
         .sum();
+    let minimal = if outcome.minimal {
+        " (already at the Gauss-Bonnet minimum: every defect of one sign, nothing to cancel)"
+    } else {
+        ""
+    };
     let lines = [
-        format!("{name}: {}", summary(&outcome.input)),
+        format!("{name}: {}{minimal}", summary(&outcome.input)),
         format!(
             "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s",
             out::escape(&args.output.display().to_string()),
