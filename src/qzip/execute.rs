@@ -573,10 +573,10 @@ struct Chain<'s> {
     to_candidates: [Vert; 4],
     footprint_faces: Vec<Face>,
     footprint_edges: Vec<Edge>,
+    /// The faces made by the chain's splits and still there (a collapse of one shrinks the
+    /// scar; faces die only by the chain's collapses, so no slot is listed twice).
     scar_faces: Vec<Face>,
     scar_edges: Vec<Edge>,
-    /// Faces made by the chain's splits, still there: a collapse of one shrinks the scar.
-    born_faces: Vec<Face>,
     /// Path vertices sorted, with their positions, for long surgeries (short ones scan).
     positions: Vec<(Vert, usize)>,
 }
@@ -619,7 +619,6 @@ impl<'s> Chain<'s> {
             footprint_edges: Vec::with_capacity(steps.len().saturating_mul(2)),
             scar_faces: Vec::with_capacity(steps.len()),
             scar_edges: Vec::with_capacity(2 * steps.len()),
-            born_faces: Vec::with_capacity(steps.len()),
             positions,
         }
     }
@@ -697,7 +696,6 @@ impl<'s> Chain<'s> {
         }
         self.to_candidates = [cont, cont, other, n];
         self.guide = Some(cont);
-        self.born_faces.push(r.face());
         self.scar_faces.push(r.face());
         for d in [to_guide, edge] {
             if d.edge().index() < self.original_edges {
@@ -780,9 +778,8 @@ impl<'s> Chain<'s> {
     /// Footprint and scar after collapsing `face` (merging the two edge pairs of `merged`): a
     /// quad a split made leaves the scar, an original one joins the footprint.
     fn track_collapsed(&mut self, face: Face, merged: [Dart; 2]) {
-        if let Some(k) = self.born_faces.iter().rposition(|&b| b == face) {
-            self.born_faces.swap_remove(k);
-            self.scar_faces.retain(|&x| x != face);
+        if let Some(k) = self.scar_faces.iter().rposition(|&b| b == face) {
+            self.scar_faces.remove(k);
         } else if face.index() < self.original_faces {
             self.footprint_faces.push(face);
         }
