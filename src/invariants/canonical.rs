@@ -267,11 +267,13 @@ impl Orbits {
 
     /// Adds an automorphism: applied to every start reached so far, then closed.
     fn add_gen(&mut self, g: Vec<u32>) {
-        for k in 0..self.members.len() {
+        // The old members are closed under the old generators already.
+        let old = self.members.len();
+        for k in 0..old {
             self.mark(g[self.members[k] as usize]);
         }
         self.gens.push(g);
-        self.close(0);
+        self.close(old);
     }
 
     fn mark(&mut self, t: u32) {
