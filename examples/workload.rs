@@ -12,7 +12,8 @@
 //! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
 //! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
-//! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `chains`,
+//! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `canonical`,
+//! only the canonical code rows: `canonical_rows`, N unused; with `chains`,
 //! only the chain rows: `chain_rows`; with `check`, the check beside a sequential read of
 //! as much memory: `check_rows`; with `ops [KIND_NAME]`, only the operator rows, or
 //! the one named like `tri_op_flip`, and the memory latency rows: `memory_latency`)
@@ -754,6 +755,35 @@ fn memory_latency(bytes: usize, reps: usize) {
     );
 }
 
+/// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
+/// the same with 5 quads cut into triangles, in ns per face. With the third argument
+/// `canonical`, only these rows are run.
+fn canonical_rows(reps: usize) {
+    for side in [32usize, 100, 316] {
+        let q = zipmesh::gen::torus_quads(side, side);
+        let regular = Map::from_polygons(side * side, &q).expect("valid torus");
+        let faces = q.len();
+        report(
+            "quad",
+            &format!("canonical_torus_{faces}"),
+            measure(reps, || regular.clone(), |m| CanonicalCode::of(&m).hash()),
+            "ns/face",
+            faces,
+            reps,
+        );
+        let cut =
+            Map::from_polygons(side * side, &cut_some(&q, 5, side as u64)).expect("valid torus");
+        report(
+            "quad",
+            &format!("canonical_torus_{faces}_cut5"),
+            measure(reps, || cut.clone(), |m| CanonicalCode::of(&m).hash()),
+            "ns/face",
+            cut.num_faces(),
+            reps,
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args
@@ -764,6 +794,10 @@ fn main() {
     let reps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     if args.get(3).is_some_and(|s| s == "qzip") {
         qzip_rows(n, reps);
+        return;
+    }
+    if args.get(3).is_some_and(|s| s == "canonical") {
+        canonical_rows(reps);
         return;
     }
     if args.get(3).is_some_and(|s| s == "tri_moves") {
@@ -888,29 +922,7 @@ fn main() {
             reps,
         );
     }
-    for side in [32usize, 100, 316] {
-        let q = zipmesh::gen::torus_quads(side, side);
-        let regular = Map::from_polygons(side * side, &q).expect("valid torus");
-        let faces = q.len();
-        report(
-            "quad",
-            &format!("canonical_torus_{faces}"),
-            measure(reps, || regular.clone(), |m| CanonicalCode::of(&m).hash()),
-            "ns/face",
-            faces,
-            reps,
-        );
-        let cut =
-            Map::from_polygons(side * side, &cut_some(&q, 5, side as u64)).expect("valid torus");
-        report(
-            "quad",
-            &format!("canonical_torus_{faces}_cut5"),
-            measure(reps, || cut.clone(), |m| CanonicalCode::of(&m).hash()),
-            "ns/face",
-            cut.num_faces(),
-            reps,
-        );
-    }
+    canonical_rows(reps);
 
     let quad_map = Map::from_polygons(nv, &quads).expect("valid torus");
     let tri_map = Map::from_polygons(nv, &tris).expect("valid torus");

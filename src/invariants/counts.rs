@@ -139,20 +139,6 @@ pub(crate) fn vertex_components(map: &Map) -> (Vec<u32>, usize) {
     (comp, n as usize)
 }
 
-/// Component number of every dart (`NONE` for dead darts).
-pub(crate) fn component_of_darts(map: &Map) -> Vec<u32> {
-    let (vcomp, _) = vertex_components(map);
-    (0..map.next.len())
-        .map(|d| {
-            if map.next[d] == NONE {
-                NONE
-            } else {
-                vcomp[map.vert[d] as usize]
-            }
-        })
-        .collect()
-}
-
 /// The number of edges that keep the map from being a simple graph: every loop, plus every
 /// edge beyond the first between the same two vertices. Zero for a simple mesh; operators
 /// that neither create nor remove loops and multi-edges keep it unchanged.
