@@ -550,9 +550,6 @@ fn refused(index: usize, vertex: Vert, tag: Tag) -> impl FnOnce(Refusal) -> ZipE
 /// scar found so far.
 struct Chain<'s> {
     surgery: &'s Surgery,
-    /// Face and edge slots of the map before the edit: a handle below is an original one.
-    original_faces: usize,
-    original_edges: usize,
     touched: Touched,
     splits: usize,
     collapses: usize,
@@ -574,9 +571,13 @@ struct Chain<'s> {
     footprint_faces: Vec<Face>,
     footprint_edges: Vec<Edge>,
     /// The faces made by the chain's splits and still there (a collapse of one shrinks the
-    /// scar; faces die only by the chain's collapses, so no slot is listed twice).
+    /// scar; faces die only by the chain's collapses, so no slot is listed twice): every
+    /// other face the chain collapses is one of the map before, in the footprint.
     scar_faces: Vec<Face>,
     scar_edges: Vec<Edge>,
+    /// The edges made by the chain's splits (a slot freed and reused is made again): every
+    /// other edge the chain splits is one of the map before, in the footprint.
+    born_edges: Vec<Edge>,
     /// Path vertices sorted, with their positions, for long surgeries (short ones scan).
     positions: Vec<(Vert, usize)>,
 }
@@ -598,8 +599,6 @@ impl<'s> Chain<'s> {
         }
         Chain {
             surgery,
-            original_faces: map.face_slots(),
-            original_edges: map.edge_slots(),
             touched: Touched {
                 list: Vec::with_capacity(expected),
                 table: alloc::vec![0; (2 * expected).next_power_of_two()],
@@ -619,6 +618,7 @@ impl<'s> Chain<'s> {
             footprint_edges: Vec::with_capacity(steps.len().saturating_mul(2)),
             scar_faces: Vec::with_capacity(steps.len()),
             scar_edges: Vec::with_capacity(2 * steps.len()),
+            born_edges: Vec::with_capacity(2 * steps.len()),
             positions,
         }
     }
@@ -697,11 +697,16 @@ impl<'s> Chain<'s> {
         self.to_candidates = [cont, cont, other, n];
         self.guide = Some(cont);
         self.scar_faces.push(r.face());
-        for d in [to_guide, edge] {
-            if d.edge().index() < self.original_edges {
-                self.footprint_edges.push(d.edge());
+        let split = [to_guide.edge(), edge.edge()];
+        for e in split {
+            if !self.born_edges.contains(&e) {
+                self.footprint_edges.push(e);
             }
         }
+        // The new quad's two sides other than the split edges are new.
+        let made = r.quad().map(Dart::edge);
+        self.born_edges
+            .extend(made.into_iter().filter(|e| !split.contains(e)));
         out.push(r.into());
         self.advance(index + 1, self.vertex_at(index + 1));
         Ok(())
@@ -778,9 +783,10 @@ impl<'s> Chain<'s> {
     /// Footprint and scar after collapsing `face` (merging the two edge pairs of `merged`): a
     /// quad a split made leaves the scar, an original one joins the footprint.
     fn track_collapsed(&mut self, face: Face, merged: [Dart; 2]) {
+        // A face the chain did not make (not in the scar) is one of the map before.
         if let Some(k) = self.scar_faces.iter().rposition(|&b| b == face) {
             self.scar_faces.remove(k);
-        } else if face.index() < self.original_faces {
+        } else {
             self.footprint_faces.push(face);
         }
         self.scar_edges.extend(merged.map(Dart::edge));

@@ -35,6 +35,13 @@ pub enum Broken {
         /// The pair's valences before.
         expected: (usize, usize),
     },
+    /// The report's footprint or scar does not match the edit: a footprint face that was not
+    /// a face before or is still one (beyond the slots the scar and the clean-up's v6 splits
+    /// reused), a face the edit deleted
+    /// that the footprint misses (when the clean-up removed no valence-2 vertex, whose faces
+    /// it does not list), a footprint edge that was not an edge before, or a scar face or
+    /// edge that is not one after.
+    Footprint,
     /// Undoing the report does not give back the map before, `==`.
     Undo,
 }
@@ -51,6 +58,7 @@ impl fmt::Display for Broken {
                 f,
                 "the moved vertices have valences {found:?}, the pair had {expected:?}"
             ),
+            Self::Footprint => f.write_str("the footprint or scar does not match the edit"),
             Self::Undo => f.write_str("undo does not restore the map exactly"),
         }
     }
@@ -74,7 +82,8 @@ fn non_quads(map: &Map) -> alloc::vec::Vec<usize> {
 /// `before`, with the same number of triangles and other non-quad faces) with the
 /// Euler characteristic, boundary loops and irregular valences of `before`; its vertex count
 /// changed by the report's delta; the two moved vertices are distinct and carry the valences
-/// of the path's ends; and undoing the report on a copy of `after` gives `before` exactly.
+/// of the path's ends; the footprint and scar match the edit ([`Broken::Footprint`]); and
+/// undoing the report on a copy of `after` gives `before` exactly.
 ///
 /// ```
 /// use zipmesh::{gen, Vert};
@@ -114,9 +123,37 @@ pub fn verify_edit(
     if found != expected || from == to {
         return Err(Broken::Moved { found, expected });
     }
+    if !footprint_matches(before, after, report) {
+        return Err(Broken::Footprint);
+    }
     let mut undone = after.clone();
     if report.undo(&mut undone).is_err() || &undone != before {
         return Err(Broken::Undo);
     }
     Ok(())
+}
+
+/// The promise of [`Broken::Footprint`]: footprint faces were faces and are gone (or their
+/// slots reused by the scar or the clean-up's v6 splits), every deleted face is in the footprint unless the clean-up removed a v2,
+/// footprint edges were edges, scar faces and edges are there after.
+fn footprint_matches(before: &Map, after: &Map, r: &ZipReport) -> bool {
+    let scar = r.scar_faces();
+    // A footprint face's slot may be reused by the scar or by a clean-up v6 split (one each).
+    let reused = r
+        .footprint_faces()
+        .iter()
+        .filter(|&f| after.is_live_face(*f) && !scar.contains(f))
+        .count();
+    let listed = reused <= r.cleanup_counts().1
+        && r.footprint_faces().iter().all(|&f| before.is_live_face(f));
+    // Faces die only by the chain's collapses (listed) and the clean-up's v2 removals.
+    let complete = r.cleanup_counts().0 > 0
+        || before
+            .faces()
+            .all(|f| after.is_live_face(f) || r.footprint_faces().contains(&f));
+    listed
+        && complete
+        && r.footprint_edges().iter().all(|&e| before.is_live_edge(e))
+        && scar.iter().all(|&f| after.is_live_face(f))
+        && r.scar_edges().iter().all(|&e| after.is_live_edge(e))
 }
