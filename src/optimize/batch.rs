@@ -148,6 +148,14 @@ impl<'q> Batcher<'q> {
         Some(ball)
     }
 
+    /// With the fold guard on, the folded quads round `path` before a Q-zip along it: the
+    /// ball they are counted on, and the count.
+    fn folds_before(&mut self, mesh: &Mesh, path: &Path) -> Option<(Vec<Vert>, usize)> {
+        let ball = self.fold_ball(mesh, path.vertices())?;
+        let n = super::folds::folded_near(mesh, &ball);
+        Some((ball, n))
+    }
+
     /// The three closest v3-like and the three closest v5-like singularities of `s`.
     fn targets(&mut self, mesh: &Mesh, s: Vert, defects: &[i64]) -> Vec<Vert> {
         let (mut minus, mut plus) = (Vec::new(), Vec::new());
@@ -205,23 +213,26 @@ impl<'q> Batcher<'q> {
     }
 
     /// The score over `window` after the movement `tag` and its scar's relaxation (then
-    /// undone), and the movement's face change.
+    /// undone), and the movement's face change; `None` if the fold guard (given the count
+    /// before, `folds`) would refuse it at execution, so that ranking sees what executes.
     fn score_after(
         &mut self,
         mesh: &mut Mesh,
         path: &Path,
         tag: Tag,
         window: &[(Vert, u32)],
+        folds: Option<&(Vec<Vert>, usize)>,
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
         let saved = self.relax(mesh, z.record());
-        let after = self.scorer.local(mesh, window);
+        let folded = folds.is_some_and(|f| folds_rise(mesh, f, path, z.record()));
+        let after = (!folded).then(|| self.scorer.local(mesh, window));
         let faces = z.record().vertex_delta();
         for (v, p) in saved.into_iter().rev() {
             mesh.positions[v.index()] = p;
         }
         let _ = z.undo(mesh);
-        Some((after, faces))
+        Some((after?, faces))
     }
 
     /// Tries the four movements along `path` ([`TAGS`] order): for each, the score change
@@ -245,9 +256,10 @@ impl<'q> Batcher<'q> {
         if !ok.iter().any(|&x| x) {
             return out;
         }
+        let folds = self.folds_before(mesh, path);
         for (i, tag) in TAGS.into_iter().enumerate() {
             if ok[i] {
-                out[i] = self.score_after(mesh, path, tag, &window);
+                out[i] = self.score_after(mesh, path, tag, &window, folds.as_ref());
             }
         }
         let before = self.scorer.local(mesh, &window);
@@ -423,24 +435,14 @@ impl<'q> Batcher<'q> {
                     .unwrap_or(DVec3::ZERO)
             })
             .collect();
-        let ball = self.fold_ball(mesh, path.vertices());
-        let folds = ball.as_ref().map(|b| super::folds::folded_near(mesh, b));
+        let folds = self.folds_before(mesh, &path);
         let Some(z) = self.apply(mesh, &path, c.tag) else {
             return;
         };
         let saved = self.relax(mesh, z.record());
         let after = self.scorer.score(mesh).0;
         let region = touched_region(mesh, &path, z.record());
-        // The same vertices as before, less the dead, plus what the Q-zip made and moved:
-        // every quad whose corners changed is counted both times.
-        let folded = match (folds, ball) {
-            (Some(n), Some(mut b)) => {
-                b.retain(|&v| mesh.map.is_live_vertex(v));
-                b.extend(&region);
-                super::folds::folded_near(mesh, &b) > n
-            }
-            _ => false,
-        };
+        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &path, z.record()));
         if after >= *total - self.eps || !self.constraints.holds(mesh) || folded {
             for (v, p) in saved.into_iter().rev() {
                 mesh.positions[v.index()] = p;
@@ -467,6 +469,21 @@ fn union(a: &[(Vert, u32)], b: &[(Vert, u32)]) -> Vec<(Vert, u32)> {
     u.sort_unstable();
     u.dedup_by_key(|x| x.0);
     u
+}
+
+/// The fold guard's rule: whether the Q-zip `r` along `path`, just made, left more folded
+/// quads than `before` counted (the ball round the path and its count). They are counted on
+/// the same vertices, less the dead, plus what the Q-zip made and moved, so every quad whose
+/// corners changed is counted both times.
+fn folds_rise(mesh: &Mesh, before: &(Vec<Vert>, usize), path: &Path, r: &ZipReport) -> bool {
+    let (ball, n) = before;
+    let mut b: Vec<Vert> = ball
+        .iter()
+        .copied()
+        .filter(|&v| mesh.map.is_live_vertex(v))
+        .collect();
+    b.extend(touched_region(mesh, path, r));
+    super::folds::folded_near(mesh, &b) > *n
 }
 
 /// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved
