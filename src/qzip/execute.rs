@@ -973,4 +973,46 @@ mod tests {
         assert_eq!(u.irregulars_kept(&fan(6)), Ok(()));
         assert_eq!(u.irregulars_kept(&fan(7)), Err((1, 1)));
     }
+
+    /// `verify_edit` refuses a report whose footprint or scar is tampered with, clause by
+    /// clause (each tamper breaks one promise of `Broken::Footprint` and nothing else), and
+    /// the untampered report passes: so the check can fail, and a weakened one would.
+    #[test]
+    fn verify_edit_catches_a_wrong_footprint_or_scar() {
+        use crate::qzip::{sketch, verify_edit, Broken, Qzip, SketchOptions};
+        let before = crate::gen::subdivided_icosahedron(2).map;
+        let o = SketchOptions::default();
+        let path = sketch(&before, Vert::new(0), Vert::new(42), &o).unwrap();
+        // A movement with collapses and splits: footprint faces and a scar to tamper with.
+        let (after, r) = Tag::CCW
+            .into_iter()
+            .filter_map(|tag| {
+                let mut m = before.clone();
+                let r = Qzip::new().zip_along(&mut m, &path, tag).ok()?;
+                let full = !r.footprint_faces.is_empty() && !r.scar_faces.is_empty();
+                (full && r.cleanup_counts() == (0, 0) && !r.scar_edges.is_empty()).then_some((m, r))
+            })
+            .next()
+            .expect("a movement with a footprint and a scar");
+        assert_eq!(verify_edit(&before, &after, &path, &r), Ok(()));
+        let live_face = after.faces().find(|f| !r.scar_faces.contains(f)).unwrap();
+        let dead_face = Face::new(after.face_slots() as u32 + 7);
+        let dead_edge = Edge::new(after.edge_slots() as u32 + 7);
+        let tampers: [&dyn Fn(&mut ZipReport); 6] = [
+            &|r| r.footprint_faces.push(live_face),
+            &|r| r.footprint_faces.push(dead_face),
+            &|r| {
+                r.footprint_faces.pop();
+            },
+            &|r| r.footprint_edges.push(dead_edge),
+            &|r| r.scar_faces.push(dead_face),
+            &|r| r.scar_edges.push(dead_edge),
+        ];
+        for (i, tamper) in tampers.iter().enumerate() {
+            let mut bad = r.clone();
+            tamper(&mut bad);
+            let got = verify_edit(&before, &after, &path, &bad);
+            assert_eq!(got, Err(Broken::Footprint), "tamper {i}");
+        }
+    }
 }
