@@ -980,6 +980,7 @@ mod tests {
     #[test]
     fn verify_edit_catches_a_wrong_footprint_or_scar() {
         use crate::qzip::{sketch, verify_edit, Broken, Qzip, SketchOptions};
+        use alloc::string::ToString;
         let before = crate::gen::subdivided_icosahedron(2).map;
         let o = SketchOptions::default();
         let path = sketch(&before, Vert::new(0), Vert::new(42), &o).unwrap();
@@ -1014,5 +1015,6 @@ mod tests {
             let got = verify_edit(&before, &after, &path, &bad);
             assert_eq!(got, Err(Broken::Footprint), "tamper {i}");
         }
+        assert!(Broken::Footprint.to_string().contains("footprint or scar"));
     }
 }
