@@ -5,7 +5,6 @@
 //! scoring, and undoing it exactly. `docs/optimize.md` gives each formula.
 
 use alloc::boxed::Box;
-use alloc::collections::VecDeque;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -215,9 +214,10 @@ impl ScoreTerm for FaceBudget {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bfs {
     seen: Vec<u32>,
-    dist: Vec<u32>,
     epoch: u32,
-    queue: VecDeque<Vert>,
+    /// The vertices reached, in order, with their distances: read from the front, never
+    /// popped (cheaper than a ring buffer; one search pushes each vertex once).
+    queue: Vec<(Vert, u32)>,
 }
 
 impl Bfs {
@@ -245,7 +245,6 @@ impl Bfs {
         let n = map.vertex_slots();
         if self.seen.len() < n {
             self.seen.resize(n, 0);
-            self.dist.resize(n, 0);
         }
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
@@ -256,12 +255,12 @@ impl Bfs {
         for v in from {
             if map.is_live_vertex(v) && self.seen[v.index()] != self.epoch {
                 self.seen[v.index()] = self.epoch;
-                self.dist[v.index()] = 0;
-                self.queue.push_back(v);
+                self.queue.push((v, 0));
             }
         }
-        while let Some(v) = self.queue.pop_front() {
-            let d = self.dist[v.index()];
+        let mut head = 0;
+        while let Some(&(v, d)) = self.queue.get(head) {
+            head += 1;
             if !visit(v, d) {
                 return;
             }
@@ -273,8 +272,7 @@ impl Bfs {
                 if let Some(s) = self.seen.get_mut(u.index()) {
                     if *s != self.epoch {
                         *s = self.epoch;
-                        self.dist[u.index()] = d + 1;
-                        self.queue.push_back(u);
+                        self.queue.push((u, d + 1));
                     }
                 }
             }
