@@ -361,4 +361,17 @@ impl Clone for Map {
             free_faces: self.free_faces.clone(),
         }
     }
+
+    /// Copies `source` into `self`'s arrays, allocating only where they are too short (the
+    /// optimizer copies a small mesh per candidate).
+    fn clone_from(&mut self, source: &Map) {
+        self.next.clone_from(&source.next);
+        self.vert.clone_from(&source.vert);
+        self.face.clone_from(&source.face);
+        self.vdart.clone_from(&source.vdart);
+        self.fdart.clone_from(&source.fdart);
+        self.free_edges.clone_from(&source.free_edges);
+        self.free_verts.clone_from(&source.free_verts);
+        self.free_faces.clone_from(&source.free_faces);
+    }
 }

@@ -41,6 +41,11 @@ pub(super) const RELAX_STEPS: usize = 2;
 /// within this ball or among the vertices it made.
 const FOLD_REACH: u32 = 2;
 
+/// At most this many dart slots, a candidate's four movements are each made on a copy of
+/// the mesh, kept until it is scored: copying a mesh this small costs less than the second
+/// Q-zip and the two undos that editing the mesh itself takes per movement.
+const COPY_DARTS: usize = 4096;
+
 /// The four initial operations, in compass order.
 pub(super) const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
 
@@ -74,6 +79,10 @@ pub(crate) struct Batcher<'q> {
     pub(crate) search_radius: u32,
     pub(crate) eps: f64,
     pub(crate) fold_guard: bool,
+    /// The copies [`Batcher::try_path`] makes a small mesh's movements on.
+    pub(crate) copies: Vec<Mesh>,
+    /// The window [`Batcher::try_path`] builds.
+    pub(crate) window: Window,
 }
 
 impl<'q> Batcher<'q> {
@@ -122,15 +131,14 @@ impl<'q> Batcher<'q> {
         super::smooth::laplacian(mesh, None, &vs, &self.locked, RELAX_STEPS)
     }
 
-    /// The vertices within [`WINDOW`] edges of `seeds`, each with its distance: where a
-    /// candidate is scored.
-    fn window(&mut self, mesh: &Mesh, seeds: impl IntoIterator<Item = Vert>) -> Vec<(Vert, u32)> {
-        let mut out = Vec::new();
-        self.bfs.run_from(mesh, seeds, WINDOW, |v, d| {
-            out.push((v, d));
+    /// Adds the vertices within [`WINDOW`] edges of `seeds` to the window being built:
+    /// where a candidate is scored.
+    fn add_window(&mut self, mesh: &Mesh, seeds: impl IntoIterator<Item = Vert>) {
+        let window = &mut self.window;
+        self.bfs.run_from(mesh, seeds, WINDOW, |v, _| {
+            window.insert(v);
             true
         });
-        out
     }
 
     /// With the fold guard on, the vertices within [`FOLD_REACH`] edges of `verts`: where a
@@ -191,25 +199,18 @@ impl<'q> Batcher<'q> {
         }
     }
 
-    /// The window of `path` after the movement `tag` (applied and undone; the relaxation
-    /// moves no edge, so it is left out), or `None` if the movement is not realizable or
-    /// breaks a constraint.
-    fn window_after(&mut self, mesh: &mut Mesh, path: &Path, tag: Tag) -> Option<Vec<(Vert, u32)>> {
-        let z = self.apply(mesh, path, tag)?;
-        let r = z.record();
+    /// Adds the window round what the movement `r` along `path` changed, on the mesh it
+    /// left (the relaxation moves no edge, so it is left out).
+    fn add_window_of(&mut self, mesh: &Mesh, path: &Path, r: &ZipReport) {
         let map = &mesh.map;
-        let seeds: Vec<Vert> = path
+        let seeds = path
             .vertices()
             .iter()
             .copied()
             .chain([r.moved_from(), r.moved_to()])
             .chain(r.scar_faces().iter().map(|&f| map.origin(map.face_dart(f))))
-            .filter(|&v| map.is_live_vertex(v))
-            .collect();
-        let w = self.window(mesh, seeds);
-        // An exact undo of an edit just made cannot be refused.
-        let _ = z.undo(mesh);
-        Some(w)
+            .filter(|&v| map.is_live_vertex(v));
+        self.add_window(mesh, seeds);
     }
 
     /// The score over `window` after the movement `tag` and its scar's relaxation (then
@@ -220,7 +221,7 @@ impl<'q> Batcher<'q> {
         mesh: &mut Mesh,
         path: &Path,
         tag: Tag,
-        window: &[(Vert, u32)],
+        window: &[Vert],
         folds: Option<&(Vec<Vert>, usize)>,
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
@@ -244,11 +245,24 @@ impl<'q> Batcher<'q> {
     /// a collapse, and biased the ranking towards splits (docs/optimize.md, "Scoring a
     /// candidate"). One window for the four also scores the mesh before only once.
     fn try_path(&mut self, mesh: &mut Mesh, path: &Path) -> [Option<(f64, isize)>; 4] {
-        let mut window = self.window(mesh, path.vertices().iter().copied());
+        if mesh.map.dart_slots() <= COPY_DARTS {
+            self.try_path_on_copies(mesh, path)
+        } else {
+            self.try_path_by_edits(mesh, path)
+        }
+    }
+
+    /// [`Batcher::try_path`] on `mesh` itself: each movement made, undone, made again to be
+    /// scored and undone again.
+    fn try_path_by_edits(&mut self, mesh: &mut Mesh, path: &Path) -> [Option<(f64, isize)>; 4] {
+        self.window.clear();
+        self.add_window(mesh, path.vertices().iter().copied());
         let mut ok = [false; 4];
         for (i, tag) in TAGS.into_iter().enumerate() {
-            if let Some(w) = self.window_after(mesh, path, tag) {
-                window = union(&window, &w);
+            if let Some(z) = self.apply(mesh, path, tag) {
+                self.add_window_of(mesh, path, z.record());
+                // An exact undo of an edit just made cannot be refused.
+                let _ = z.undo(mesh);
                 ok[i] = true;
             }
         }
@@ -257,13 +271,56 @@ impl<'q> Batcher<'q> {
             return out;
         }
         let folds = self.folds_before(mesh, path);
+        let window = self.window.take_sorted();
         for (i, tag) in TAGS.into_iter().enumerate() {
             if ok[i] {
                 out[i] = self.score_after(mesh, path, tag, &window, folds.as_ref());
             }
         }
         let before = self.scorer.local(mesh, &window);
+        self.window.give_back(window);
         out.map(|x| x.map(|(after, faces)| (after - before, faces)))
+    }
+
+    /// [`Batcher::try_path`] with each movement made once, on its own copy of `mesh`, and
+    /// scored there: the same windows and scores, `mesh` untouched.
+    fn try_path_on_copies(&mut self, mesh: &Mesh, path: &Path) -> [Option<(f64, isize)>; 4] {
+        let mut copies = core::mem::take(&mut self.copies);
+        copies.resize_with(TAGS.len(), Mesh::default);
+        self.window.clear();
+        self.add_window(mesh, path.vertices().iter().copied());
+        let mut made = [None, None, None, None];
+        for ((tag, copy), made) in TAGS.into_iter().zip(&mut copies).zip(&mut made) {
+            copy.map.clone_from(&mesh.map);
+            copy.positions.clone_from(&mesh.positions);
+            if let Some(z) = self.apply(copy, path, tag) {
+                self.add_window_of(copy, path, z.record());
+                *made = Some(z);
+            }
+        }
+        let mut out = [None; 4];
+        if made.iter().any(Option::is_some) {
+            let folds = self.folds_before(mesh, path);
+            let window = self.window.take_sorted();
+            for ((copy, made), out) in copies.iter_mut().zip(&made).zip(&mut out) {
+                if let Some(z) = made {
+                    self.relax(copy, z.record());
+                    // What the fold guard would refuse at execution is not ranked.
+                    let folded = folds
+                        .as_ref()
+                        .is_some_and(|f| folds_rise(copy, f, path, z.record()));
+                    if !folded {
+                        let after = self.scorer.local(copy, &window);
+                        *out = Some((after, z.record().vertex_delta()));
+                    }
+                }
+            }
+            let before = self.scorer.local(mesh, &window);
+            out = out.map(|x| x.map(|(after, faces)| (after - before, faces)));
+            self.window.give_back(window);
+        }
+        self.copies = copies;
+        out
     }
 
     /// The best of the 24 candidates of `s` (score change, most negative first), if any
@@ -360,6 +417,8 @@ impl<'q> Batcher<'q> {
             search_radius: self.search_radius,
             eps: self.eps,
             fold_guard: self.fold_guard,
+            copies: Vec::new(),
+            window: Window::default(),
         })
     }
 
@@ -463,12 +522,45 @@ impl<'q> Batcher<'q> {
     }
 }
 
-/// The union of two windows, sorted by vertex, each vertex with its smaller distance.
-fn union(a: &[(Vert, u32)], b: &[(Vert, u32)]) -> Vec<(Vert, u32)> {
-    let mut u: Vec<(Vert, u32)> = a.iter().chain(b).copied().collect();
-    u.sort_unstable();
-    u.dedup_by_key(|x| x.0);
-    u
+/// The union of a candidate's windows as it is built: each vertex once (stamped), sorted
+/// when complete.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Window {
+    stamp: Vec<u32>,
+    epoch: u32,
+    verts: Vec<Vert>,
+}
+
+impl Window {
+    fn clear(&mut self) {
+        self.verts.clear();
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+    }
+
+    fn insert(&mut self, v: Vert) {
+        if self.stamp.len() <= v.index() {
+            self.stamp.resize(v.index() + 1, 0);
+        }
+        if self.stamp[v.index()] != self.epoch {
+            self.stamp[v.index()] = self.epoch;
+            self.verts.push(v);
+        }
+    }
+
+    /// The vertices, sorted; hand the list back with [`Window::give_back`].
+    fn take_sorted(&mut self) -> Vec<Vert> {
+        let mut v = core::mem::take(&mut self.verts);
+        v.sort_unstable();
+        v
+    }
+
+    fn give_back(&mut self, v: Vec<Vert>) {
+        self.verts = v;
+    }
 }
 
 /// The fold guard's rule: whether the Q-zip `r` along `path`, just made, left more folded
@@ -520,6 +612,64 @@ mod tests {
     use crate::qzip::{mesh_preprocess, SketchOptions};
     use alloc::boxed::Box;
 
+    /// A batcher with the default terms on `mesh`.
+    fn batcher(mesh: &Mesh) -> Batcher<'static> {
+        let o = crate::optimize::OptimizeOptions::default();
+        let mut b = Batcher {
+            qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
+            scorer: Scorer {
+                terms: o.terms,
+                features: Vec::new(),
+                target_area: 0.05,
+                target_faces: 300,
+                walls: true,
+                scratch: Default::default(),
+            },
+            constraints: Constraints::default(),
+            locked: Vec::new(),
+            bfs: Bfs::default(),
+            search_radius: 64,
+            eps: 1e-9,
+            fold_guard: false,
+            copies: Vec::new(),
+            window: Window::default(),
+        };
+        b.refresh_constraints(mesh);
+        b
+    }
+
+    /// The movements made on copies give the scores, to the bit, that editing the mesh
+    /// itself gives, and leave the mesh as it was; so do the edits. The scorers keep their
+    /// quad values from path to path, so a stale one would show here too.
+    #[test]
+    fn copies_score_as_edits_do() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
+        mesh_preprocess(&mut mesh).unwrap();
+        let (mut a, mut b) = (batcher(&mesh), batcher(&mesh));
+        let sing = singularities(&mesh);
+        let mut defects = vec![0i64; mesh.map.vertex_slots()];
+        for s in &sing {
+            defects[s.vertex.index()] = s.defect;
+        }
+        let before = mesh.clone();
+        let mut scored = 0;
+        for s in sing.iter().take(10) {
+            for t in a.targets(&mesh, s.vertex, &defects) {
+                let Ok(path) = a.qzip.sketch(&mesh.map, s.vertex, t) else {
+                    continue;
+                };
+                let copies = a.try_path_on_copies(&mesh, &path);
+                let edits = b.try_path_by_edits(&mut mesh, &path);
+                assert_eq!(mesh, before, "the edits were not undone exactly");
+                let bits =
+                    |x: [Option<(f64, isize)>; 4]| x.map(|c| c.map(|(d, f)| (d.to_bits(), f)));
+                assert_eq!(bits(copies), bits(edits));
+                scored += copies.iter().flatten().count();
+            }
+        }
+        assert!(scored > 40, "{scored}");
+    }
+
     /// For the terms that are sums over vertices and faces, the window estimate of a
     /// candidate equals the whole-mesh change: the windows before and after cover the same
     /// vertex handles. Two separate windows failed this (the bias towards splits).
@@ -541,6 +691,7 @@ mod tests {
                 target_area: 0.05,
                 target_faces: 300,
                 walls: false,
+                scratch: Default::default(),
             },
             constraints: Constraints::default(),
             locked: Vec::new(),
@@ -548,6 +699,8 @@ mod tests {
             search_radius: 64,
             eps: 1e-9,
             fold_guard: false,
+            copies: Vec::new(),
+            window: Window::default(),
         };
         b.refresh_constraints(&mesh);
         let sing = singularities(&mesh);

@@ -531,6 +531,7 @@ pub fn optimize(
         target_faces: input_faces,
         walls: mesh.map.vertices().any(|v| mesh.map.is_boundary_vertex(v))
             || constraints.feature_vertices().next().is_some(),
+        scratch: Default::default(),
     };
     let before = Counts::of(&mesh.map);
     let mut b = batch::Batcher {
@@ -542,6 +543,8 @@ pub fn optimize(
         search_radius: options.search_radius,
         eps: 1e-9,
         fold_guard: options.fold_guard,
+        copies: Vec::new(),
+        window: Default::default(),
     };
     mark_features(&mut b, mesh);
     let mut total = b.scorer.score(mesh).0;

@@ -5,7 +5,6 @@
 //! scoring, and undoing it exactly. `docs/optimize.md` gives each formula.
 
 use alloc::boxed::Box;
-use alloc::collections::VecDeque;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -112,7 +111,29 @@ pub trait ScoreTerm: core::fmt::Debug {
     fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
         None
     }
+    /// If the term is a sum over the scored quads (in [`Context::scored_faces`] order, from
+    /// 0) of a function of each quad's corners (from the face's dart, in cycle order) and
+    /// [`Context::target_area`]: that function. The optimizer then reuses the value of a
+    /// quad whose corners did not move, with the same score to the last bit. `None` (the
+    /// default) for any other term.
+    ///
+    /// ```
+    /// use zipmesh::{gen, optimize::{Context, Count, Isotropy, ScoreTerm, Sizing}};
+    /// let m = gen::grid(2, 2);
+    /// let ctx = Context { mesh: &m, singularities: &[], features: &[], target_area: 2.0, target_faces: 0, faces: None, walls: true };
+    /// let square = [0.0, 1.0].map(|x| [0.0, 1.0].map(|y| glam::DVec3::new(x, y, 0.0)));
+    /// let one = Sizing.quad_value().unwrap()(&[square[0][0], square[1][0], square[1][1], square[0][1]], 2.0);
+    /// assert_eq!(Sizing.score(&ctx), 4.0 * one); // four unit squares
+    /// assert!(Isotropy.quad_value().is_some() && Count.quad_value().is_none());
+    /// ```
+    fn quad_value(&self) -> Option<QuadValue> {
+        None
+    }
 }
+
+/// A quad term's value of one quad: its corners in cycle order and the target area
+/// ([`ScoreTerm::quad_value`]).
+pub type QuadValue = fn(&[DVec3; 4], f64) -> f64;
 
 /// The singularity count: the sum of |defect| over every vertex (interior valence against 4,
 /// boundary valence against its ideal). Not a term of the paper, whose goal it is: the other
@@ -193,9 +214,10 @@ impl ScoreTerm for FaceBudget {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bfs {
     seen: Vec<u32>,
-    dist: Vec<u32>,
     epoch: u32,
-    queue: VecDeque<Vert>,
+    /// The vertices reached, in order, with their distances: read from the front, never
+    /// popped (cheaper than a ring buffer; one search pushes each vertex once).
+    queue: Vec<(Vert, u32)>,
 }
 
 impl Bfs {
@@ -223,7 +245,6 @@ impl Bfs {
         let n = map.vertex_slots();
         if self.seen.len() < n {
             self.seen.resize(n, 0);
-            self.dist.resize(n, 0);
         }
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
@@ -234,12 +255,12 @@ impl Bfs {
         for v in from {
             if map.is_live_vertex(v) && self.seen[v.index()] != self.epoch {
                 self.seen[v.index()] = self.epoch;
-                self.dist[v.index()] = 0;
-                self.queue.push_back(v);
+                self.queue.push((v, 0));
             }
         }
-        while let Some(v) = self.queue.pop_front() {
-            let d = self.dist[v.index()];
+        let mut head = 0;
+        while let Some(&(v, d)) = self.queue.get(head) {
+            head += 1;
             if !visit(v, d) {
                 return;
             }
@@ -251,11 +272,60 @@ impl Bfs {
                 if let Some(s) = self.seen.get_mut(u.index()) {
                     if *s != self.epoch {
                         *s = self.epoch;
-                        self.dist[u.index()] = d + 1;
-                        self.queue.push_back(u);
+                        self.queue.push((u, d + 1));
                     }
                 }
             }
+        }
+    }
+}
+
+/// Epoch-stamped per-vertex values for one scoring call (the mesh does not change during
+/// it): a vertex that several searches reach is read once.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct VertexMemo {
+    stamp: Vec<u32>,
+    value: Vec<i64>,
+    epoch: u32,
+}
+
+impl VertexMemo {
+    /// Forgets every value; `slots` is the mesh's vertex slot count.
+    pub(crate) fn begin(&mut self, slots: usize) {
+        if self.stamp.len() < slots {
+            self.stamp.resize(slots, 0);
+            self.value.resize(slots, 0);
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+    }
+
+    /// The value of `v`, computed by `f` the first time since [`VertexMemo::begin`].
+    pub(crate) fn get(&mut self, v: Vert, f: impl FnOnce() -> i64) -> i64 {
+        match (self.stamp.get_mut(v.index()), self.value.get_mut(v.index())) {
+            (Some(s), Some(x)) => {
+                if *s != self.epoch {
+                    (*s, *x) = (self.epoch, f());
+                }
+                *x
+            }
+            _ => f(),
+        }
+    }
+
+    /// The value of `v` if set since [`VertexMemo::begin`].
+    pub(crate) fn peek(&self, v: Vert) -> Option<i64> {
+        let i = v.index();
+        (self.stamp.get(i) == Some(&self.epoch)).then(|| self.value[i])
+    }
+
+    /// Sets the value of `v` (nothing if `v` is past the slots given to `begin`).
+    pub(crate) fn set(&mut self, v: Vert, x: i64) {
+        if let (Some(s), Some(y)) = (self.stamp.get_mut(v.index()), self.value.get_mut(v.index())) {
+            (*s, *y) = (self.epoch, x);
         }
     }
 }
@@ -284,6 +354,7 @@ pub struct Electric {
     /// How a pair's energy falls with distance.
     pub potential: Potential,
     bfs: Bfs,
+    defects: VertexMemo,
 }
 
 /// The pair potential of [`Electric`], for charges `q`, `q'` at graph distance `d`.
@@ -333,6 +404,7 @@ impl Default for Electric {
             boundary_radius: 4,
             potential: Potential::Inverse,
             bfs: Bfs::default(),
+            defects: VertexMemo::default(),
         }
     }
 }
@@ -347,6 +419,10 @@ impl ScoreTerm for Electric {
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let map = &ctx.mesh.map;
         let mut total = 0.0;
+        // Each singularity's search reads the defects round it; on a small mesh every
+        // search reaches every vertex.
+        self.defects.begin(map.vertex_slots());
+        let defects = &mut self.defects;
         for s in ctx.singularities {
             let q = s.charge();
             // No wall to find: as if found, so the search stops at the third singularity.
@@ -357,7 +433,7 @@ impl ScoreTerm for Electric {
                 if d == 0 {
                     return true;
                 }
-                let dv = super::defect::defect(ctx.mesh, v);
+                let dv = defects.get(v, || super::defect::defect(ctx.mesh, v));
                 if dv != 0 && found < 3 {
                     found += 1;
                     total += pot.energy(q, -(dv as f64), d, radius);
@@ -403,14 +479,22 @@ impl ScoreTerm for Isotropy {
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let mut total = 0.0;
         for f in ctx.scored_faces() {
-            if let Some([p0, p1, p2, p3]) = ctx.corners(f) {
-                let a = p0.distance(p1) + p2.distance(p3);
-                let b = p1.distance(p2) + p3.distance(p0);
-                total += log_ratio_sq(a, b) + log_ratio_sq(p0.distance(p2), p1.distance(p3));
+            if let Some(c) = ctx.corners(f) {
+                total += isotropy(&c, ctx.target_area);
             }
         }
         total
     }
+    fn quad_value(&self) -> Option<QuadValue> {
+        Some(isotropy)
+    }
+}
+
+/// One quad's [`Isotropy`].
+fn isotropy(&[p0, p1, p2, p3]: &[DVec3; 4], _target_area: f64) -> f64 {
+    let a = p0.distance(p1) + p2.distance(p3);
+    let b = p1.distance(p2) + p3.distance(p0);
+    log_ratio_sq(a, b) + log_ratio_sq(p0.distance(p2), p1.distance(p3))
 }
 
 /// Uniform sizing: each quad's `ln(area / target)^2` (the log capped at 2), with the target
@@ -437,13 +521,21 @@ impl ScoreTerm for Sizing {
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let mut total = 0.0;
         for f in ctx.scored_faces() {
-            if let Some([p0, p1, p2, p3]) = ctx.corners(f) {
-                let area = 0.5 * (p2 - p0).cross(p3 - p1).length();
-                total += log_ratio_sq(area, ctx.target_area);
+            if let Some(c) = ctx.corners(f) {
+                total += sizing(&c, ctx.target_area);
             }
         }
         total
     }
+    fn quad_value(&self) -> Option<QuadValue> {
+        Some(sizing)
+    }
+}
+
+/// One quad's [`Sizing`].
+fn sizing(&[p0, p1, p2, p3]: &[DVec3; 4], target_area: f64) -> f64 {
+    let area = 0.5 * (p2 - p0).cross(p3 - p1).length();
+    log_ratio_sq(area, target_area)
 }
 
 /// Separatrix alignment: each interior singularity at graph distance `d` (1 to `radius`)
@@ -465,7 +557,10 @@ pub struct Separatrix {
     pub radius: u32,
     /// The longest traced separatrix (edges).
     pub length: usize,
-    owner: Vec<u32>,
+    /// Per vertex, the separatrices through it: one's index, or [`MANY_OWNERS`].
+    owner: VertexMemo,
+    /// Per vertex, 1 if a separatrix goes on through it (regular and interior).
+    through: VertexMemo,
     bfs: Bfs,
 }
 
@@ -474,29 +569,32 @@ impl Default for Separatrix {
         Separatrix {
             radius: 3,
             length: 32,
-            owner: Vec::new(),
+            owner: VertexMemo::default(),
+            through: VertexMemo::default(),
             bfs: Bfs::default(),
         }
     }
 }
 
-const NO_OWNER: u32 = u32::MAX;
-const MANY_OWNERS: u32 = u32::MAX - 1;
+const MANY_OWNERS: i64 = -1;
 
 impl Separatrix {
-    fn trace(&mut self, ctx: &Context<'_>, id: u32, s: Vert) {
+    fn trace(&mut self, ctx: &Context<'_>, id: i64, s: Vert) {
         let map = &ctx.mesh.map;
         for start in map.vertex_darts(s) {
             let mut d = start;
             for _ in 0..self.length {
                 let v = map.dest(d);
-                let o = &mut self.owner[v.index()];
-                *o = if *o == NO_OWNER || *o == id {
-                    id
-                } else {
-                    MANY_OWNERS
+                let o = match self.owner.peek(v) {
+                    None => id,
+                    Some(o) if o == id => id,
+                    Some(_) => MANY_OWNERS,
                 };
-                if map.valence(v) != 4 || map.is_boundary_vertex(v) {
+                self.owner.set(v, o);
+                let on = self.through.get(v, || {
+                    i64::from(map.valence(v) == 4 && !map.is_boundary_vertex(v))
+                });
+                if on == 0 {
                     break;
                 }
                 d = map.rotate_cw(map.rotate_cw(d.twin()));
@@ -513,20 +611,21 @@ impl ScoreTerm for Separatrix {
         "separatrix"
     }
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
-        self.owner.clear();
-        self.owner.resize(ctx.mesh.map.vertex_slots(), NO_OWNER);
-        let interior: Vec<&Singularity> =
-            ctx.singularities.iter().filter(|s| !s.boundary).collect();
-        for (i, s) in interior.iter().enumerate() {
-            self.trace(ctx, i as u32, s.vertex);
+        // Stamped, not cleared: a window's call touches a few vertices of a large mesh.
+        let slots = ctx.mesh.map.vertex_slots();
+        self.owner.begin(slots);
+        self.through.begin(slots);
+        let interior = || ctx.singularities.iter().filter(|s| !s.boundary);
+        for (i, s) in interior().enumerate() {
+            self.trace(ctx, i as i64, s.vertex);
         }
         let mut total = 0.0;
-        for (i, s) in interior.iter().enumerate() {
+        for (i, s) in interior().enumerate() {
             let owner = &self.owner;
             let mut best = None;
             self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
-                let o = owner[v.index()];
-                if o != NO_OWNER && (o != i as u32 || o == MANY_OWNERS) {
+                let o = owner.peek(v);
+                if o.is_some_and(|o| o != i as i64 || o == MANY_OWNERS) {
                     best = Some(d);
                     return false;
                 }
@@ -549,6 +648,120 @@ pub(crate) struct Scorer {
     pub(crate) target_faces: usize,
     /// Whether the mesh has a boundary or features ([`Context::walls`]).
     pub(crate) walls: bool,
+    /// [`Scorer::local`]'s buffers and quad values, kept between calls.
+    pub(crate) scratch: LocalScratch,
+}
+
+/// What [`Scorer::local`] keeps between calls: its lists, and per face slot the corners
+/// the quad terms ([`ScoreTerm::quad_value`]) last read and their values, so that a quad
+/// no candidate moved is not measured again.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct LocalScratch {
+    sing: Vec<Singularity>,
+    faces: Vec<crate::Face>,
+    /// Per face slot, the epoch that last listed it (a face is listed once per call).
+    listed: Vec<u32>,
+    epoch: u32,
+    /// Per face slot, the corners its row of `values` was computed from.
+    corners: Vec<Option<[DVec3; 4]>>,
+    /// Per face slot, one value per term (0 for the terms that are not quad terms).
+    values: Vec<f64>,
+    /// Per term, its quad function, if any.
+    quad: Vec<Option<QuadValue>>,
+    totals: Vec<f64>,
+    /// The target area and the number of terms `values` were computed with.
+    area: f64,
+    width: usize,
+}
+
+impl LocalScratch {
+    /// `faces` sorted, each once: listing first and sorting the few left is cheaper than
+    /// sorting every corner's face.
+    fn list_faces(&mut self, mesh: &Mesh, window: &[Vert]) {
+        let map = &mesh.map;
+        self.faces.clear();
+        if self.listed.len() < map.face_slots() {
+            self.listed.resize(map.face_slots(), 0);
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.listed.iter_mut().for_each(|x| *x = 0);
+            self.epoch = 1;
+        }
+        for &v in window {
+            for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
+                if let Some(l) = self.listed.get_mut(f.index()) {
+                    if *l != self.epoch {
+                        *l = self.epoch;
+                        self.faces.push(f);
+                    }
+                }
+            }
+        }
+        self.faces.sort_unstable();
+    }
+
+    /// Adds each quad term's value of every listed quad to `totals`, in face order,
+    /// measuring only the quads whose corners changed since they were last measured.
+    fn quad_totals(&mut self, mesh: &Mesh, target_area: f64) {
+        let width = self.quad.len();
+        self.totals.clear();
+        self.totals.resize(width, 0.0);
+        if self.quad.iter().all(Option::is_none) {
+            return;
+        }
+        if self.area.to_bits() != target_area.to_bits() || self.width != width {
+            self.corners.clear();
+            self.values.clear();
+            (self.area, self.width) = (target_area, width);
+        }
+        let slots = mesh.map.face_slots().max(self.corners.len());
+        self.corners.resize(slots, None);
+        self.values.resize(slots * width, 0.0);
+        for &f in &self.faces {
+            let Some(c) = quad_corners(mesh, f) else {
+                continue;
+            };
+            let (Some(known), Some(row)) = (
+                self.corners.get_mut(f.index()),
+                self.values
+                    .get_mut(f.index() * width..(f.index() + 1) * width),
+            ) else {
+                continue;
+            };
+            if known.is_none_or(|k| !same_bits(&k, &c)) {
+                for (x, q) in row.iter_mut().zip(&self.quad) {
+                    *x = q.map_or(0.0, |q| q(&c, target_area));
+                }
+                *known = Some(c);
+            }
+            for (t, x) in self.totals.iter_mut().zip(row.iter()) {
+                *t += *x;
+            }
+        }
+    }
+}
+
+/// The corners of `f` if it is a quad ([`Context::corners`]).
+fn quad_corners(mesh: &Mesh, f: crate::Face) -> Option<[DVec3; 4]> {
+    let map = &mesh.map;
+    let mut c = [DVec3::ZERO; 4];
+    let mut n = 0;
+    for x in map.face_cycle(map.face_dart(f)) {
+        *c.get_mut(n)? = mesh
+            .positions
+            .get(map.origin(x).index())
+            .copied()
+            .unwrap_or(DVec3::ZERO);
+        n += 1;
+    }
+    (n == 4).then_some(c)
+}
+
+fn same_bits(a: &[DVec3; 4], b: &[DVec3; 4]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits))
 }
 
 impl Scorer {
@@ -565,6 +778,7 @@ impl Scorer {
             target_area: self.target_area,
             target_faces: self.target_faces,
             walls: self.walls,
+            scratch: LocalScratch::default(),
         })
     }
 
@@ -591,40 +805,86 @@ impl Scorer {
         (total, parts)
     }
 
-    /// The weighted sum of the terms over a window (vertices with their distance from the
-    /// edit): its singularities and the faces at its vertices.
-    pub(crate) fn local(&mut self, mesh: &Mesh, window: &[(Vert, u32)]) -> f64 {
+    /// The weighted sum of the terms over a window (vertices, sorted): its singularities and
+    /// the faces at its vertices. The quad terms read the
+    /// values [`LocalScratch`] keeps for quads that did not move.
+    pub(crate) fn local(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
         let map = &mesh.map;
-        let s: Vec<Singularity> = window
-            .iter()
-            .filter_map(|&(v, _)| {
-                let d = super::defect::defect(mesh, v);
-                (d != 0).then(|| Singularity {
-                    vertex: v,
-                    defect: d,
-                    boundary: map.is_boundary_vertex(v),
-                })
+        let sc = &mut self.scratch;
+        sc.sing.clear();
+        sc.sing.extend(window.iter().filter_map(|&v| {
+            let d = super::defect::defect(mesh, v);
+            (d != 0).then(|| Singularity {
+                vertex: v,
+                defect: d,
+                boundary: map.is_boundary_vertex(v),
             })
-            .collect();
-        let mut faces: Vec<crate::Face> = window
-            .iter()
-            .flat_map(|&(v, _)| map.vertex_darts(v).filter_map(|d| map.face(d)))
-            .collect();
-        faces.sort_unstable();
-        faces.dedup();
+        }));
+        sc.list_faces(mesh, window);
+        sc.quad.clear();
+        sc.quad.extend(
+            self.terms
+                .iter()
+                .map(|(w, t)| t.quad_value().filter(|_| *w != 0.0)),
+        );
+        sc.quad_totals(mesh, self.target_area);
         let ctx = Context {
             mesh,
-            singularities: &s,
+            singularities: &sc.sing,
             features: &self.features,
             target_area: self.target_area,
             target_faces: self.target_faces,
-            faces: Some(&faces),
+            faces: Some(&sc.faces),
             walls: self.walls,
         };
+        let (quad, totals) = (&sc.quad, &sc.totals);
         self.terms
             .iter_mut()
-            .filter(|(w, _)| *w != 0.0)
-            .map(|(w, t)| *w * t.score(&ctx))
+            .enumerate()
+            .filter(|(_, (w, _))| *w != 0.0)
+            .map(|(i, (w, t))| match quad[i] {
+                Some(_) => *w * totals[i],
+                None => *w * t.score(&ctx),
+            })
             .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scorer() -> Scorer {
+        Scorer {
+            terms: crate::optimize::OptimizeOptions::default().terms,
+            features: Vec::new(),
+            target_area: 0.7,
+            target_faces: 50,
+            walls: true,
+            scratch: LocalScratch::default(),
+        }
+    }
+
+    /// A scorer that kept the quad values of earlier calls scores a window as a new one
+    /// does, to the bit, after corners moved and after a face changed its corners.
+    #[test]
+    fn kept_quad_values_give_the_fresh_score() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(40, 1, 0, 2));
+        let window: Vec<Vert> = mesh.map.vertices().take(30).collect();
+        let mut kept = scorer();
+        let first = kept.local(&mesh, &window);
+        assert_eq!(first.to_bits(), scorer().local(&mesh, &window).to_bits());
+        for (i, &v) in window.iter().enumerate().step_by(3) {
+            mesh.positions[v.index()] += DVec3::splat(0.01 * (i + 1) as f64);
+            let again = kept.local(&mesh, &window);
+            assert_eq!(again.to_bits(), scorer().local(&mesh, &window).to_bits());
+            assert_ne!(again.to_bits(), first.to_bits());
+        }
+        // A flip of the edge at a window vertex gives two faces new corners.
+        let d = mesh.map.vertex_dart(window[0]);
+        crate::ops::quad::rotate_edge(&mut mesh.map, d, crate::ops::quad::Rotation::Clockwise)
+            .unwrap();
+        let flipped = kept.local(&mesh, &window);
+        assert_eq!(flipped.to_bits(), scorer().local(&mesh, &window).to_bits());
     }
 }
