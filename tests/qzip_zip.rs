@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{check_zip, ico_cc, pairs_within, torus_with_splits};
+use common::{check_zip, ico_cc, pairs_within, shared, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, MeshKind};
@@ -317,4 +317,24 @@ fn cancellation_does_what_the_guard_refuses() {
         fallback >= 1,
         "no cancellation fell back ({refused} refused)"
     );
+}
+
+/// OpenSubdiv's helmet: its movements within 12 edges all pass `verify_edit`, including
+/// those whose clean-up removes a valence-2 vertex (three of the 13); such a removal deletes
+/// a face the footprint does not list, which the footprint check must allow.
+#[test]
+fn helmet_movements_with_a_valence_2_clean_up_verify() {
+    let map = zipmesh::io::read_mesh(shared("quad/osd_catmark_helmet.obj"))
+        .unwrap()
+        .0
+        .map;
+    let mut with_v2 = 0;
+    for path in pairs_within(&map, 12) {
+        for tag in Tag::CCW {
+            if let Ok((_, r)) = check_zip(&map, &path, tag) {
+                with_v2 += usize::from(r.cleanup_counts().0 > 0);
+            }
+        }
+    }
+    assert!(with_v2 >= 3, "{with_v2} movements with a valence-2 clean-up");
 }
