@@ -7,11 +7,12 @@ use common::{check_zip, ico_cc, pairs_within, shared, torus_with_splits};
 use proptest::prelude::*;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, MeshKind};
+use zipmesh::ops::quad::QuadRecord;
 use zipmesh::qzip::{
     moves, plan, prepare, sketch, validate_path, EndRule, PrepareError, Qzip, QzipError,
-    SketchOptions, StartRule, Tag,
+    SketchOptions, StartRule, Tag, ZipReport,
 };
-use zipmesh::{gen, Map, Vert};
+use zipmesh::{gen, Edge, Map, Vert};
 
 #[derive(Default, Debug)]
 struct Tally {
@@ -336,5 +337,77 @@ fn helmet_movements_with_a_valence_2_clean_up_verify() {
             }
         }
     }
-    assert!(with_v2 >= 3, "{with_v2} movements with a valence-2 clean-up");
+    assert!(
+        with_v2 >= 3,
+        "{with_v2} movements with a valence-2 clean-up"
+    );
+}
+
+/// The footprint's edges by their definition, from the maps the chain went through: a
+/// split's two split edges that had been edges from the map before up to that split,
+/// without a break (a slot freed and reused in between is another edge). The maps are
+/// found by undoing the records one at a time from the end.
+fn footprint_edges_by_definition(before: &Map, after: &Map, r: &ZipReport) -> Vec<Edge> {
+    let records = r.records();
+    let mut states = vec![after.clone()];
+    for rec in records.iter().rev() {
+        let mut m = states.last().unwrap().clone();
+        rec.undo(&mut m).unwrap();
+        states.push(m);
+    }
+    states.reverse(); // states[k]: the map before record k
+    assert!(&states[0] == before);
+    let chain = r.splits() + r.collapses();
+    let mut out = Vec::new();
+    for (k, rec) in records[..chain].iter().enumerate() {
+        if let QuadRecord::Split(s) = rec {
+            let q = s.quad();
+            for e in [q[0].edge(), q[2].edge()] {
+                if states[..=k].iter().all(|m| m.is_live_edge(e)) {
+                    out.push(e);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Every movement within 6 edges on the subdivided icosahedron after one Q-zip (so its
+/// arrays hold dead slots that later splits reuse) and on the quad-dominant cages: the
+/// footprint's edges are exactly those of the definition, in order.
+#[test]
+fn footprint_edges_match_their_definition() {
+    // Two quads collapsed: their edge slots are free for the splits to reuse.
+    let mut ico = ico_cc(2);
+    for f in [10, 200] {
+        let d = ico.face_dart(zipmesh::Face::new(f));
+        zipmesh::ops::quad::collapse_quad(&mut ico, d).unwrap();
+    }
+    assert!(
+        ico.edge_slots() > ico.num_edges(),
+        "dead edge slots to reuse"
+    );
+    let (mut checked, mut reused) = (0, 0);
+    for map in [ico, ico_cc(1)] {
+        for path in pairs_within(&map, 6) {
+            for tag in Tag::CCW {
+                let mut m = map.clone();
+                let Ok(r) = Qzip::new().zip_along(&mut m, &path, tag) else {
+                    continue;
+                };
+                let want = footprint_edges_by_definition(&map, &m, &r);
+                assert_eq!(r.footprint_edges(), want, "{tag}");
+                checked += 1;
+                let split = r.records()[..r.splits() + r.collapses()]
+                    .iter()
+                    .filter(|x| matches!(x, QuadRecord::Split(_)))
+                    .count();
+                reused += usize::from(want.len() < 2 * split && r.collapses() > 0);
+            }
+        }
+    }
+    assert!(
+        checked > 1000 && reused > 100,
+        "{checked} checked, {reused} with made edges split again and collapses"
+    );
 }

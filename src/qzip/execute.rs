@@ -66,7 +66,6 @@ pub struct ZipReport {
     moved_from: Vert,
     moved_to: Vert,
     footprint_faces: Vec<Face>,
-    footprint_edges: Vec<Edge>,
     scar_faces: Vec<Face>,
     scar_edges: Vec<Edge>,
 }
@@ -130,11 +129,17 @@ impl ZipReport {
         &self.footprint_faces
     }
 
-    /// The footprint's edges: edges of the original map split in two.
+    /// The footprint's edges: edges of the original map split in two, in the order split.
+    /// Read off the records on each call (each split's two split edges, unless an earlier
+    /// split made them), so the edit itself tracks nothing for it.
     ///
     /// See [`execute`] for an example.
-    pub fn footprint_edges(&self) -> &[Edge] {
-        &self.footprint_edges
+    pub fn footprint_edges(&self) -> Vec<Edge> {
+        let chain = self
+            .records
+            .get(..self.splits + self.collapses)
+            .unwrap_or(&[]);
+        split_original_edges(chain)
     }
 
     /// The scar's faces: quads made by the chain's splits that are still there.
@@ -569,15 +574,11 @@ struct Chain<'s> {
     from_candidates: Option<[Vert; 3]>,
     to_candidates: [Vert; 4],
     footprint_faces: Vec<Face>,
-    footprint_edges: Vec<Edge>,
     /// The faces made by the chain's splits and still there (a collapse of one shrinks the
     /// scar; faces die only by the chain's collapses, so no slot is listed twice): every
     /// other face the chain collapses is one of the map before, in the footprint.
     scar_faces: Vec<Face>,
     scar_edges: Vec<Edge>,
-    /// The edges made by the chain's splits (a slot freed and reused is made again): every
-    /// other edge the chain splits is one of the map before, in the footprint.
-    born_edges: Vec<Edge>,
     /// Path vertices sorted, with their positions, for long surgeries (short ones scan).
     positions: Vec<(Vert, usize)>,
 }
@@ -615,10 +616,8 @@ impl<'s> Chain<'s> {
             // At most one face and two edges per operation: sized once, so no vector
             // regrows mid-chain (regrowth was a tenth of a Q-zip's time on Spot).
             footprint_faces: Vec::with_capacity(steps.len()),
-            footprint_edges: Vec::with_capacity(steps.len().saturating_mul(2)),
             scar_faces: Vec::with_capacity(steps.len()),
             scar_edges: Vec::with_capacity(2 * steps.len()),
-            born_edges: Vec::with_capacity(2 * steps.len()),
             positions,
         }
     }
@@ -697,16 +696,6 @@ impl<'s> Chain<'s> {
         self.to_candidates = [cont, cont, other, n];
         self.guide = Some(cont);
         self.scar_faces.push(r.face());
-        let split = [to_guide.edge(), edge.edge()];
-        for e in split {
-            if !self.born_edges.contains(&e) {
-                self.footprint_edges.push(e);
-            }
-        }
-        // The new quad's two sides other than the split edges are new.
-        let made = r.quad().map(Dart::edge);
-        self.born_edges
-            .extend(made.into_iter().filter(|e| !split.contains(e)));
         out.push(r.into());
         self.advance(index + 1, self.vertex_at(index + 1));
         Ok(())
@@ -888,7 +877,6 @@ fn run(
         splits,
         collapses,
         footprint_faces,
-        footprint_edges,
         mut scar_faces,
         mut scar_edges,
         ..
@@ -905,10 +893,34 @@ fn run(
         moved_from,
         moved_to,
         footprint_faces,
-        footprint_edges,
         scar_faces,
         scar_edges,
     })
+}
+
+/// The edges of the map before that the chain's splits (in `chain`, its records in order)
+/// split: each split's two split edges (`quad()[0]` and `[2]`) unless an earlier split made
+/// them (its new sides, `quad()[1]` and `[3]`; a slot freed and reused is made again).
+/// Quadratic in the splits, a few per chain.
+fn split_original_edges(chain: &[QuadRecord]) -> Vec<Edge> {
+    let splits = || {
+        chain.iter().filter_map(|r| match r {
+            QuadRecord::Split(s) => Some(s.quad()),
+            _ => None,
+        })
+    };
+    let mut out = Vec::new();
+    for (i, q) in splits().enumerate() {
+        for e in [q[0].edge(), q[2].edge()] {
+            let made = splits()
+                .take(i)
+                .any(|p| p[1].edge() == e || p[3].edge() == e);
+            if !made {
+                out.push(e);
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -999,13 +1011,12 @@ mod tests {
         let live_face = after.faces().find(|f| !r.scar_faces.contains(f)).unwrap();
         let dead_face = Face::new(after.face_slots() as u32 + 7);
         let dead_edge = Edge::new(after.edge_slots() as u32 + 7);
-        let tampers: [&dyn Fn(&mut ZipReport); 6] = [
+        let tampers: [&dyn Fn(&mut ZipReport); 5] = [
             &|r| r.footprint_faces.push(live_face),
             &|r| r.footprint_faces.push(dead_face),
             &|r| {
                 r.footprint_faces.pop();
             },
-            &|r| r.footprint_edges.push(dead_edge),
             &|r| r.scar_faces.push(dead_face),
             &|r| r.scar_edges.push(dead_edge),
         ];
