@@ -615,14 +615,23 @@ mod tests {
     /// A batcher with the default terms on `mesh`.
     fn batcher(mesh: &Mesh) -> Batcher<'static> {
         let o = crate::optimize::OptimizeOptions::default();
+        batcher_with(mesh, o.terms, true)
+    }
+
+    /// A batcher with `terms` on `mesh`, walls as given, the other settings the defaults.
+    fn batcher_with(
+        mesh: &Mesh,
+        terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
+        walls: bool,
+    ) -> Batcher<'static> {
         let mut b = Batcher {
             qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
             scorer: Scorer {
-                terms: o.terms,
+                terms,
                 features: Vec::new(),
                 target_area: 0.05,
                 target_faces: 300,
-                walls: true,
+                walls,
                 scratch: Default::default(),
             },
             constraints: Constraints::default(),
@@ -683,26 +692,7 @@ mod tests {
             (0.7, Box::new(Sizing)),
             (0.01, Box::new(FaceBudget::default())),
         ];
-        let mut b = Batcher {
-            qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
-            scorer: Scorer {
-                terms,
-                features: Vec::new(),
-                target_area: 0.05,
-                target_faces: 300,
-                walls: false,
-                scratch: Default::default(),
-            },
-            constraints: Constraints::default(),
-            locked: Vec::new(),
-            bfs: Bfs::default(),
-            search_radius: 64,
-            eps: 1e-9,
-            fold_guard: false,
-            copies: Vec::new(),
-            window: Window::default(),
-        };
-        b.refresh_constraints(&mesh);
+        let mut b = batcher_with(&mesh, terms, false);
         let sing = singularities(&mesh);
         let mut defects = vec![0i64; mesh.map.vertex_slots()];
         for s in &sing {
