@@ -493,21 +493,10 @@ fn mean_face_area(mesh: &Mesh) -> f64 {
 pub fn optimize(
     mesh: &mut Mesh,
     constraints: Constraints,
-    options: OptimizeOptions,
-    mut progress: impl FnMut(&BatchReport),
+    mut options: OptimizeOptions,
+    progress: impl FnMut(&BatchReport),
 ) -> Result<Outcome, OptimizeError> {
-    let map = &mesh.map;
-    let quads = map.faces().filter(|&f| map.degree(f) == 4).count();
-    let tris = map.faces().filter(|&f| map.degree(f) == 3).count();
-    if map.num_faces() > 0 && (quads == 0 || quads + tris != map.num_faces()) {
-        return Err(OptimizeError::NotQuad);
-    }
-    if mesh.positions.len() < mesh.map.vertex_slots() {
-        return Err(OptimizeError::MissingPositions);
-    }
-    if !constraints.holds(mesh) {
-        return Err(OptimizeError::ConstraintsBroken);
-    }
+    check_input(mesh, &constraints)?;
     let input = SingularityCounts::of(mesh);
     let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
@@ -524,8 +513,8 @@ pub fn optimize(
             }
         }
     }
-    let mut scorer = score::Scorer {
-        terms: options.terms,
+    let scorer = score::Scorer {
+        terms: core::mem::take(&mut options.terms),
         features: Vec::new(),
         target_area: mean_face_area(mesh),
         target_faces: input_faces,
@@ -533,7 +522,6 @@ pub fn optimize(
             || constraints.feature_vertices().next().is_some(),
         scratch: Default::default(),
     };
-    let before = Counts::of(&mesh.map);
     let mut b = batch::Batcher {
         qzip: Qzip::with_options(SketchOptions::default()).allow_cancellation(true),
         scorer,
@@ -547,20 +535,54 @@ pub fn optimize(
         window: Default::default(),
     };
     mark_features(&mut b, mesh);
-    let mut total = b.scorer.score(mesh).0;
-    let initial_score = total;
-    let mut outcome = Outcome {
+    let initial_score = b.scorer.score(mesh).0;
+    let batches = if minimal {
+        Vec::new()
+    } else {
+        let chi = Counts::of(&mesh.map).euler_characteristic;
+        let batches = run_batches(&mut b, mesh, &surface, &options, initial_score, progress);
+        debug_assert_eq!(Counts::of(&mesh.map).euler_characteristic, chi);
+        batches
+    };
+    Ok(Outcome {
         input,
         triangles,
         initial_score,
         preprocessed,
         minimal,
-        batches: Vec::new(),
+        batches,
         final_counts: SingularityCounts::of(mesh),
-    };
-    if minimal {
-        return Ok(outcome);
+    })
+}
+
+/// Why `mesh` cannot be optimized with `constraints`, if it cannot.
+fn check_input(mesh: &Mesh, constraints: &Constraints) -> Result<(), OptimizeError> {
+    let map = &mesh.map;
+    let quads = map.faces().filter(|&f| map.degree(f) == 4).count();
+    let tris = map.faces().filter(|&f| map.degree(f) == 3).count();
+    if map.num_faces() > 0 && (quads == 0 || quads + tris != map.num_faces()) {
+        return Err(OptimizeError::NotQuad);
     }
+    if mesh.positions.len() < mesh.map.vertex_slots() {
+        return Err(OptimizeError::MissingPositions);
+    }
+    if !constraints.holds(mesh) {
+        return Err(OptimizeError::ConstraintsBroken);
+    }
+    Ok(())
+}
+
+/// The batches, from the score `total`: each a batch of Q-zips, the endgame's chains and
+/// walks when the batch executed nothing, and the smoothing of the scars; until
+/// `options.patience` batches in a row execute nothing, or `options.max_batches`.
+fn run_batches(
+    b: &mut batch::Batcher<'_>,
+    mesh: &mut Mesh,
+    surface: &Surface,
+    options: &OptimizeOptions,
+    mut total: f64,
+    mut progress: impl FnMut(&BatchReport),
+) -> Vec<BatchReport> {
     let mut rng = Rng::new(options.seed);
     let mut batches = Vec::new();
     let mut idle = 0;
@@ -591,9 +613,9 @@ pub fn optimize(
         let smoothed = options.smooth
             && executed > 0
             && smooth_scars(
-                &mut b,
+                b,
                 mesh,
-                &surface,
+                surface,
                 &run.scar,
                 options.smooth_iterations,
                 &mut total,
@@ -616,15 +638,7 @@ pub fn optimize(
             break;
         }
     }
-    debug_assert_eq!(
-        Counts::of(&mesh.map).euler_characteristic,
-        before.euler_characteristic
-    );
-    scorer = b.scorer;
-    let _ = scorer;
-    outcome.batches = batches;
-    outcome.final_counts = SingularityCounts::of(mesh);
-    Ok(outcome)
+    batches
 }
 
 fn mark_features(b: &mut batch::Batcher<'_>, mesh: &Mesh) {
