@@ -37,10 +37,9 @@ pub enum Broken {
     },
     /// The report's footprint or scar does not match the edit: a footprint face that was not
     /// a face before or is still one (beyond the slots the scar and the clean-up's v6 splits
-    /// reused), a face the edit deleted
-    /// that the footprint misses (when the clean-up removed no valence-2 vertex, whose faces
-    /// it does not list), a footprint edge that was not an edge before, or a scar face or
-    /// edge that is not one after.
+    /// reused), a face the edit deleted that the footprint misses (when the clean-up removed
+    /// no valence-2 vertex, whose faces it does not list), a footprint edge that was not an
+    /// edge before, or a scar face or edge that is not one after.
     Footprint,
     /// Undoing the report does not give back the map before, `==`.
     Undo,
@@ -134,8 +133,9 @@ pub fn verify_edit(
 }
 
 /// The promise of [`Broken::Footprint`]: footprint faces were faces and are gone (or their
-/// slots reused by the scar or the clean-up's v6 splits), every deleted face is in the footprint unless the clean-up removed a v2,
-/// footprint edges were edges, scar faces and edges are there after.
+/// slots reused by the scar or the clean-up's v6 splits), every deleted face is in the
+/// footprint unless the clean-up removed a v2, footprint edges were edges, and scar faces and
+/// edges are there after.
 fn footprint_matches(before: &Map, after: &Map, r: &ZipReport) -> bool {
     let scar = r.scar_faces();
     // A footprint face's slot may be reused by the scar or by a clean-up v6 split (one each).
