@@ -226,7 +226,8 @@ impl<'q> Batcher<'q> {
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
         let saved = self.relax(mesh, z.record());
-        let folded = folds.is_some_and(|f| folds_rise(mesh, f, path, z.record()));
+        let folded =
+            folds.is_some_and(|f| folds_rise(mesh, f, &touched_region(mesh, path, z.record())));
         let after = (!folded).then(|| self.scorer.local(mesh, window));
         let faces = z.record().vertex_delta();
         for (v, p) in saved.into_iter().rev() {
@@ -306,9 +307,9 @@ impl<'q> Batcher<'q> {
                 if let Some(z) = made {
                     self.relax(copy, z.record());
                     // What the fold guard would refuse at execution is not ranked.
-                    let folded = folds
-                        .as_ref()
-                        .is_some_and(|f| folds_rise(copy, f, path, z.record()));
+                    let folded = folds.as_ref().is_some_and(|f| {
+                        folds_rise(copy, f, &touched_region(copy, path, z.record()))
+                    });
                     if !folded {
                         let after = self.scorer.local(copy, &window);
                         *out = Some((after, z.record().vertex_delta()));
@@ -501,7 +502,7 @@ impl<'q> Batcher<'q> {
         let saved = self.relax(mesh, z.record());
         let after = self.scorer.score(mesh).0;
         let region = touched_region(mesh, &path, z.record());
-        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &path, z.record()));
+        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &region));
         if after >= *total - self.eps || !self.constraints.holds(mesh) || folded {
             for (v, p) in saved.into_iter().rev() {
                 mesh.positions[v.index()] = p;
@@ -563,18 +564,18 @@ impl Window {
     }
 }
 
-/// The fold guard's rule: whether the Q-zip `r` along `path`, just made, left more folded
-/// quads than `before` counted (the ball round the path and its count). They are counted on
-/// the same vertices, less the dead, plus what the Q-zip made and moved, so every quad whose
-/// corners changed is counted both times.
-fn folds_rise(mesh: &Mesh, before: &(Vec<Vert>, usize), path: &Path, r: &ZipReport) -> bool {
+/// The fold guard's rule: whether a Q-zip just made, whose [`touched_region`] is `region`,
+/// left more folded quads than `before` counted (the ball round its path and the count).
+/// They are counted on the same vertices, less the dead, plus what the Q-zip made and moved,
+/// so every quad whose corners changed is counted both times.
+fn folds_rise(mesh: &Mesh, before: &(Vec<Vert>, usize), region: &[Vert]) -> bool {
     let (ball, n) = before;
     let mut b: Vec<Vert> = ball
         .iter()
         .copied()
         .filter(|&v| mesh.map.is_live_vertex(v))
         .collect();
-    b.extend(touched_region(mesh, path, r));
+    b.extend(region);
     super::folds::folded_near(mesh, &b) > *n
 }
 
