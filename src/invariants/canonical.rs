@@ -241,32 +241,21 @@ impl Walker<'_> {
 /// The starts (by position in one component's start class) that the automorphisms found so
 /// far reach from the tried ones. Closing under the generators (images only: in a finite
 /// group the inverses are powers) gives exactly the orbits of the group they generate.
-///
-/// The closure's loads are random (a regular torus closes 400,000 starts at once), so the
-/// generators are interleaved (one cache line gives a start's images under all of them) and
-/// `reached` is a bitset that stays in cache.
 #[derive(Default)]
 struct Orbits {
-    /// How many generators, and their images interleaved: `gens[x * n_gens + j]` is the
-    /// position of generator `j`'s image of start `x`.
-    n_gens: usize,
-    gens: Vec<u32>,
-    /// Per start, a bit: whether it is in the orbit of a tried start; and those starts.
-    reached: Vec<u64>,
+    /// Per automorphism found: the position of the image of each start.
+    gens: Vec<Vec<u32>>,
+    /// Per start: whether it is in the orbit of a tried start; and those starts, listed.
+    reached: Vec<bool>,
     members: Vec<u32>,
 }
 
 impl Orbits {
     fn reset(&mut self, k: usize) {
-        self.n_gens = 0;
         self.gens.clear();
         self.reached.clear();
-        self.reached.resize(k.div_ceil(64), 0);
+        self.reached.resize(k, false);
         self.members.clear();
-    }
-
-    fn reached(&self, t: usize) -> bool {
-        self.reached[t / 64] >> (t % 64) & 1 != 0
     }
 
     /// Marks the orbit of start `t` as tried.
@@ -276,39 +265,29 @@ impl Orbits {
         self.close(from);
     }
 
-    /// Adds an automorphism (its images of the starts, by position): applied to every start
-    /// reached so far, then closed.
-    fn add_gen(&mut self, g: &[u32]) {
-        let n = self.n_gens;
-        let mut gens = Vec::with_capacity(g.len() * (n + 1));
-        for (x, &y) in g.iter().enumerate() {
-            gens.extend_from_slice(&self.gens[x * n..(x + 1) * n]);
-            gens.push(y);
-        }
-        (self.gens, self.n_gens) = (gens, n + 1);
+    /// Adds an automorphism: applied to every start reached so far, then closed.
+    fn add_gen(&mut self, g: Vec<u32>) {
         // The old members are closed under the old generators already.
         let old = self.members.len();
         for k in 0..old {
             self.mark(g[self.members[k] as usize]);
         }
+        self.gens.push(g);
         self.close(old);
     }
 
     fn mark(&mut self, t: u32) {
-        let (w, b) = (t as usize / 64, 1u64 << (t % 64));
-        if self.reached[w] & b == 0 {
-            self.reached[w] |= b;
+        if !core::mem::replace(&mut self.reached[t as usize], true) {
             self.members.push(t);
         }
     }
 
     /// Applies every generator to the members from index `from` on (and to the new ones).
     fn close(&mut self, mut from: usize) {
-        let n = self.n_gens;
         while from < self.members.len() {
             let x = self.members[from] as usize;
-            for j in 0..n {
-                let y = self.gens[x * n + j];
+            for j in 0..self.gens.len() {
+                let y = self.gens[j][x];
                 self.mark(y);
             }
             from += 1;
@@ -347,17 +326,21 @@ impl<'a> Canonizer<'a> {
 
     fn code(&mut self) -> CanonicalCode {
         let map = self.map;
-        let (vcomp, n_comp) = vertex_components(map);
         let keys = Keys::new(map);
-        let comp_of = |d: usize| vcomp[map.vert[d] as usize] as usize;
         let live = |d: &usize| map.next[*d] != NONE;
-        if n_comp == 1 {
-            let starts = class(map, &keys, (0..map.next.len()).filter(live));
-            let mut code = self.component_code(&starts, map.num_darts());
+        // Most maps are connected: code the map as one component, and label components only
+        // when a walk ends short of every dart (the labelling, a union-find over every edge,
+        // was about 5 % of a cut torus's time).
+        let starts = class(map, &keys, (0..map.next.len()).filter(live));
+        if let Some(mut code) = self.component_code(&starts, map.num_darts(), true) {
             code[0] = 1;
             code[1] = (code.len() - HEAD) as u32;
             return CanonicalCode(code);
         }
+        #[cfg(test)]
+        self.found.clear();
+        let (vcomp, n_comp) = vertex_components(map);
+        let comp_of = |d: usize| vcomp[map.vert[d] as usize] as usize;
         // Darts grouped by component (a counting sort), then the rarest key class of each.
         let mut comp_start = vec![0usize; n_comp + 1];
         for d in (0..map.next.len()).filter(live) {
@@ -376,7 +359,8 @@ impl<'a> Canonizer<'a> {
         for c in 0..n_comp {
             let darts = &by_comp[comp_start[c]..comp_start[c + 1]];
             let starts = class(map, &keys, darts.iter().map(|&d| d as usize));
-            parts.push(self.component_code(&starts, darts.len()).split_off(HEAD));
+            let code = self.component_code(&starts, darts.len(), false);
+            parts.push(code.unwrap_or_default().split_off(HEAD));
         }
         parts.sort_unstable_by(|a, b| a.len().cmp(&b.len()).then_with(|| a.cmp(b)));
         let mut out =
@@ -393,65 +377,79 @@ impl<'a> Canonizer<'a> {
     /// in front. The best run is stepped only as far as a candidate needs it, so a start that
     /// loses is never numbered in full, and only the winner's code is written out. A start in
     /// the orbit of a tried one under the automorphisms found is skipped: it reads the same.
-    fn component_code(&mut self, starts: &[u32], size: usize) -> Vec<u32> {
+    ///
+    /// With `whole`, the starts are the whole map's and `None` says, as soon as a walk ends
+    /// short of `size` darts, that the map is not connected (before any automorphism is
+    /// taken from two components).
+    fn component_code(&mut self, starts: &[u32], size: usize, whole: bool) -> Option<Vec<u32>> {
         let Some(&first) = starts.first() else {
-            return vec![0; HEAD];
+            return Some(vec![0; HEAD]);
         };
+        let short = |r: &Run| r.i >= r.len && r.len < size;
         self.best.start(first);
         self.best.code = vec![0; HEAD + 2 * size];
         self.orbits.reset(starts.len());
         self.orbits.add(0);
         let mut pos_ready = false;
         for (k, &s) in starts.iter().enumerate().skip(1) {
-            if self.orbits.reached(k) {
+            if self.orbits.reached[k] {
                 continue;
             }
             let result = self.race(s, size);
+            if whole && (short(&self.best) || short(&self.cand)) {
+                return None;
+            }
             if result == Cmp::Better {
                 core::mem::swap(&mut self.best, &mut self.cand);
             } else if result == Cmp::Equal {
                 if !pos_ready {
-                    // Darts outside every start class stay `NONE` (read by `automorphism`).
-                    self.pos.resize(self.map.next.len(), NONE);
+                    self.pos.resize(self.map.next.len(), 0);
                     for (j, &c) in starts.iter().enumerate() {
                         self.pos[c as usize] = j as u32;
                     }
                     pos_ready = true;
                 }
                 let g = self.automorphism(starts);
-                self.orbits.add_gen(&g);
                 #[cfg(test)]
-                self.found.push((starts.to_vec(), g));
+                self.found.push((starts.to_vec(), g.clone()));
+                self.orbits.add_gen(g);
             }
             self.orbits.add(k as u32);
         }
         self.finish();
-        let code = core::mem::take(&mut self.best.code);
-        // Leave both runs' labels cleared for the next component.
-        self.best.clear();
-        self.cand.clear();
-        code
+        if whole && short(&self.best) {
+            return None;
+        }
+        // The runs' labels are cleared by their next `start`.
+        Some(core::mem::take(&mut self.best.code))
     }
 
     /// Candidate and best read the same code, so mapping the candidate's numbering onto the
     /// best's is an automorphism; the start class is invariant under it. Its action on the
     /// starts, by position.
-    ///
-    /// Read in numbering order (dart `cand.order[i]` maps to `best.order[i]`), so both runs
-    /// are read sequentially; looking each start's image up through its label was three
-    /// dependent random loads per start, a sixth of a regular torus's time.
     fn automorphism(&self, starts: &[u32]) -> Vec<u32> {
-        let mut g: Vec<u32> = (0..starts.len() as u32).collect();
-        let n = self.cand.len.min(self.best.len);
-        for (&c, &b) in self.cand.order[..n].iter().zip(&self.best.order[..n]) {
-            let (p, q) = (self.pos[c as usize], self.pos[b as usize]);
-            // Keys are invariant, so a start's image is a start (`q` set); the test keeps
-            // a broken invariant from indexing out of range.
-            if p != NONE && q != NONE {
-                g[p as usize] = q;
+        if starts.len() == self.map.next.len() {
+            // Every dart is a start (a regular closed map with no dead slot), so positions
+            // are darts: read both runs in numbering order (`cand.order[i]` maps to
+            // `best.order[i]`), sequentially, in place of a random load per start.
+            let mut g: Vec<u32> = (0..starts.len() as u32).collect();
+            let n = self.cand.len.min(self.best.len);
+            for (&c, &b) in self.cand.order[..n].iter().zip(&self.best.order[..n]) {
+                if let Some(x) = g.get_mut(c as usize) {
+                    *x = b;
+                }
             }
+            return g;
         }
-        g
+        // Both runs numbered the component, so every start has an image; the fallback only
+        // keeps a broken invariant from indexing out of range.
+        let image = |c: u32| {
+            let b = self.best.order.get(self.cand.label[c as usize] as usize)?;
+            Some(self.pos[*b as usize]).filter(|&p| (p as usize) < starts.len())
+        };
+        (starts.iter().enumerate())
+            .map(|(x, &c)| image(c).unwrap_or(x as u32))
+            .collect()
     }
 
     /// Numbers the component from `s` in the candidate run, symbol by symbol against the best
@@ -794,6 +792,14 @@ mod tests {
             gen::random_quad(60, 1, 2, 7).map,
             gen::random_triangle(80, 2, 0, 8).map,
             gen::random_mixed(70, 0, 3, 9).map,
+            // A soup of 30 triangles: 30 isomorphic components.
+            Map::from_polygons(
+                90,
+                &(0..30u32)
+                    .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                    .collect::<Vec<_>>(),
+            )
+            .unwrap(),
         ];
         for (nx, ny) in [(3, 3), (4, 4), (6, 5), (9, 9)] {
             maps.push(gen::torus_grid(nx, ny).map);
@@ -821,11 +827,17 @@ mod tests {
         // start that reads differently (the code's tests above cannot see it on maps whose
         // class is one orbit). Tori, oblong and square, and cut tori with two orbits or more.
         let mut maps = vec![gen::torus_grid(5, 4).map, gen::torus_grid(6, 6).map];
+        // Two oblong tori: each component's class is its darts, not the map's.
+        let two: Vec<Vec<u32>> = (gen::torus_quads(5, 4).iter())
+            .chain(&gen::torus_quads(5, 4))
+            .enumerate()
+            .map(|(i, q)| q.iter().map(|&v| v + 20 * u32::from(i >= 20)).collect())
+            .collect();
+        maps.push(Map::from_polygons(40, &two).unwrap());
         for (n, seed) in [(4, 1), (6, 2), (6, 3)] {
             let mut polys = cut_torus(n, n, 1, seed);
             let shift = |p: &Vec<u32>| p.iter().map(|&v| v + (n * n) as u32).collect();
-            // The cut torus twice over: a component pair swapped by no automorphism, each
-            // with its own class.
+            // The cut torus twice over: two components, each coded with its own class.
             polys.extend(cut_torus(n, n, 1, seed).iter().map(shift));
             maps.push(Map::from_polygons(2 * n * n, &polys).unwrap());
         }
@@ -861,7 +873,7 @@ mod tests {
                     // A cycle on a random run of positions, the rest fixed.
                     let (a, b) = (rng.below(k), rng.below(k));
                     g[a.min(b)..=a.max(b)].rotate_left(usize::from(a != b));
-                    orbits.add_gen(&g);
+                    orbits.add_gen(g.clone());
                     gens.push(g);
                 } else {
                     let t = rng.below(k) as u32;
@@ -886,7 +898,7 @@ mod tests {
                 }
             }
             for (x, &w) in want.iter().enumerate() {
-                assert_eq!(orbits.reached(x), w);
+                assert_eq!(orbits.reached[x], w);
             }
             assert_eq!(orbits.members.len(), want.iter().filter(|&&w| w).count());
         }
