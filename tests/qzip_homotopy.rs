@@ -8,8 +8,8 @@ use common::{ico_cc, pairs_within};
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, is_regular_interior, MeshKind};
 use zipmesh::qzip::{
-    one_quad_sweeps, plan, sketch, start_turn, validate_path, Path, Qzip, QzipError, SketchOptions,
-    Tag, ZipError,
+    one_quad_sweeps, plan, sketch, start_turn, validate_path, verify_edit, Path, Qzip, QzipError,
+    SketchOptions, Tag, ZipError,
 };
 use zipmesh::{gen, Map, Vert};
 
@@ -143,7 +143,8 @@ fn homotopic_paths_give_isomorphic_maps_on_subdivided_cages() {
 }
 
 /// How many movements between pairs within `max_len` edges split a valence-6 vertex (each
-/// one's clean-up counts checked against its records).
+/// one's clean-up counts checked against its records, and each such edit verified: its
+/// footprint's slots may be reused by the split).
 fn count_v6_splits(map: &Map, max_len: usize) -> usize {
     let mut n = 0;
     for p in pairs_within(map, max_len) {
@@ -153,7 +154,10 @@ fn count_v6_splits(map: &Map, max_len: usize) -> usize {
                 let (v2, v6) = r.cleanup_counts();
                 // The clean-up's counts are what it recorded.
                 assert_eq!(r.records().len(), r.splits() + r.collapses() + v2 + v6);
-                n += usize::from(v6 > 0);
+                if v6 > 0 {
+                    assert_eq!(verify_edit(map, &m, &p, &r), Ok(()));
+                    n += 1;
+                }
             }
         }
     }

@@ -1027,5 +1027,25 @@ mod tests {
             assert_eq!(got, Err(Broken::Footprint), "tamper {i}");
         }
         assert!(Broken::Footprint.to_string().contains("footprint or scar"));
+        // With a valence-2 clean-up (which deletes a face of its own), a footprint face
+        // dropped is still seen.
+        let before = crate::gen::cube(2).map;
+        let path = sketch(&before, Vert::new(8), Vert::new(17), &o).unwrap();
+        let (after, r) = Tag::CCW
+            .into_iter()
+            .filter_map(|tag| {
+                let mut m = before.clone();
+                let r = Qzip::new().zip_along(&mut m, &path, tag).ok()?;
+                (r.cleanup_counts().0 > 0 && !r.footprint_faces.is_empty()).then_some((m, r))
+            })
+            .next()
+            .expect("a movement with a valence-2 clean-up");
+        assert_eq!(verify_edit(&before, &after, &path, &r), Ok(()));
+        let mut bad = r.clone();
+        bad.footprint_faces.pop();
+        assert_eq!(
+            verify_edit(&before, &after, &path, &bad),
+            Err(Broken::Footprint)
+        );
     }
 }

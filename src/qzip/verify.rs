@@ -1,11 +1,13 @@
 //! The promises of a Q-zip, checked after the fact: for tests, fuzzers and campaigns that
 //! want one oracle instead of their own copy.
 
+use alloc::vec::Vec;
 use core::fmt;
 
 use super::execute::ZipReport;
 use super::sketch::Path;
 use crate::invariants::{irregular_valences, Counts, MeshKind};
+use crate::ops::quad::QuadRecord;
 use crate::Map;
 use crate::Violation;
 
@@ -36,10 +38,10 @@ pub enum Broken {
         expected: (usize, usize),
     },
     /// The report's footprint or scar does not match the edit: a footprint face that was not
-    /// a face before or is still one (beyond the slots the scar and the clean-up's v6 splits
-    /// reused), a face the edit deleted that the footprint misses (when the clean-up removed
-    /// no valence-2 vertex, whose faces it does not list), a footprint edge that was not an
-    /// edge before, or a scar face or edge that is not one after.
+    /// a face before or is still one (but for a slot the scar or a clean-up v6 split reused),
+    /// a face the edit deleted that is neither in the footprint nor deleted by a clean-up
+    /// valence-2 removal, a footprint edge that was not an edge before, or a scar face or
+    /// edge that is not one after.
     Footprint,
     /// Undoing the report does not give back the map before, `==`.
     Undo,
@@ -133,24 +135,26 @@ pub fn verify_edit(
 }
 
 /// The promise of [`Broken::Footprint`]: footprint faces were faces and are gone (or their
-/// slots reused by the scar or the clean-up's v6 splits), every deleted face is in the
-/// footprint unless the clean-up removed a v2, footprint edges were edges, and scar faces and
-/// edges are there after.
+/// slots reused by the scar or a clean-up v6 split), every deleted face is in the footprint
+/// or deleted by a clean-up v2 removal, footprint edges were edges, and scar faces and edges
+/// are there after. The clean-up's faces are read off its records.
 fn footprint_matches(before: &Map, after: &Map, r: &ZipReport) -> bool {
-    let scar = r.scar_faces();
-    // A footprint face's slot may be reused by the scar or by a clean-up v6 split (one each).
-    let reused = r
-        .footprint_faces()
-        .iter()
-        .filter(|&f| after.is_live_face(*f) && !scar.contains(f))
-        .count();
-    let listed = reused <= r.cleanup_counts().1
-        && r.footprint_faces().iter().all(|&f| before.is_live_face(f));
+    let (scar, footprint) = (r.scar_faces(), r.footprint_faces());
+    let (mut deleted, mut made) = (Vec::new(), Vec::new());
+    for record in r.records().get(r.splits() + r.collapses()..).unwrap_or(&[]) {
+        match record {
+            QuadRecord::RemoveValence2(x) => deleted.push(x.deleted_face()),
+            QuadRecord::Split(x) => made.push(x.face()),
+            _ => {}
+        }
+    }
+    let listed = footprint.iter().all(|&f| {
+        before.is_live_face(f) && (!after.is_live_face(f) || scar.contains(&f) || made.contains(&f))
+    });
     // Faces die only by the chain's collapses (listed) and the clean-up's v2 removals.
-    let complete = r.cleanup_counts().0 > 0
-        || before
-            .faces()
-            .all(|f| after.is_live_face(f) || r.footprint_faces().contains(&f));
+    let complete = before
+        .faces()
+        .all(|f| after.is_live_face(f) || footprint.contains(&f) || deleted.contains(&f));
     listed
         && complete
         && r.footprint_edges().iter().all(|&e| before.is_live_edge(e))

@@ -186,6 +186,21 @@ impl Valence2Removal {
         self.faces[0]
     }
 
+    /// The quad merged away (its slot is free after the removal).
+    ///
+    /// ```
+    /// use zipmesh::{gen, ops::quad, Dart};
+    /// let mut map = gen::torus_grid(4, 4).map;
+    /// let ins = quad::insert_doublet(&mut map, Dart::new(0)).unwrap();
+    /// let before = map.clone();
+    /// let x = map.vertex_dart(ins.vertex());
+    /// let rem = quad::remove_valence2(&mut map, x).unwrap();
+    /// assert!(before.is_live_face(rem.deleted_face()) && !map.is_live_face(rem.deleted_face()));
+    /// ```
+    pub fn deleted_face(&self) -> Face {
+        self.faces[1]
+    }
+
     /// Undoes the removal: the doublet insertion into the merged quad along `p–q`, with the
     /// deleted slots taken back from the free lists and every record put back (`==` the map
     /// before, with the map as the removal left it).
