@@ -9,6 +9,7 @@ use glam::DVec3;
 
 use super::constraints::Constraints;
 use super::defect::{singularities, Singularity};
+use super::folds::{folded_near, FaceMarks};
 use super::score::{Bfs, Scorer};
 use super::BatchStats;
 use crate::qzip::{Path, Qzip, Tag, ZipReport};
@@ -83,6 +84,8 @@ pub(crate) struct Batcher<'q> {
     pub(crate) copies: Vec<Mesh>,
     /// The window [`Batcher::try_path`] builds.
     pub(crate) window: Window,
+    /// The fold guard's face marks.
+    pub(crate) marks: FaceMarks,
 }
 
 impl<'q> Batcher<'q> {
@@ -160,7 +163,7 @@ impl<'q> Batcher<'q> {
     /// ball they are counted on, and the count.
     fn folds_before(&mut self, mesh: &Mesh, path: &Path) -> Option<(Vec<Vert>, usize)> {
         let ball = self.fold_ball(mesh, path.vertices())?;
-        let n = super::folds::folded_near(mesh, &ball);
+        let n = folded_near(mesh, &ball, &mut self.marks);
         Some((ball, n))
     }
 
@@ -226,8 +229,14 @@ impl<'q> Batcher<'q> {
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
         let saved = self.relax(mesh, z.record());
-        let folded =
-            folds.is_some_and(|f| folds_rise(mesh, f, &touched_region(mesh, path, z.record())));
+        let folded = folds.is_some_and(|f| {
+            folds_rise(
+                mesh,
+                f,
+                &touched_region(mesh, path, z.record()),
+                &mut self.marks,
+            )
+        });
         let after = (!folded).then(|| self.scorer.local(mesh, window));
         let faces = z.record().vertex_delta();
         for (v, p) in saved.into_iter().rev() {
@@ -308,7 +317,8 @@ impl<'q> Batcher<'q> {
                     self.relax(copy, z.record());
                     // What the fold guard would refuse at execution is not ranked.
                     let folded = folds.as_ref().is_some_and(|f| {
-                        folds_rise(copy, f, &touched_region(copy, path, z.record()))
+                        let region = touched_region(copy, path, z.record());
+                        folds_rise(copy, f, &region, &mut self.marks)
                     });
                     if !folded {
                         let after = self.scorer.local(copy, &window);
@@ -420,6 +430,7 @@ impl<'q> Batcher<'q> {
             fold_guard: self.fold_guard,
             copies: Vec::new(),
             window: Window::default(),
+            marks: FaceMarks::default(),
         })
     }
 
@@ -502,7 +513,7 @@ impl<'q> Batcher<'q> {
         let saved = self.relax(mesh, z.record());
         let after = self.scorer.score(mesh).0;
         let region = touched_region(mesh, &path, z.record());
-        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &region));
+        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &region, &mut self.marks));
         if after >= *total - self.eps || !self.constraints.holds(mesh) || folded {
             for (v, p) in saved.into_iter().rev() {
                 mesh.positions[v.index()] = p;
@@ -568,7 +579,12 @@ impl Window {
 /// left more folded quads than `before` counted (the ball round its path and the count).
 /// They are counted on the same vertices, less the dead, plus what the Q-zip made and moved,
 /// so every quad whose corners changed is counted both times.
-fn folds_rise(mesh: &Mesh, before: &(Vec<Vert>, usize), region: &[Vert]) -> bool {
+fn folds_rise(
+    mesh: &Mesh,
+    before: &(Vec<Vert>, usize),
+    region: &[Vert],
+    marks: &mut FaceMarks,
+) -> bool {
     let (ball, n) = before;
     let mut b: Vec<Vert> = ball
         .iter()
@@ -576,7 +592,7 @@ fn folds_rise(mesh: &Mesh, before: &(Vec<Vert>, usize), region: &[Vert]) -> bool
         .filter(|&v| mesh.map.is_live_vertex(v))
         .collect();
     b.extend(region);
-    super::folds::folded_near(mesh, &b) > *n
+    folded_near(mesh, &b, marks) > *n
 }
 
 /// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved
@@ -643,6 +659,7 @@ mod tests {
             fold_guard: false,
             copies: Vec::new(),
             window: Window::default(),
+            marks: FaceMarks::default(),
         };
         b.refresh_constraints(mesh);
         b

@@ -36,7 +36,11 @@ pub fn is_folded(mesh: &Mesh, f: Face) -> bool {
             .copied()
             .unwrap_or(DVec3::ZERO)
     };
-    let c: Vec<DVec3> = map.face_darts(f).map(|d| p(map.origin(d))).collect();
+    // A quad (checked above): four corners, in an array rather than a list per face.
+    let mut c = [DVec3::ZERO; 4];
+    for (x, d) in c.iter_mut().zip(map.face_darts(f)) {
+        *x = p(map.origin(d));
+    }
     let n = |a: usize, b: usize, d: usize| (c[b] - c[a]).cross(c[d] - c[a]);
     n(0, 1, 2).dot(n(0, 2, 3)) < 0.0 || n(1, 2, 3).dot(n(1, 3, 0)) < 0.0
 }
@@ -51,15 +55,52 @@ pub fn folded_quads(mesh: &Mesh) -> usize {
     mesh.map.faces().filter(|&f| is_folded(mesh, f)).count()
 }
 
-/// The folded quads with a corner among `verts` (each counted once).
-pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert]) -> usize {
+/// The folded quads with a corner among `verts` (each counted once, by `marks`).
+pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut FaceMarks) -> usize {
     let map = &mesh.map;
-    let mut faces: Vec<Face> = verts
-        .iter()
-        .filter(|&&v| map.is_live_vertex(v))
-        .flat_map(|&v| map.vertex_darts(v).filter_map(|d| map.face(d)))
-        .collect();
-    faces.sort_unstable();
-    faces.dedup();
-    faces.into_iter().filter(|&f| is_folded(mesh, f)).count()
+    marks.begin(map.face_slots());
+    let mut n = 0;
+    for &v in verts.iter().filter(|&&v| map.is_live_vertex(v)) {
+        for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
+            if marks.first(f) && is_folded(mesh, f) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+/// Epoch-stamped face marks, reused between calls: a face met again is known without
+/// listing and sorting the faces (the fold guard counts round every candidate).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FaceMarks {
+    stamp: Vec<u32>,
+    epoch: u32,
+}
+
+impl FaceMarks {
+    /// Forgets every mark; `slots` is the mesh's face slot count.
+    fn begin(&mut self, slots: usize) {
+        if self.stamp.len() < slots {
+            self.stamp.resize(slots, 0);
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+    }
+
+    /// Whether `f` is met for the first time since [`FaceMarks::begin`] (and marks it).
+    fn first(&mut self, f: Face) -> bool {
+        match self.stamp.get_mut(f.index()) {
+            Some(s) if *s == self.epoch => false,
+            Some(s) => {
+                *s = self.epoch;
+                true
+            }
+            // Not a slot of the mesh given to `begin`: no face to count.
+            None => false,
+        }
+    }
 }

@@ -533,6 +533,7 @@ pub fn optimize(
         fold_guard: options.fold_guard,
         copies: Vec::new(),
         window: Default::default(),
+        marks: Default::default(),
     };
     mark_features(&mut b, mesh);
     let initial_score = b.scorer.score(mesh).0;
@@ -679,10 +680,12 @@ fn smooth_scars(
     let saved: Vec<DVec3> = region.iter().map(|v| mesh.positions[v.index()]).collect();
     b.refresh_constraints(mesh);
     mark_features(b, mesh);
-    let folds = b.fold_guard.then(|| folds::folded_near(mesh, &region));
+    let folds = b
+        .fold_guard
+        .then(|| folds::folded_near(mesh, &region, &mut b.marks));
     smooth(mesh, surface, &region, &b.locked, iterations);
     let after = b.scorer.score(mesh).0;
-    let folded = folds.is_some_and(|n| folds::folded_near(mesh, &region) > n);
+    let folded = folds.is_some_and(|n| folds::folded_near(mesh, &region, &mut b.marks) > n);
     if after <= *total && b.constraints.holds(mesh) && !folded {
         *total = after;
         true
