@@ -86,6 +86,10 @@ pub(crate) struct Batcher<'q> {
     pub(crate) window: Window,
     /// The fold guard's face marks.
     pub(crate) marks: FaceMarks,
+    /// The live vertices of the last window scored on the mesh a search leaves unchanged,
+    /// its score, and a list to build the next key in ([`Batcher::score_before`]); the
+    /// score is forgotten when a search begins.
+    pub(crate) before: (Vec<Vert>, Option<f64>, Vec<Vert>),
 }
 
 impl<'q> Batcher<'q> {
@@ -287,7 +291,7 @@ impl<'q> Batcher<'q> {
                 out[i] = self.score_after(mesh, path, tag, &window, folds.as_ref());
             }
         }
-        let before = self.scorer.local(mesh, &window);
+        let before = self.score_before(mesh, &window);
         self.window.give_back(window);
         out.map(|x| x.map(|(after, faces)| (after - before, faces)))
     }
@@ -326,12 +330,32 @@ impl<'q> Batcher<'q> {
                     }
                 }
             }
-            let before = self.scorer.local(mesh, &window);
+            let before = self.score_before(mesh, &window);
             out = out.map(|x| x.map(|(after, faces)| (after - before, faces)));
             self.window.give_back(window);
         }
         self.copies = copies;
         out
+    }
+
+    /// The score of `window` on the mesh the search leaves as it is: the one kept if the
+    /// window's live vertices are the last scored window's. [`Scorer::local`] depends on the
+    /// mesh and the window only, and a vertex that is not live adds nothing to it (no defect,
+    /// no face); the windows of one singularity's paths differ mostly by the vertices their
+    /// movements made, and on a small mesh they cover all the rest.
+    fn score_before(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
+        let (last, score, key) = &mut self.before;
+        key.clear();
+        key.extend(window.iter().filter(|&&v| mesh.map.is_live_vertex(v)));
+        match *score {
+            Some(x) if last == key => x,
+            _ => {
+                let x = self.scorer.local(mesh, window);
+                core::mem::swap(last, key);
+                *score = Some(x);
+                x
+            }
+        }
     }
 
     /// The best of the 24 candidates of `s` (score change, most negative first), if any
@@ -378,6 +402,8 @@ impl<'q> Batcher<'q> {
         defects: &[i64],
         stats: &mut BatchStats,
     ) -> Vec<Candidate> {
+        // The kept window score is of another mesh.
+        self.before.1 = None;
         let size = sample.len().div_ceil(PARTS).max(MIN_PART);
         // One part, or a term that cannot be copied: no copies, the mesh itself.
         let workers: Option<Vec<Batcher<'q>>> = (sample.len() > size)
@@ -431,6 +457,7 @@ impl<'q> Batcher<'q> {
             copies: Vec::new(),
             window: Window::default(),
             marks: FaceMarks::default(),
+            before: Default::default(),
         })
     }
 
@@ -660,6 +687,7 @@ mod tests {
             copies: Vec::new(),
             window: Window::default(),
             marks: FaceMarks::default(),
+            before: Default::default(),
         };
         b.refresh_constraints(mesh);
         b
@@ -695,6 +723,50 @@ mod tests {
             }
         }
         assert!(scored > 40, "{scored}");
+    }
+
+    /// The window score kept for the unchanged mesh is the score a fresh scorer gives, for
+    /// a window met again and a new one; and a search on a changed mesh does not read the
+    /// one kept by the search before (the candidates match a fresh batcher's, bit for bit).
+    #[test]
+    fn kept_window_score_is_the_fresh_one() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
+        mesh_preprocess(&mut mesh).unwrap();
+        let mut kept = batcher(&mesh);
+        let fresh = |mesh: &Mesh, w: &[Vert]| batcher(mesh).scorer.local(mesh, w);
+        let verts: Vec<Vert> = mesh.map.vertices().collect();
+        let (w1, w2) = (&verts[..30], &verts[10..50]);
+        for w in [w1, w1, w2, w1] {
+            let x = kept.score_before(&mesh, w);
+            assert_eq!(x.to_bits(), fresh(&mesh, w).to_bits());
+        }
+        // A small mesh, where every window covers all of it: the last window of one search
+        // is the first of the next.
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(12, 0, 0, 3));
+        let mut kept = batcher(&mesh);
+        let verts: Vec<Vert> = mesh.map.vertices().collect();
+        let sing = singularities(&mesh);
+        let mut defects = vec![0i64; mesh.map.vertex_slots()];
+        for s in &sing {
+            defects[s.vertex.index()] = s.defect;
+        }
+        let sample: Vec<Vert> = sing.iter().take(8).map(|s| s.vertex).collect();
+        let bits = |c: Vec<Candidate>| -> Vec<_> {
+            c.iter()
+                .map(|c| (c.from, c.to, c.tag, c.delta.to_bits()))
+                .collect()
+        };
+        let mut st = BatchStats::default();
+        let first = bits(kept.search(&mut mesh, &sample, &defects, &mut st));
+        // Moved corners, the same windows: a stale "before" would be read as valid.
+        for (i, v) in verts.iter().enumerate().step_by(2) {
+            mesh.positions[v.index()] += DVec3::splat(0.003 * (i % 7) as f64);
+        }
+        let again = bits(kept.search(&mut mesh, &sample, &defects, &mut st));
+        let plain = bits(batcher(&mesh).search(&mut mesh, &sample, &defects, &mut st));
+        assert!(!again.is_empty());
+        assert_eq!(again, plain);
+        assert_ne!(again, first);
     }
 
     /// For the terms that are sums over vertices and faces, the window estimate of a

@@ -534,6 +534,7 @@ pub fn optimize(
         copies: Vec::new(),
         window: Default::default(),
         marks: Default::default(),
+        before: Default::default(),
     };
     mark_features(&mut b, mesh);
     let initial_score = b.scorer.score(mesh).0;
