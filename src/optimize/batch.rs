@@ -45,7 +45,7 @@ const FOLD_REACH: u32 = 2;
 /// At most this many dart slots, a candidate's four movements are each made on a copy of
 /// the mesh, kept until it is scored: copying a mesh this small costs less than the second
 /// Q-zip and the two undos that editing the mesh itself takes per movement.
-const COPY_DARTS: usize = 4096;
+pub(super) const COPY_DARTS: usize = 4096;
 
 /// The four initial operations, in compass order.
 pub(super) const TAGS: [Tag; 4] = [Tag::LS, Tag::RC, Tag::LC, Tag::RS];
@@ -86,6 +86,9 @@ pub(crate) struct Batcher<'q> {
     pub(crate) window: Window,
     /// The fold guard's face marks.
     pub(crate) marks: FaceMarks,
+    /// At most this many dart slots, movements are made on copies ([`COPY_DARTS`]; a test
+    /// sets 0 to compare with the edits).
+    pub(crate) copy_darts: usize,
     /// The live vertices of the last window scored on the mesh a search leaves unchanged,
     /// its score, and a list to build the next key in ([`Batcher::score_before`]); the
     /// score is forgotten when a search begins.
@@ -259,7 +262,7 @@ impl<'q> Batcher<'q> {
     /// a collapse, and biased the ranking towards splits (docs/optimize.md, "Scoring a
     /// candidate"). One window for the four also scores the mesh before only once.
     fn try_path(&mut self, mesh: &mut Mesh, path: &Path) -> [Option<(f64, isize)>; 4] {
-        if mesh.map.dart_slots() <= COPY_DARTS {
+        if mesh.map.dart_slots() <= self.copy_darts {
             self.try_path_on_copies(mesh, path)
         } else {
             self.try_path_by_edits(mesh, path)
@@ -458,6 +461,7 @@ impl<'q> Batcher<'q> {
             window: Window::default(),
             marks: FaceMarks::default(),
             before: Default::default(),
+            copy_darts: self.copy_darts,
         })
     }
 
@@ -688,6 +692,7 @@ mod tests {
             window: Window::default(),
             marks: FaceMarks::default(),
             before: Default::default(),
+            copy_darts: COPY_DARTS,
         };
         b.refresh_constraints(mesh);
         b
@@ -767,6 +772,30 @@ mod tests {
         assert!(!again.is_empty());
         assert_eq!(again, plain);
         assert_ne!(again, first);
+    }
+
+    /// The chain stage with its probes on copies (the chosen copy becomes the mesh) tries,
+    /// cancels and keeps the same chains as with its probes made and undone on the mesh,
+    /// and leaves the same mesh and score, to the bit.
+    #[test]
+    fn chains_on_copies_match_edits() {
+        let (mut tried, mut kept) = (0, 0);
+        for seed in 0..4 {
+            let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(40, 0, 0, seed));
+            mesh_preprocess(&mut mesh).unwrap();
+            let mut edited = mesh.clone();
+            let (mut a, mut b) = (batcher(&mesh), batcher(&mesh));
+            b.copy_darts = 0;
+            let mut ta = a.scorer.score(&mesh).0;
+            let mut tb = ta;
+            let ra = a.chains(&mut mesh, &mut ta);
+            let rb = b.chains(&mut edited, &mut tb);
+            assert_eq!(ra, rb);
+            assert!(mesh == edited, "seed {seed}");
+            assert_eq!(ta.to_bits(), tb.to_bits());
+            (tried, kept) = (tried + ra.tried, kept + ra.kept);
+        }
+        assert!(tried > 4 && kept > 0, "{tried} {kept}");
     }
 
     /// For the terms that are sums over vertices and faces, the window estimate of a

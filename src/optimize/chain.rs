@@ -107,6 +107,14 @@ impl Probe {
     }
 }
 
+/// The positions of `path`'s vertices.
+fn path_points(mesh: &Mesh, path: &Path) -> Vec<DVec3> {
+    path.vertices()
+        .iter()
+        .map(|v| mesh.positions[v.index()])
+        .collect()
+}
+
 /// One applied step of a chain, with what it needs to be undone and reported.
 pub(super) struct Step {
     edit: Edited<ZipReport>,
@@ -200,10 +208,7 @@ impl Batcher<'_> {
             let Ok(path) = self.qzip.sketch(&mesh.map, a, b) else {
                 break;
             };
-            let Some(best) = self.probe(mesh, &path, a, b, dist) else {
-                break;
-            };
-            let Some(step) = self.step(mesh, &path, best.tag) else {
+            let Some((best, step)) = self.probe_and_step(mesh, &path, a, b, dist) else {
                 break;
             };
             steps.push(step);
@@ -219,62 +224,109 @@ impl Batcher<'_> {
 
     /// Applies the movement `tag` along `path` as a chain step (`None` if refused).
     pub(super) fn step(&mut self, mesh: &mut Mesh, path: &Path, tag: Tag) -> Option<Step> {
-        let points = path
-            .vertices()
-            .iter()
-            .map(|v| mesh.positions[v.index()])
-            .collect();
+        let points = path_points(mesh, path);
         let edit = self.apply(mesh, path, tag)?;
+        Some(self.made_step(mesh, path, edit, points))
+    }
+
+    /// The step of a movement just made on `mesh` (`points`: its path's positions before).
+    fn made_step(
+        &mut self,
+        mesh: &Mesh,
+        path: &Path,
+        edit: Edited<ZipReport>,
+        points: Vec<DVec3>,
+    ) -> Step {
         let region = touched_region(mesh, path, edit.record());
         self.refresh_constraints(mesh);
-        Some(Step {
+        Step {
             edit,
             points,
             region,
-        })
+        }
     }
 
-    /// The best of the four movements along `path` (each applied and undone), or `None` if
-    /// none cancels the pair or keeps both ends singular with their defects.
-    fn probe(
+    /// The best of the four movements along `path`, or `None` if none cancels the pair or
+    /// keeps both ends singular with their defects; and that movement made as a step. On a
+    /// small mesh each movement is made once, on a copy, and the chosen copy becomes the
+    /// mesh; else each is made on the mesh and undone, and the chosen one made again.
+    fn probe_and_step(
         &mut self,
         mesh: &mut Mesh,
         path: &Path,
         a: Vert,
         b: Vert,
         dist: u32,
-    ) -> Option<Probe> {
+    ) -> Option<(Probe, Step)> {
         let (da, db) = (defect(mesh, a), defect(mesh, b));
-        let mut best: Option<Probe> = None;
-        for tag in TAGS {
-            let Some(z) = self.apply(mesh, path, tag) else {
+        let on_copies = mesh.map.dart_slots() <= self.copy_darts;
+        let mut copies = core::mem::take(&mut self.copies);
+        copies.resize_with(TAGS.len(), Mesh::default);
+        let mut made: [Option<Edited<ZipReport>>; 4] = [None, None, None, None];
+        let mut best: Option<(Probe, usize)> = None;
+        for (i, tag) in TAGS.into_iter().enumerate() {
+            let m = if on_copies {
+                copies[i].map.clone_from(&mesh.map);
+                copies[i].positions.clone_from(&mesh.positions);
+                &mut copies[i]
+            } else {
+                &mut *mesh
+            };
+            let Some(z) = self.apply(m, path, tag) else {
                 continue;
             };
-            let r = z.record();
-            let (na, nb) = (r.moved_from(), r.moved_to());
-            let cancels = defect(mesh, na) == 0 && defect(mesh, nb) == 0;
-            let kept = na != nb && defect(mesh, na) == da && defect(mesh, nb) == db;
-            let d = if kept {
-                self.distance(mesh, na, nb, dist + 4)
+            let p = self.probe_one(m, z.record(), tag, (da, db), dist);
+            if on_copies {
+                made[i] = Some(z);
             } else {
-                None
-            };
-            let p = Probe {
-                tag,
-                cancels,
-                a: na,
-                b: nb,
-                dist: d.unwrap_or(0),
-                space: mesh.positions[na.index()].distance(mesh.positions[nb.index()]),
-                faces: r.vertex_delta(),
-            };
-            // An exact undo of an edit just made cannot be refused.
-            let _ = z.undo(mesh);
-            if (cancels || d.is_some()) && best.as_ref().is_none_or(|b| p.better_than(b)) {
-                best = Some(p);
+                // An exact undo of an edit just made cannot be refused.
+                let _ = z.undo(m);
+            }
+            if let Some(p) = p.filter(|p| best.as_ref().is_none_or(|(b, _)| p.better_than(b))) {
+                best = Some((p, i));
             }
         }
-        best
+        let step = match (best, on_copies) {
+            (Some((_, i)), true) => made[i].take().map(|edit| {
+                let points = path_points(mesh, path);
+                core::mem::swap(mesh, &mut copies[i]);
+                self.made_step(mesh, path, edit, points)
+            }),
+            (Some((p, _)), false) => self.step(mesh, path, p.tag),
+            (None, _) => None,
+        };
+        self.copies = copies;
+        Some((best?.0, step?))
+    }
+
+    /// What the movement `tag` just made (`r`, on `mesh`) did to the pair whose ends had the
+    /// defects `d`: the probe if it cancels the pair or keeps both ends singular with their
+    /// defects, at most `dist + 4` apart.
+    fn probe_one(
+        &mut self,
+        mesh: &Mesh,
+        r: &ZipReport,
+        tag: Tag,
+        (da, db): (i64, i64),
+        dist: u32,
+    ) -> Option<Probe> {
+        let (na, nb) = (r.moved_from(), r.moved_to());
+        let cancels = defect(mesh, na) == 0 && defect(mesh, nb) == 0;
+        let kept = na != nb && defect(mesh, na) == da && defect(mesh, nb) == db;
+        let d = if kept {
+            self.distance(mesh, na, nb, dist + 4)
+        } else {
+            None
+        };
+        (cancels || d.is_some()).then(|| Probe {
+            tag,
+            cancels,
+            a: na,
+            b: nb,
+            dist: d.unwrap_or(0),
+            space: mesh.positions[na.index()].distance(mesh.positions[nb.index()]),
+            faces: r.vertex_delta(),
+        })
     }
 
     /// Relaxes the chain's scar and keeps the chain if the whole score falls, the

@@ -535,6 +535,7 @@ pub fn optimize(
         window: Default::default(),
         marks: Default::default(),
         before: Default::default(),
+        copy_darts: batch::COPY_DARTS,
     };
     mark_features(&mut b, mesh);
     let initial_score = b.scorer.score(mesh).0;
