@@ -15,7 +15,8 @@
 //! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `canonical`,
 //! only the canonical code rows: `canonical_rows`, N unused; with `chains`,
 //! only the chain rows: `chain_rows`; with `check`, the check beside a sequential read of
-//! as much memory: `check_rows`; with `ops [KIND_NAME]`, only the operator rows, or
+//! as much memory: `check_rows`; with `build`, only the two build rows (quad, tri); with
+//! `ops [KIND_NAME]`, only the operator rows, or
 //! the one named like `tri_op_flip`, and the memory latency rows: `memory_latency`)
 //! are run.
 
@@ -831,6 +832,7 @@ fn main() {
     let quads = zipmesh::gen::torus_quads(n, n);
     let tris = triangulate(&quads);
     let nv = n * n;
+    let build_only = args.get(3).is_some_and(|s| s == "build");
 
     for kind in ["quad", "tri"] {
         let build = |nv: usize| -> Map {
@@ -853,6 +855,9 @@ fn main() {
             nf,
             reps,
         );
+        if build_only {
+            continue;
+        }
         let map = build(nv);
         let bytes = map.heap_bytes() as f64 / nf as f64;
         report(
@@ -921,6 +926,9 @@ fn main() {
             nf,
             reps,
         );
+    }
+    if build_only {
+        return;
     }
     canonical_rows(reps);
 
