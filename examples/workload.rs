@@ -13,7 +13,8 @@
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
 //! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
 //! triangle-edit rows: `tri_moves_rows`, on tori of fixed sizes, N unused; with `canonical`,
-//! only the canonical code rows: `canonical_rows`, N unused; with `chains`,
+//! only the canonical code rows: `canonical_rows`, N unused (with a folder after it, the tori are
+//! also written there as OFF files for `benches/peers/traces_canon.c`); with `chains`,
 //! only the chain rows: `chain_rows`; with `check`, the check beside a sequential read of
 //! as much memory: `check_rows`; with `build`, only the two build rows (quad, tri); with
 //! `ops [KIND_NAME]`, only the operator rows, or
@@ -759,11 +760,34 @@ fn memory_latency(bytes: usize, reps: usize) {
 /// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
 /// the same with 5 quads cut into triangles, in ns per face. With the third argument
 /// `canonical`, only these rows are run.
-fn canonical_rows(reps: usize) {
+/// Writes `faces` over `nv` vertices (all at the origin) as an OFF file, for the peers'
+/// harnesses (`benches/peers/traces_canon.c`).
+fn write_off<F: AsRef<[u32]>>(path: &std::path::Path, nv: usize, faces: &[F]) {
+    use std::fmt::Write as _;
+    let mut s = format!("OFF\n{nv} {} 0\n", faces.len());
+    s.push_str(&"0 0 0\n".repeat(nv));
+    for f in faces {
+        let _ = write!(s, "{}", f.as_ref().len());
+        for v in f.as_ref() {
+            let _ = write!(s, " {v}");
+        }
+        s.push('\n');
+    }
+    std::fs::write(path, s).expect("the OFF file is written");
+}
+
+fn canonical_rows(reps: usize, dump: Option<&str>) {
     for side in [32usize, 100, 316] {
         let q = zipmesh::gen::torus_quads(side, side);
         let regular = Map::from_polygons(side * side, &q).expect("valid torus");
         let faces = q.len();
+        if let Some(dir) = dump {
+            let dir = std::path::Path::new(dir);
+            std::fs::create_dir_all(dir).expect("the folder is made");
+            write_off(&dir.join(format!("torus_{faces}.off")), side * side, &q);
+            let cut = cut_some(&q, 5, side as u64);
+            write_off(&dir.join(format!("torus_{faces}_cut5.off")), side * side, &cut);
+        }
         report(
             "quad",
             &format!("canonical_torus_{faces}"),
@@ -798,7 +822,7 @@ fn main() {
         return;
     }
     if args.get(3).is_some_and(|s| s == "canonical") {
-        canonical_rows(reps);
+        canonical_rows(reps, args.get(4).map(String::as_str));
         return;
     }
     if args.get(3).is_some_and(|s| s == "tri_moves") {
@@ -930,7 +954,7 @@ fn main() {
     if build_only {
         return;
     }
-    canonical_rows(reps);
+    canonical_rows(reps, None);
 
     let quad_map = Map::from_polygons(nv, &quads).expect("valid torus");
     let tri_map = Map::from_polygons(nv, &tris).expect("valid torus");
