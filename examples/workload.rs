@@ -786,7 +786,11 @@ fn canonical_rows(reps: usize, dump: Option<&str>) {
             std::fs::create_dir_all(dir).expect("the folder is made");
             write_off(&dir.join(format!("torus_{faces}.off")), side * side, &q);
             let cut = cut_some(&q, 5, side as u64);
-            write_off(&dir.join(format!("torus_{faces}_cut5.off")), side * side, &cut);
+            write_off(
+                &dir.join(format!("torus_{faces}_cut5.off")),
+                side * side,
+                &cut,
+            );
         }
         report(
             "quad",
