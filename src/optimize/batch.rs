@@ -9,7 +9,8 @@ use glam::DVec3;
 
 use super::constraints::Constraints;
 use super::defect::{singularities, Singularity};
-use super::folds::{folded_near, FaceMarks};
+use super::folds::folded_near;
+use super::marks::Marks;
 use super::score::{Bfs, Scorer};
 use super::BatchStats;
 use crate::qzip::{Path, Qzip, Tag, ZipReport};
@@ -85,7 +86,7 @@ pub(crate) struct Batcher<'q> {
     /// The window [`Batcher::try_path`] builds.
     pub(crate) window: Window,
     /// The fold guard's face marks.
-    pub(crate) marks: FaceMarks,
+    pub(crate) marks: Marks,
     /// At most this many dart slots, movements are made on copies ([`COPY_DARTS`]; a test
     /// sets 0 to compare with the edits).
     pub(crate) copy_darts: usize,
@@ -459,7 +460,7 @@ impl<'q> Batcher<'q> {
             fold_guard: self.fold_guard,
             copies: Vec::new(),
             window: Window::default(),
-            marks: FaceMarks::default(),
+            marks: Marks::default(),
             before: Default::default(),
             copy_darts: self.copy_darts,
         })
@@ -614,7 +615,7 @@ fn folds_rise(
     mesh: &Mesh,
     before: &(Vec<Vert>, usize),
     region: &[Vert],
-    marks: &mut FaceMarks,
+    marks: &mut Marks,
 ) -> bool {
     let (ball, n) = before;
     let mut b: Vec<Vert> = ball
@@ -690,7 +691,7 @@ mod tests {
             fold_guard: false,
             copies: Vec::new(),
             window: Window::default(),
-            marks: FaceMarks::default(),
+            marks: Marks::default(),
             before: Default::default(),
             copy_darts: COPY_DARTS,
         };

@@ -3,10 +3,9 @@
 //! out folded (docs/results.md, "Pictures"). No score term sees it, so the batches guard
 //! against it ([`super::OptimizeOptions::fold_guard`]).
 
-use alloc::vec::Vec;
-
 use glam::DVec3;
 
+use super::marks::Marks;
 use crate::map::Face;
 use crate::{Mesh, Vert};
 
@@ -55,52 +54,18 @@ pub fn folded_quads(mesh: &Mesh) -> usize {
     mesh.map.faces().filter(|&f| is_folded(mesh, f)).count()
 }
 
-/// The folded quads with a corner among `verts` (each counted once, by `marks`).
-pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut FaceMarks) -> usize {
+/// The folded quads with a corner among `verts` (each counted once, by `marks`: the guard
+/// counts round every candidate, so without listing and sorting the faces).
+pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut Marks) -> usize {
     let map = &mesh.map;
     marks.begin(map.face_slots());
     let mut n = 0;
     for &v in verts.iter().filter(|&&v| map.is_live_vertex(v)) {
         for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
-            if marks.first(f) && is_folded(mesh, f) {
+            if marks.first(f.index()) && is_folded(mesh, f) {
                 n += 1;
             }
         }
     }
     n
-}
-
-/// Epoch-stamped face marks, reused between calls: a face met again is known without
-/// listing and sorting the faces (the fold guard counts round every candidate).
-#[derive(Clone, Debug, Default)]
-pub(crate) struct FaceMarks {
-    stamp: Vec<u32>,
-    epoch: u32,
-}
-
-impl FaceMarks {
-    /// Forgets every mark; `slots` is the mesh's face slot count.
-    fn begin(&mut self, slots: usize) {
-        if self.stamp.len() < slots {
-            self.stamp.resize(slots, 0);
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
-    }
-
-    /// Whether `f` is met for the first time since [`FaceMarks::begin`] (and marks it).
-    fn first(&mut self, f: Face) -> bool {
-        match self.stamp.get_mut(f.index()) {
-            Some(s) if *s == self.epoch => false,
-            Some(s) => {
-                *s = self.epoch;
-                true
-            }
-            // Not a slot of the mesh given to `begin`: no face to count.
-            None => false,
-        }
-    }
 }

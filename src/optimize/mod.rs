@@ -17,6 +17,7 @@ mod chain;
 pub mod constraints;
 pub mod defect;
 mod folds;
+mod marks;
 mod onto;
 pub mod score;
 pub mod smooth;

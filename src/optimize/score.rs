@@ -11,6 +11,7 @@ use alloc::vec::Vec;
 use glam::DVec3;
 
 use super::defect::{singularities, Singularity};
+use super::marks::Marks;
 use crate::{Mesh, Vert};
 
 /// What a term may read: the mesh, its singularities, and what the run fixed at the start.
@@ -213,8 +214,7 @@ impl ScoreTerm for FaceBudget {
 /// Epoch-stamped breadth-first search scratch, reused between calls.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bfs {
-    seen: Vec<u32>,
-    epoch: u32,
+    seen: Marks,
     /// The vertices reached, in order, with their distances: read from the front, never
     /// popped (cheaper than a ring buffer; one search pushes each vertex once).
     queue: Vec<(Vert, u32)>,
@@ -242,19 +242,10 @@ impl Bfs {
         mut visit: impl FnMut(Vert, u32) -> bool,
     ) {
         let map = &mesh.map;
-        let n = map.vertex_slots();
-        if self.seen.len() < n {
-            self.seen.resize(n, 0);
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.seen.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
+        self.seen.begin(map.vertex_slots());
         self.queue.clear();
         for v in from {
-            if map.is_live_vertex(v) && self.seen[v.index()] != self.epoch {
-                self.seen[v.index()] = self.epoch;
+            if map.is_live_vertex(v) && self.seen.first(v.index()) {
                 self.queue.push((v, 0));
             }
         }
@@ -269,11 +260,8 @@ impl Bfs {
             }
             for x in map.vertex_darts(v) {
                 let u = map.dest(x);
-                if let Some(s) = self.seen.get_mut(u.index()) {
-                    if *s != self.epoch {
-                        *s = self.epoch;
-                        self.queue.push((u, d + 1));
-                    }
+                if self.seen.first(u.index()) {
+                    self.queue.push((u, d + 1));
                 }
             }
         }
@@ -659,9 +647,8 @@ pub(crate) struct Scorer {
 pub(crate) struct LocalScratch {
     sing: Vec<Singularity>,
     faces: Vec<crate::Face>,
-    /// Per face slot, the epoch that last listed it (a face is listed once per call).
-    listed: Vec<u32>,
-    epoch: u32,
+    /// The faces listed by this call (a face is listed once per call).
+    listed: Marks,
     /// Per face slot, the corners its row of `values` was computed from.
     corners: Vec<Option<[DVec3; 4]>>,
     /// Per face slot, one value per term (0 for the terms that are not quad terms).
@@ -680,21 +667,11 @@ impl LocalScratch {
     fn list_faces(&mut self, mesh: &Mesh, window: &[Vert]) {
         let map = &mesh.map;
         self.faces.clear();
-        if self.listed.len() < map.face_slots() {
-            self.listed.resize(map.face_slots(), 0);
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.listed.iter_mut().for_each(|x| *x = 0);
-            self.epoch = 1;
-        }
+        self.listed.begin(map.face_slots());
         for &v in window {
             for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
-                if let Some(l) = self.listed.get_mut(f.index()) {
-                    if *l != self.epoch {
-                        *l = self.epoch;
-                        self.faces.push(f);
-                    }
+                if self.listed.first(f.index()) {
+                    self.faces.push(f);
                 }
             }
         }
