@@ -570,27 +570,19 @@ impl<'q> Batcher<'q> {
 /// when complete.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Window {
-    stamp: Vec<u32>,
-    epoch: u32,
+    marks: Marks,
     verts: Vec<Vert>,
 }
 
 impl Window {
     fn clear(&mut self) {
         self.verts.clear();
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
+        // The slots grow as vertices come (a Q-zip may have made new ones).
+        self.marks.begin(0);
     }
 
     fn insert(&mut self, v: Vert) {
-        if self.stamp.len() <= v.index() {
-            self.stamp.resize(v.index() + 1, 0);
-        }
-        if self.stamp[v.index()] != self.epoch {
-            self.stamp[v.index()] = self.epoch;
+        if self.marks.first_growing(v.index()) {
             self.verts.push(v);
         }
     }

@@ -11,7 +11,7 @@ use alloc::vec::Vec;
 use glam::DVec3;
 
 use super::defect::{singularities, Singularity};
-use super::marks::Marks;
+use super::marks::{Marks, Memo};
 use crate::{Mesh, Vert};
 
 /// What a term may read: the mesh, its singularities, and what the run fixed at the start.
@@ -268,56 +268,6 @@ impl Bfs {
     }
 }
 
-/// Epoch-stamped per-vertex values for one scoring call (the mesh does not change during
-/// it): a vertex that several searches reach is read once.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct VertexMemo {
-    stamp: Vec<u32>,
-    value: Vec<i64>,
-    epoch: u32,
-}
-
-impl VertexMemo {
-    /// Forgets every value; `slots` is the mesh's vertex slot count.
-    pub(crate) fn begin(&mut self, slots: usize) {
-        if self.stamp.len() < slots {
-            self.stamp.resize(slots, 0);
-            self.value.resize(slots, 0);
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
-    }
-
-    /// The value of `v`, computed by `f` the first time since [`VertexMemo::begin`].
-    pub(crate) fn get(&mut self, v: Vert, f: impl FnOnce() -> i64) -> i64 {
-        match (self.stamp.get_mut(v.index()), self.value.get_mut(v.index())) {
-            (Some(s), Some(x)) => {
-                if *s != self.epoch {
-                    (*s, *x) = (self.epoch, f());
-                }
-                *x
-            }
-            _ => f(),
-        }
-    }
-
-    /// The value of `v` if set since [`VertexMemo::begin`].
-    pub(crate) fn peek(&self, v: Vert) -> Option<i64> {
-        let i = v.index();
-        (self.stamp.get(i) == Some(&self.epoch)).then(|| self.value[i])
-    }
-
-    /// Sets the value of `v` (nothing if `v` is past the slots given to `begin`).
-    pub(crate) fn set(&mut self, v: Vert, x: i64) {
-        if let (Some(s), Some(y)) = (self.stamp.get_mut(v.index()), self.value.get_mut(v.index())) {
-            (*s, *y) = (self.epoch, x);
-        }
-    }
-}
-
 /// Electric push and pull: each singularity `s` with charge `q_s = -defect` (v3 +1, v5 -1)
 /// and its three closest singularities `t` (graph distance `d`, at most `radius`) give
 /// `q_s q_t / d` (like charges repel, unlike attract), and the closest boundary or feature
@@ -342,7 +292,7 @@ pub struct Electric {
     /// How a pair's energy falls with distance.
     pub potential: Potential,
     bfs: Bfs,
-    defects: VertexMemo,
+    defects: Memo<i64>,
 }
 
 /// The pair potential of [`Electric`], for charges `q`, `q'` at graph distance `d`.
@@ -392,7 +342,7 @@ impl Default for Electric {
             boundary_radius: 4,
             potential: Potential::Inverse,
             bfs: Bfs::default(),
-            defects: VertexMemo::default(),
+            defects: Memo::default(),
         }
     }
 }
@@ -421,7 +371,7 @@ impl ScoreTerm for Electric {
                 if d == 0 {
                     return true;
                 }
-                let dv = defects.get(v, || super::defect::defect(ctx.mesh, v));
+                let dv = defects.get(v.index(), || super::defect::defect(ctx.mesh, v));
                 if dv != 0 && found < 3 {
                     found += 1;
                     total += pot.energy(q, -(dv as f64), d, radius);
@@ -546,9 +496,9 @@ pub struct Separatrix {
     /// The longest traced separatrix (edges).
     pub length: usize,
     /// Per vertex, the separatrices through it: one's index, or [`MANY_OWNERS`].
-    owner: VertexMemo,
+    owner: Memo<i64>,
     /// Per vertex, 1 if a separatrix goes on through it (regular and interior).
-    through: VertexMemo,
+    through: Memo<i64>,
     bfs: Bfs,
 }
 
@@ -557,8 +507,8 @@ impl Default for Separatrix {
         Separatrix {
             radius: 3,
             length: 32,
-            owner: VertexMemo::default(),
-            through: VertexMemo::default(),
+            owner: Memo::default(),
+            through: Memo::default(),
             bfs: Bfs::default(),
         }
     }
@@ -573,13 +523,13 @@ impl Separatrix {
             let mut d = start;
             for _ in 0..self.length {
                 let v = map.dest(d);
-                let o = match self.owner.peek(v) {
+                let o = match self.owner.peek(v.index()) {
                     None => id,
                     Some(o) if o == id => id,
                     Some(_) => MANY_OWNERS,
                 };
-                self.owner.set(v, o);
-                let on = self.through.get(v, || {
+                self.owner.set(v.index(), o);
+                let on = self.through.get(v.index(), || {
                     i64::from(map.valence(v) == 4 && !map.is_boundary_vertex(v))
                 });
                 if on == 0 {
@@ -612,7 +562,7 @@ impl ScoreTerm for Separatrix {
             let owner = &self.owner;
             let mut best = None;
             self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
-                let o = owner.peek(v);
+                let o = owner.peek(v.index());
                 if o.is_some_and(|o| o != i as i64 || o == MANY_OWNERS) {
                     best = Some(d);
                     return false;
