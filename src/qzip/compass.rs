@@ -504,24 +504,34 @@ impl std::error::Error for PlanError {}
 /// crossed, `Err(Some(f))` for a face that is not a quad.
 fn count_side(map: &Map, out: Dart, back: Dart, side: Side) -> Result<usize, Option<Face>> {
     let mut x = out;
-    let mut n = 0;
     // Bounded by the dart count so a corrupt rotation cannot loop forever.
-    for _ in 0..map.dart_slots() {
+    for n in 0..map.dart_slots() {
         if x == back {
             return Ok(n);
         }
-        let (face, y) = match side {
-            Side::Left => (map.face(x), map.rotate_ccw(x)),
-            Side::Right => (map.face(x.twin()), map.rotate_cw(x)),
+        // The face on `side` of `x` (through its dart `y`) must be a quad; the next dart
+        // round the vertex comes from the same four steps round that face.
+        let y = match side {
+            Side::Left => x,
+            Side::Right => x.twin(),
         };
-        match face {
-            None => return Err(None),
-            Some(f) if map.degree(f) != 4 => return Err(Some(f)),
-            Some(_) => n += 1,
-        }
-        x = y;
+        let f = map.face(y).ok_or(None)?;
+        let before = quad_prev(map, y).ok_or(Some(f))?;
+        x = match side {
+            Side::Left => before.twin(),
+            Side::Right => map.next(y),
+        };
     }
     Err(None)
+}
+
+/// The dart before `d` round its face when that face is a quad, else `None`: four steps of
+/// `next`, where `prev` and `degree` would walk the face twice.
+fn quad_prev(map: &Map, d: Dart) -> Option<Dart> {
+    let n1 = map.next(d);
+    let n2 = map.next(n1);
+    let n3 = map.next(n2);
+    (n1 != d && n2 != d && n3 != d && map.next(n3) == d).then_some(n3)
 }
 
 /// Carries the compass along `path`, starting with `initial` at its first vertex.

@@ -67,11 +67,24 @@ pub(super) struct Ctx<'m, 'r> {
 }
 
 impl Ctx<'_, '_> {
-    /// Whether the search may step along `d` (an allowed edge to an allowed vertex).
-    fn step(&self, d: Dart) -> bool {
+    /// Whether every edge may be stepped along (no forbidden edge, no excluded vertex): the
+    /// common case, tested once per pass instead of per dart.
+    pub(super) fn open(&self) -> bool {
+        self.rules.forbidden.is_empty() && !self.avoid
+    }
+
+    /// The vertex `d` leads to, if the search may step along `d` (an allowed edge to an
+    /// allowed vertex); `open` is [`Ctx::open`].
+    #[inline]
+    fn step(&self, open: bool, d: Dart) -> Option<Vert> {
         let w = self.map.dest(d);
-        self.rules.usable(d)
-            && !(self.avoid && w != self.to && w != self.from && self.map.is_boundary_vertex(w))
+        let allowed = open
+            || (self.rules.usable(d)
+                && !(self.avoid
+                    && w != self.to
+                    && w != self.from
+                    && self.map.is_boundary_vertex(w)));
+        allowed.then_some(w)
     }
 }
 
@@ -96,7 +109,7 @@ fn dijkstra<S: Store>(
     st: &mut S,
     b: &mut Buffers,
 ) -> Option<Path> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
     let heap = &mut b.dijkstra;
     heap.clear();
     let s = st.get_mut(from);
@@ -115,10 +128,9 @@ fn dijkstra<S: Store>(
         }
         sorted_darts(map, v, &mut b.darts);
         for &d in &b.darts {
-            if !cx.step(d) {
+            let Some(w) = cx.step(open, d) else {
                 continue;
-            }
-            let w = map.dest(d);
+            };
             let sw = st.get_mut(w);
             if sw.has(DONE) {
                 continue;
@@ -141,14 +153,19 @@ fn dijkstra<S: Store>(
             }
         }
     }
-    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
+    trace(cx, st, 0, |s| s.has(PRED).then_some(s.pred))
 }
 
 /// The path ending at `to` read back through `pred` (darts); `None` when the chain breaks or
-/// runs longer than the map has vertices.
-fn trace<S: Store>(cx: &Ctx<'_, '_>, st: &S, pred: impl Fn(&Slot) -> Option<u32>) -> Option<Path> {
+/// runs longer than the map has vertices. `len` is the expected length (room reserved once).
+fn trace<S: Store>(
+    cx: &Ctx<'_, '_>,
+    st: &S,
+    len: usize,
+    pred: impl Fn(&Slot) -> Option<u32>,
+) -> Option<Path> {
     let map = cx.map;
-    let mut darts = Vec::new();
+    let mut darts = Vec::with_capacity(len);
     let mut v = cx.to;
     while v != cx.from {
         if darts.len() > map.vertex_slots() {
@@ -191,7 +208,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
 /// the complete layers `(kf, kb)`, or `None` when a side runs out (no path). The backward
 /// layer `kb` is left in `b.b`.
 fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32, u32)> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
     let s = st.get_mut(from);
     s.set(FWD);
     s.fwd = 0;
@@ -218,10 +235,10 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
         let mut met = false;
         'layer: for &u in front {
             for d in map.vertex_darts(u) {
-                if !cx.step(d) {
+                let Some(w) = cx.step(open, d) else {
                     continue;
-                }
-                let s = st.get_mut(map.dest(d));
+                };
+                let s = st.get_mut(w);
                 if s.has(mine) {
                     continue;
                 }
@@ -235,7 +252,7 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
                     met = true;
                     break 'layer;
                 }
-                next.push(map.dest(d));
+                next.push(w);
             }
         }
         if met {
@@ -255,15 +272,17 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
 /// `kf` and `kb`: the backward layer `kb` vertices one edge from forward layer `kf`, down the
 /// backward labels to `to`, and up the forward labels to `from`.
 fn mark_shortest<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, kf: u32, kb: u32) {
-    let map = cx.map;
+    let (map, open) = (cx.map, cx.open());
     let bk = &b.b;
     // The middle: backward layer kb vertices one edge from forward layer kf.
     let total = kf + kb + 1;
     b.m.clear();
     for &v in bk.iter() {
         let crosses = map.vertex_darts(v).any(|d| {
-            let s = st.get(map.dest(d));
-            cx.step(d) && s.has(FWD) && s.fwd == kf
+            cx.step(open, d).is_some_and(|w| {
+                let s = st.get(w);
+                s.has(FWD) && s.fwd == kf
+            })
         });
         if crosses {
             let s = st.get_mut(v);
@@ -279,9 +298,11 @@ fn mark_shortest<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, kf: u3
         nxt.clear();
         for &v in cur.iter() {
             for d in map.vertex_darts(v) {
-                let w = map.dest(d);
+                let Some(w) = cx.step(open, d) else {
+                    continue;
+                };
                 let s = st.get(w);
-                if cx.step(d) && s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
+                if s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
                     let s = st.get_mut(w);
                     s.set(DAG);
                     nxt.push(w);
@@ -305,14 +326,16 @@ fn mark_back<S: Store>(
     pos: u32,
     dist: impl Fn(&Slot) -> Option<u32>,
 ) {
-    let map = cx.map;
+    let (map, open) = (cx.map, cx.open());
     for pos in (1..=pos).rev() {
         nxt.clear();
         for &v in cur.iter() {
             for d in map.vertex_darts(v) {
-                let u = map.dest(d);
+                let Some(u) = cx.step(open, d) else {
+                    continue;
+                };
                 let s = st.get(u);
-                if cx.step(d) && !s.has(DAG) && dist(&s) == Some(pos - 1) {
+                if !s.has(DAG) && dist(&s) == Some(pos - 1) {
                     let s = st.get_mut(u);
                     s.set(DAG);
                     nxt.push(u);
@@ -334,7 +357,7 @@ fn replay<S: Store>(
     total: u32,
     position: impl Fn(&Slot) -> u32,
 ) -> Option<Path> {
-    let map = cx.map;
+    let (map, open) = (cx.map, cx.open());
     let (cur, nxt) = (&mut b.a, &mut b.c);
     cur.clear();
     if !st.get(cx.from).has(DAG) {
@@ -344,12 +367,23 @@ fn replay<S: Store>(
     for pos in 0..total {
         nxt.clear();
         for &v in cur.iter() {
-            sorted_darts(map, v, &mut b.darts);
-            for &d in &b.darts {
+            // The darts on to the next position, in increasing index: usually one or two,
+            // so they are picked before they are sorted.
+            let darts = &mut b.darts;
+            darts.clear();
+            darts.extend(map.vertex_darts(v).filter(|&d| {
+                cx.step(open, d).is_some_and(|w| {
+                    let s = st.get(w);
+                    s.has(DAG) && position(&s) == pos + 1
+                })
+            }));
+            if darts.len() > 1 {
+                darts.sort_unstable();
+            }
+            for &d in darts.iter() {
                 let w = map.dest(d);
-                let s = st.get(w);
-                if s.has(DAG) && !s.has(PRED) && position(&s) == pos + 1 && cx.step(d) {
-                    let s = st.get_mut(w);
+                let s = st.get_mut(w);
+                if !s.has(PRED) {
                     s.set(PRED);
                     s.pred = d.index() as u32;
                     nxt.push(w);
@@ -358,7 +392,7 @@ fn replay<S: Store>(
         }
         core::mem::swap(cur, nxt);
     }
-    trace(cx, st, |s| s.has(PRED).then_some(s.pred))
+    trace(cx, st, total as usize, |s| s.has(PRED).then_some(s.pred))
 }
 
 /// A* on unit weights with the guide's heuristic, re-expanding a vertex whose distance
@@ -368,7 +402,7 @@ fn replay<S: Store>(
 /// an overestimating heuristic, the last improving darts still form a simple path to `to`,
 /// returned when the replay does not reach it.
 fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
-    let (map, from, to) = (cx.map, cx.from, cx.to);
+    let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
     let target = g.point(to)?;
     let scale = 1.0 / g.max_edge_length;
     let h = |v: Vert| match g.point(v) {
@@ -400,10 +434,9 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
             continue; // stale: improved since it was pushed
         }
         for d in map.vertex_darts(v) {
-            if !cx.step(d) {
+            let Some(w) = cx.step(open, d) else {
                 continue;
-            }
-            let w = map.dest(d);
+            };
             let ng = gv + 1;
             let s = st.get_mut(w);
             if s.has(FWD) && s.fwd <= ng {
@@ -428,5 +461,6 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
     cur.clear();
     cur.push(to);
     mark_back(cx, st, cur, nxt, best, |s| s.has(FWD).then_some(s.fwd));
-    replay(cx, st, b, best, |s| s.fwd).or_else(|| trace(cx, st, |s| s.has(FWD).then_some(s.bwd)))
+    replay(cx, st, b, best, |s| s.fwd)
+        .or_else(|| trace(cx, st, best as usize, |s| s.has(FWD).then_some(s.bwd)))
 }
