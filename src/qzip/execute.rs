@@ -299,19 +299,56 @@ struct Seen {
 /// The distinct vertices the chain touched, in order of first touch, with a small
 /// open-addressing index so each touch costs O(1) and nothing is sorted (hand-written: a
 /// hash map from `alloc` would need std's hasher, and the sets here are a few dozen).
-#[derive(Default)]
 struct Touched {
     list: Vec<Seen>,
-    /// Position in `list` plus one, 0 for empty; the length is zero or a power of two.
-    table: Vec<u32>,
+    /// Position in `list` plus one, 0 for empty, at most half full: inline for the usual
+    /// few dozen vertices (no allocation per chain), `big` past that.
+    small: [u32; SMALL_TABLE],
+    big: Vec<u32>,
+    /// How many entries the index in use takes before it grows (half its length).
+    room: usize,
+}
+
+/// The inline index's size: chains of up to about 15 operations touch fewer than half.
+const SMALL_TABLE: usize = 128;
+
+impl Default for Touched {
+    fn default() -> Self {
+        Touched::with_capacity(0)
+    }
 }
 
 impl Touched {
-    fn slot(&self, v: Vert) -> usize {
-        let mask = self.table.len() - 1;
+    /// Room for `n` vertices without growing.
+    fn with_capacity(n: usize) -> Self {
+        let size = (2 * n).next_power_of_two().max(SMALL_TABLE);
+        Touched {
+            list: Vec::with_capacity(n),
+            small: [0; SMALL_TABLE],
+            big: if size > SMALL_TABLE {
+                alloc::vec![0; size]
+            } else {
+                Vec::new()
+            },
+            room: size / 2,
+        }
+    }
+
+    /// The index in use (a power of two in length).
+    fn table(&self) -> &[u32] {
+        if self.big.is_empty() {
+            &self.small
+        } else {
+            &self.big
+        }
+    }
+
+    /// Where `v` is in `table`, or the empty place where it would go.
+    fn slot(table: &[u32], list: &[Seen], v: Vert) -> usize {
+        let mask = table.len() - 1;
         let mut h = (v.index() as u32).wrapping_mul(0x9e37_79b1) as usize & mask;
-        while let Some(&k) = self.table.get(h) {
-            if k == 0 || self.list[k as usize - 1].v == v {
+        while let Some(&k) = table.get(h) {
+            if k == 0 || list[k as usize - 1].v == v {
                 break;
             }
             h = (h + 1) & mask;
@@ -320,10 +357,8 @@ impl Touched {
     }
 
     fn find(&self, v: Vert) -> Option<&Seen> {
-        if self.table.is_empty() {
-            return None;
-        }
-        match self.table[self.slot(v)] {
+        let table = self.table();
+        match table[Self::slot(table, &self.list, v)] {
             0 => None,
             k => self.list.get(k as usize - 1),
         }
@@ -331,21 +366,31 @@ impl Touched {
 
     /// The entry of `v`, made with `make` at its first touch.
     fn entry(&mut self, v: Vert, make: impl FnOnce() -> Seen) -> &mut Seen {
-        if 2 * (self.list.len() + 1) > self.table.len() {
-            let size = (4 * (self.list.len() + 1)).next_power_of_two().max(64);
-            self.table = alloc::vec![0; size];
+        if self.list.len() + 1 > self.room {
+            let size = (4 * (self.list.len() + 1)).next_power_of_two();
+            self.big = alloc::vec![0; size];
+            self.room = size / 2;
             for i in 0..self.list.len() {
-                let h = self.slot(self.list[i].v);
-                self.table[h] = i as u32 + 1;
+                let h = Self::slot(&self.big, &self.list, self.list[i].v);
+                self.big[h] = i as u32 + 1;
             }
         }
-        let h = self.slot(v);
-        if self.table[h] == 0 {
-            self.list.push(make());
-            self.table[h] = self.list.len() as u32;
-        }
-        let k = self.table[h] as usize - 1;
-        &mut self.list[k]
+        let table = self.table();
+        let h = Self::slot(table, &self.list, v);
+        let k = match table[h] {
+            0 => {
+                self.list.push(make());
+                let k = self.list.len() as u32;
+                if self.big.is_empty() {
+                    self.small[h] = k;
+                } else {
+                    self.big[h] = k;
+                }
+                k
+            }
+            k => k,
+        };
+        &mut self.list[k as usize - 1]
     }
 
     fn touch(&mut self, map: &Map, v: Vert) {
@@ -600,10 +645,7 @@ impl<'s> Chain<'s> {
         }
         Chain {
             surgery,
-            touched: Touched {
-                list: Vec::with_capacity(expected),
-                table: alloc::vec![0; (2 * expected).next_power_of_two()],
-            },
+            touched: Touched::with_capacity(expected),
             splits: 0,
             collapses: 0,
             guide: None,
