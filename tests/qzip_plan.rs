@@ -431,22 +431,26 @@ fn boundary_counting() {
 
 #[test]
 fn non_quads_are_refused() {
-    // A fan of four faces around 0, one of them a triangle (0, 7, 1).
-    let faces: Vec<Vec<u32>> = vec![
-        vec![0, 1, 2, 3],
-        vec![0, 3, 4, 5],
-        vec![0, 5, 6, 7],
-        vec![0, 7, 1],
-    ];
-    let map = Map::from_polygons(8, &faces).unwrap();
-    let path = given(&map, &[Vert::new(3), Vert::new(0), Vert::new(1)]);
-    // From spoke 1 going ccw to spoke 3 meets the quad (0, 1, 2, 3): fine on the left.
-    assert!(plan(&map, &path, Tag::LS).is_ok());
-    // On the right the triangle is met.
-    assert!(matches!(
-        plan(&map, &path, Tag::RS),
-        Err(PlanError::NotQuad { index: 1, .. })
-    ));
+    // A fan of four faces around 0, the last one (0, 7, .., 1) a triangle, a pentagon or a
+    // hexagon: whatever its degree, a face other than a quad is refused.
+    for k in [3u32, 5, 6] {
+        let mut last: Vec<u32> = vec![0, 7];
+        last.extend(8..8 + (k - 3));
+        last.push(1);
+        let faces: Vec<Vec<u32>> = vec![vec![0, 1, 2, 3], vec![0, 3, 4, 5], vec![0, 5, 6, 7], last];
+        let map = Map::from_polygons(8 + (k - 3) as usize, &faces).unwrap();
+        let path = given(&map, &[Vert::new(3), Vert::new(0), Vert::new(1)]);
+        // From spoke 1 going ccw to spoke 3 meets the quad (0, 1, 2, 3): fine on the left.
+        assert!(plan(&map, &path, Tag::LS).is_ok(), "degree {k}");
+        // On the right the other face is met.
+        assert!(
+            matches!(
+                plan(&map, &path, Tag::RS),
+                Err(PlanError::NotQuad { index: 1, .. })
+            ),
+            "degree {k}"
+        );
+    }
 }
 
 #[test]

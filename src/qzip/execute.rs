@@ -347,11 +347,13 @@ impl Touched {
     fn slot(table: &[u32], list: &[Seen], v: Vert) -> usize {
         let mask = table.len() - 1;
         let mut h = (v.index() as u32).wrapping_mul(0x9e37_79b1) as usize & mask;
-        while let Some(&k) = table.get(h) {
-            if k == 0 || list[k as usize - 1].v == v {
-                break;
+        // One lap at most: the table is never full, and a bug that filled it would give a
+        // wrong entry, which the tests see, rather than a loop without end.
+        for _ in 0..table.len() {
+            match table.get(h) {
+                Some(&k) if k != 0 && list[k as usize - 1].v != v => h = (h + 1) & mask,
+                _ => break,
             }
-            h = (h + 1) & mask;
         }
         h
     }
