@@ -2,6 +2,8 @@
 //! four movements, and refusals that leave the map untouched.
 
 mod common;
+#[path = "../benches/support/qzip_torus.rs"]
+mod qzip_torus;
 
 use common::{check_zip, ico_cc, pairs_within, shared, torus_with_splits};
 use proptest::prelude::*;
@@ -410,4 +412,20 @@ fn footprint_edges_match_their_definition() {
         checked > 1000 && reused > 100,
         "{checked} checked, {reused} with made edges split again and collapses"
     );
+}
+
+/// Chains long enough to touch more vertices than the touched-vertex index keeps inline
+/// (about 15 operations): 100-edge Q-zips along a row of a torus keep every promise, for
+/// both initial collapses.
+#[test]
+fn long_chains_keep_every_promise() {
+    let (map, ends) = qzip_torus::torus_with_pairs(221, 1, 100);
+    let (a, b) = ends[0];
+    let path = sketch(&map, a, b, &SketchOptions::default()).unwrap();
+    assert_eq!(path.len(), 100);
+    for tag in [Tag::LC, Tag::RC] {
+        let (_, r) = check_zip(&map, &path, tag).unwrap_or_else(|e| panic!("{tag}: {e}"));
+        // LC: a collapse per edge; RC: a split, then a collapse per remaining edge.
+        assert_eq!(r.splits() + r.collapses(), 100, "{tag}");
+    }
 }

@@ -312,12 +312,6 @@ struct Touched {
 /// The inline index's size: chains of up to about 15 operations touch fewer than half.
 const SMALL_TABLE: usize = 128;
 
-impl Default for Touched {
-    fn default() -> Self {
-        Touched::with_capacity(0)
-    }
-}
-
 impl Touched {
     /// Room for `n` vertices without growing.
     fn with_capacity(n: usize) -> Self {
@@ -355,6 +349,12 @@ impl Touched {
                 _ => break,
             }
         }
+        debug_assert!(
+            table
+                .get(h)
+                .is_some_and(|&k| k == 0 || list[k as usize - 1].v == v),
+            "the touch index is full"
+        );
         h
     }
 
@@ -976,7 +976,7 @@ mod tests {
     #[test]
     fn touched_keeps_first_touches_in_order() {
         let map = crate::gen::torus_grid(40, 40).map;
-        let mut t = Touched::default();
+        let mut t = Touched::with_capacity(0);
         let mut order: Vec<Vert> = Vec::new();
         let mut rng = crate::rng::Rng::new(7);
         for _ in 0..5000 {
@@ -1020,11 +1020,11 @@ mod tests {
     fn irregulars_kept_counts_high_valences() {
         let (a, b) = (fan(40), fan(41));
         assert_eq!((a.valence(Vert::new(0)), b.valence(Vert::new(0))), (40, 41));
-        let mut t = Touched::default();
+        let mut t = Touched::with_capacity(0);
         t.touch(&a, Vert::new(0));
         assert_eq!(t.irregulars_kept(&a), Ok(()));
         assert_eq!(t.irregulars_kept(&b), Err((1, 1)));
-        let mut u = Touched::default();
+        let mut u = Touched::with_capacity(0);
         u.touch(&fan(6), Vert::new(0));
         assert_eq!(u.irregulars_kept(&fan(6)), Ok(()));
         assert_eq!(u.irregulars_kept(&fan(7)), Err((1, 1)));
