@@ -516,22 +516,13 @@ fn count_side(map: &Map, out: Dart, back: Dart, side: Side) -> Result<usize, Opt
             Side::Right => x.twin(),
         };
         let f = map.face(y).ok_or(None)?;
-        let before = quad_prev(map, y).ok_or(Some(f))?;
+        let [.., before] = crate::ops::quad::quad_of(map, y).map_err(|_| Some(f))?;
         x = match side {
             Side::Left => before.twin(),
             Side::Right => map.next(y),
         };
     }
     Err(None)
-}
-
-/// The dart before `d` round its face when that face is a quad, else `None`: four steps of
-/// `next`, where `prev` and `degree` would walk the face twice.
-fn quad_prev(map: &Map, d: Dart) -> Option<Dart> {
-    let n1 = map.next(d);
-    let n2 = map.next(n1);
-    let n3 = map.next(n2);
-    (n1 != d && n2 != d && n3 != d && map.next(n3) == d).then_some(n3)
 }
 
 /// Carries the compass along `path`, starting with `initial` at its first vertex.

@@ -232,7 +232,7 @@ into_record!(EdgeRotation, Rotate);
 // caller has shown to be live, so no operator can index out of range.
 
 /// The four darts of the quad face of `d`, starting at `d`.
-fn quad_of(map: &Map, d: Dart) -> Result<[Dart; 4], Refusal> {
+pub(crate) fn quad_of(map: &Map, d: Dart) -> Result<[Dart; 4], Refusal> {
     if !map.is_live_dart(d) {
         return Err(Refusal::DeadHandle);
     }
