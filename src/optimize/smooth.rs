@@ -67,14 +67,15 @@ impl Surface {
                 .unwrap_or(DVec3::ZERO)
         };
         let mut triangles = Vec::new();
+        // Each face as a fan from its first corner, read as the walk goes (no list per face).
         for f in mesh.map.faces() {
-            let c: Vec<DVec3> = mesh
-                .map
-                .face_darts(f)
-                .map(|d| at(mesh.map.origin(d)))
-                .collect();
-            for i in 1..c.len().saturating_sub(1) {
-                triangles.push([c[0], c[i], c[i + 1]]);
+            let mut corners = mesh.map.face_darts(f).map(|d| at(mesh.map.origin(d)));
+            let (Some(first), Some(mut last)) = (corners.next(), corners.next()) else {
+                continue;
+            };
+            for p in corners {
+                triangles.push([first, last, p]);
+                last = p;
             }
         }
         let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));

@@ -285,7 +285,8 @@ pub fn optimize_triangles(
     {
         return Err(TriOptimizeError::Positions(v));
     }
-    let surface = Surface::new(mesh);
+    // The input surface the relaxation projects onto, built only when it will run.
+    let surface = options.relax.then(|| Surface::new(mesh));
     let input = TriCounts::of(&mesh.map);
     let drift = options.face_drift.clamp(0.0, 1.0);
     // `as` truncates, and reads NaN as 0: the slack is the whole faces within the drift
@@ -317,12 +318,12 @@ pub fn optimize_triangles(
         } else {
             0
         };
-        if options.relax && !touched.is_empty() {
+        if let Some(surface) = surface.as_ref().filter(|_| !touched.is_empty()) {
             touched.retain(|&v| mesh.map.is_live_vertex(v));
             touched.sort_unstable();
             touched.dedup();
             // Positions were checked finite and edits keep them so: a refusal cannot happen.
-            let _ = relax_local(mesh, &surface, &touched, 3);
+            let _ = relax_local(mesh, surface, &touched, 3);
         }
         let row = TriBatch {
             batch,
