@@ -709,9 +709,22 @@ impl Scorer {
         })
     }
 
-    /// The weighted total, and each term's unweighted value.
+    /// The weighted total, and each term's unweighted value. The quad terms read the
+    /// values [`LocalScratch`] keeps for quads that did not move, summed over every face in
+    /// slot order as the terms' own sums are, so the value is the same to the bit; a Q-zip
+    /// moves a few dozen quads, and this is called once per executed one.
     pub(crate) fn score(&mut self, mesh: &Mesh) -> (f64, Vec<f64>) {
         let s = singularities(mesh);
+        let sc = &mut self.scratch;
+        sc.faces.clear();
+        sc.faces.extend(mesh.map.faces());
+        sc.quad.clear();
+        sc.quad.extend(
+            self.terms
+                .iter()
+                .map(|(w, t)| t.quad_value().filter(|_| *w != 0.0)),
+        );
+        sc.quad_totals(mesh, self.target_area);
         let ctx = Context {
             mesh,
             singularities: &s,
@@ -723,9 +736,13 @@ impl Scorer {
         };
         let mut parts = vec![0.0; self.terms.len()];
         let mut total = 0.0;
-        for ((w, t), p) in self.terms.iter_mut().zip(&mut parts) {
+        let terms = self.terms.iter_mut().zip(&sc.quad).zip(&sc.totals);
+        for ((((w, t), quad), sum), p) in terms.zip(&mut parts) {
             if *w != 0.0 {
-                *p = t.score(&ctx);
+                *p = match quad {
+                    Some(_) => *sum,
+                    None => t.score(&ctx),
+                };
                 total += *w * *p;
             }
         }
@@ -813,5 +830,57 @@ mod tests {
             .unwrap();
         let flipped = kept.local(&mesh, &window);
         assert_eq!(flipped.to_bits(), scorer().local(&mesh, &window).to_bits());
+    }
+
+    /// Each term's own sum over the whole mesh, weighted and added in term order: what
+    /// [`Scorer::score`] gave before it read kept quad values.
+    fn own_sums(s: &mut Scorer, mesh: &Mesh) -> (f64, Vec<f64>) {
+        let sing = singularities(mesh);
+        let ctx = Context {
+            mesh,
+            singularities: &sing,
+            features: &s.features,
+            target_area: s.target_area,
+            target_faces: s.target_faces,
+            faces: None,
+            walls: s.walls,
+        };
+        let mut parts = vec![0.0; s.terms.len()];
+        let mut total = 0.0;
+        for ((w, t), p) in s.terms.iter_mut().zip(&mut parts) {
+            if *w != 0.0 {
+                *p = t.score(&ctx);
+                total += *w * *p;
+            }
+        }
+        (total, parts)
+    }
+
+    /// The whole-mesh score with kept quad values (warmed by windows and earlier scores)
+    /// is each term's own sum, to the bit, as quads move and an edge turns.
+    #[test]
+    fn whole_score_with_kept_quad_values_is_the_terms_own() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(40, 1, 0, 3));
+        let window: Vec<Vert> = mesh.map.vertices().take(30).collect();
+        let mut kept = scorer();
+        let bits = |x: &(f64, Vec<f64>)| {
+            let mut b = vec![x.0.to_bits()];
+            b.extend(x.1.iter().map(|p| p.to_bits()));
+            b
+        };
+        let first = kept.score(&mesh);
+        assert_eq!(bits(&first), bits(&own_sums(&mut scorer(), &mesh)));
+        for (i, &v) in window.iter().enumerate().step_by(4) {
+            mesh.positions[v.index()] += DVec3::splat(0.02 * (i + 1) as f64);
+            kept.local(&mesh, &window[..i + 1]);
+            let again = kept.score(&mesh);
+            assert_eq!(bits(&again), bits(&own_sums(&mut scorer(), &mesh)));
+            assert_ne!(again.0.to_bits(), first.0.to_bits());
+        }
+        let d = mesh.map.vertex_dart(window[1]);
+        crate::ops::quad::rotate_edge(&mut mesh.map, d, crate::ops::quad::Rotation::Clockwise)
+            .unwrap();
+        let turned = kept.score(&mesh);
+        assert_eq!(bits(&turned), bits(&own_sums(&mut scorer(), &mesh)));
     }
 }
