@@ -143,6 +143,24 @@ impl Surface {
         s
     }
 
+    /// How far `p` is from the walls of its cell ([`Surface::cell_of`]): a triangle none of
+    /// whose points is in that cell is at least this far. 0 outside the grid, where
+    /// `cell_of` clamps. The shell search stops sooner by it: a point just off the surface,
+    /// as smoothing makes, is usually settled by its own cell.
+    fn margin(&self, p: DVec3) -> f64 {
+        let q = (p - self.min) / self.cell;
+        let mut m = f64::INFINITY;
+        for (x, &n) in q.to_array().into_iter().zip(&self.dims) {
+            if !(x >= 0.0 && x < n as f64) {
+                return 0.0;
+            }
+            // `x` is in [0, n): `as` truncates to its cell's index.
+            let f = x - (x as usize) as f64;
+            m = m.min(f).min(1.0 - f);
+        }
+        m * self.cell
+    }
+
     fn cell_of(&self, p: DVec3) -> [usize; 3] {
         let q = (p - self.min) / self.cell;
         let c = |x: f64, n: usize| {
@@ -171,6 +189,7 @@ impl Surface {
             return self.closest_of_all(p);
         }
         let c = self.cell_of(p);
+        let margin = self.margin(p);
         let (mut best, mut best_d) = (p, f64::INFINITY);
         let max_r = self.dims.iter().copied().max().unwrap_or(1);
         for r in 0..=max_r {
@@ -192,8 +211,9 @@ impl Surface {
                     }
                 }
             }
-            // Everything within r cells of p's cell has been seen.
-            if best_d.is_finite() && libm::sqrt(best_d) <= r as f64 * self.cell {
+            // Every triangle with a point within r cells of p's cell has been seen: the
+            // others are farther than r cells and p's margin in its own cell.
+            if best_d.is_finite() && libm::sqrt(best_d) <= r as f64 * self.cell + margin {
                 break;
             }
         }
@@ -329,4 +349,54 @@ pub(crate) fn laplacian(
         }
     }
     saved
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    /// The shell search stops once the best distance is within `p`'s margin in its cell
+    /// ([`Surface::margin`]). Its distance equals the search over every triangle for points
+    /// just off a sphere (as smoothing makes: most settle in their own cell) and anywhere in
+    /// its box (where the nearest triangle is often cells away).
+    #[test]
+    fn shell_search_is_the_search_of_all() {
+        let mesh = crate::gen::subdivided_icosahedron(3);
+        let s = Surface::new(&mesh);
+        assert!(s.triangles.len() > SMALL, "the cells are searched");
+        let mut rng = Rng::new(5);
+        let mut u = |k: f64| (rng.below(1_000_001) as f64 / 1_000_000.0 - 0.5) * k;
+        let (lo, hi) = mesh.positions.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        let mut settled = 0;
+        for i in 0..4_000 {
+            let p = if i % 2 == 0 {
+                // Within 0.01 of the surface, relative to its size.
+                let [a, b, c] = s.triangles[i % s.triangles.len()];
+                let (x, y) = (u(1.0) + 0.5, u(1.0) + 0.5);
+                let (x, y) = if x + y > 1.0 {
+                    (1.0 - x, 1.0 - y)
+                } else {
+                    (x, y)
+                };
+                let off = DVec3::new(u(1.0), u(1.0), u(1.0)) * 0.02 * (hi - lo).length();
+                a + (b - a) * x + (c - a) * y + off
+            } else {
+                lo + (hi - lo) * DVec3::new(u(1.2) + 0.5, u(1.2) + 0.5, u(1.2) + 0.5)
+            };
+            let (grid, all) = (s.closest(p), s.closest_of_all(p));
+            assert!(
+                (grid.distance(p) - all.distance(p)).abs() <= 1e-12,
+                "{p}: {grid} against {all}"
+            );
+            settled += usize::from(i % 2 == 0 && grid.distance(p) <= s.margin(p));
+        }
+        assert!(
+            settled > 400,
+            "the near points settled in their cell: {settled} of 2000"
+        );
+    }
 }
