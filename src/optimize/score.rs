@@ -233,6 +233,42 @@ impl Bfs {
         self.run_from(mesh, [from], radius, visit);
     }
 
+    /// [`Bfs::run`] with each vertex's valence: `visit(v, d, valence)`, called once the
+    /// vertex's darts have been walked (counted, and its neighbours queued when `d` is under
+    /// `radius`), so the valence costs no walk of its own. The same vertices in the same
+    /// order as [`Bfs::run`]: what a stopped search queued is never visited.
+    pub(crate) fn run_counting(
+        &mut self,
+        mesh: &Mesh,
+        from: Vert,
+        radius: u32,
+        mut visit: impl FnMut(Vert, u32, usize) -> bool,
+    ) {
+        let map = &mesh.map;
+        self.seen.begin(map.vertex_slots());
+        self.queue.clear();
+        if map.is_live_vertex(from) && self.seen.first(from.index()) {
+            self.queue.push((from, 0));
+        }
+        let mut head = 0;
+        while let Some(&(v, d)) = self.queue.get(head) {
+            head += 1;
+            let mut valence = 0;
+            for x in map.vertex_darts(v) {
+                valence += 1;
+                if d < radius {
+                    let u = map.dest(x);
+                    if self.seen.first(u.index()) {
+                        self.queue.push((u, d + 1));
+                    }
+                }
+            }
+            if !visit(v, d, valence) {
+                return;
+            }
+        }
+    }
+
     /// [`Bfs::run`] from several sources at distance 0.
     pub(crate) fn run_from(
         &mut self,
@@ -357,8 +393,9 @@ impl ScoreTerm for Electric {
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let map = &ctx.mesh.map;
         let mut total = 0.0;
-        // Each singularity's search reads the defects round it; on a small mesh every
-        // search reaches every vertex.
+        // Each singularity's search reads the defects round it: an interior vertex's from
+        // the valence the search counts ([`super::defect::defect`]: valence - 4), a
+        // boundary vertex's (its angle's) kept for the other searches of this call.
         self.defects.begin(map.vertex_slots());
         let defects = &mut self.defects;
         for s in ctx.singularities {
@@ -367,21 +404,26 @@ impl ScoreTerm for Electric {
             let (mut found, mut wall) = (0, s.boundary || !ctx.walls);
             let (bw, br) = (self.boundary_weight, self.boundary_radius);
             let (pot, radius) = (self.potential, self.radius);
-            self.bfs.run(ctx.mesh, s.vertex, self.radius, |v, d| {
-                if d == 0 {
-                    return true;
-                }
-                let dv = defects.get(v.index(), || super::defect::defect(ctx.mesh, v));
-                if dv != 0 && found < 3 {
-                    found += 1;
-                    total += pot.energy(q, -(dv as f64), d, radius);
-                }
-                if !wall && d <= br && (map.is_boundary_vertex(v) || ctx.is_feature(v)) {
-                    wall = true;
-                    total += bw * q.abs() / d as f64;
-                }
-                found < 3 || (!wall && d < br)
-            });
+            self.bfs
+                .run_counting(ctx.mesh, s.vertex, self.radius, |v, d, k| {
+                    if d == 0 {
+                        return true;
+                    }
+                    let dv = if map.is_boundary_vertex(v) {
+                        defects.get(v.index(), || super::defect::defect(ctx.mesh, v))
+                    } else {
+                        k as i64 - 4
+                    };
+                    if dv != 0 && found < 3 {
+                        found += 1;
+                        total += pot.energy(q, -(dv as f64), d, radius);
+                    }
+                    if !wall && d <= br && (map.is_boundary_vertex(v) || ctx.is_feature(v)) {
+                        wall = true;
+                        total += bw * q.abs() / d as f64;
+                    }
+                    found < 3 || (!wall && d < br)
+                });
         }
         total
     }
@@ -830,6 +872,88 @@ mod tests {
             .unwrap();
         let flipped = kept.local(&mesh, &window);
         assert_eq!(flipped.to_bits(), scorer().local(&mesh, &window).to_bits());
+    }
+
+    /// The counting search visits what [`Bfs::run`] visits, in its order, stopped anywhere,
+    /// and counts each vertex's valence.
+    #[test]
+    fn counting_search_is_the_search_with_valences() {
+        let random = crate::gen::catmull_clark(&crate::gen::random_triangle(30, 1, 1, 4));
+        for mesh in [crate::gen::grid(4, 3), random] {
+            let (mut plain, mut counting) = (Bfs::default(), Bfs::default());
+            for from in mesh.map.vertices().step_by(5) {
+                for (radius, stop) in [(0, 9), (1, 3), (3, 40), (5, usize::MAX)] {
+                    let mut want = Vec::new();
+                    plain.run(&mesh, from, radius, |v, d| {
+                        want.push((v, d, mesh.map.valence(v)));
+                        want.len() < stop
+                    });
+                    let mut got = Vec::new();
+                    counting.run_counting(&mesh, from, radius, |v, d, k| {
+                        got.push((v, d, k));
+                        got.len() < stop
+                    });
+                    assert_eq!(got, want, "from {from:?}, radius {radius}, stop {stop}");
+                }
+            }
+        }
+    }
+
+    /// The electric term as it was written before its search counted valences: a plain
+    /// search, every defect from [`super::super::defect::defect`].
+    fn electric_reference(e: &Electric, ctx: &Context<'_>) -> f64 {
+        let (map, mut total, mut bfs) = (&ctx.mesh.map, 0.0, Bfs::default());
+        for s in ctx.singularities {
+            let q = s.charge();
+            let (mut found, mut wall) = (0, s.boundary || !ctx.walls);
+            bfs.run(ctx.mesh, s.vertex, e.radius, |v, d| {
+                if d == 0 {
+                    return true;
+                }
+                let dv = super::super::defect::defect(ctx.mesh, v);
+                if dv != 0 && found < 3 {
+                    found += 1;
+                    total += e.potential.energy(q, -(dv as f64), d, e.radius);
+                }
+                let b = map.is_boundary_vertex(v) || ctx.is_feature(v);
+                if !wall && d <= e.boundary_radius && b {
+                    wall = true;
+                    total += e.boundary_weight * q.abs() / d as f64;
+                }
+                found < 3 || (!wall && d < e.boundary_radius)
+            });
+        }
+        total
+    }
+
+    /// The electric term, to the bit, is the reference's on meshes with and without
+    /// boundary (whose vertices' defects come from their angles), whole and in windows.
+    #[test]
+    fn electric_is_its_reference() {
+        let meshes = [
+            crate::gen::catmull_clark(&crate::gen::random_triangle(40, 1, 1, 6)),
+            crate::gen::catmull_clark(&crate::gen::random_triangle(30, 0, 0, 7)),
+            crate::gen::subdivided_icosahedron(2),
+        ];
+        for mesh in &meshes {
+            let all = singularities(mesh);
+            assert!(all.len() > 4);
+            for sing in [&all[..], &all[..all.len() / 2]] {
+                let ctx = Context {
+                    mesh,
+                    singularities: sing,
+                    features: &[],
+                    target_area: 1.0,
+                    target_faces: 0,
+                    faces: None,
+                    walls: true,
+                };
+                let mut e = Electric::default();
+                let want = electric_reference(&e, &ctx);
+                assert_eq!(e.score(&ctx).to_bits(), want.to_bits());
+                assert_ne!(want, 0.0);
+            }
+        }
     }
 
     /// Each term's own sum over the whole mesh, weighted and added in term order: what
