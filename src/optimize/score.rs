@@ -654,17 +654,37 @@ pub(crate) struct LocalScratch {
 }
 
 impl LocalScratch {
-    /// `faces` sorted, each once: listing first and sorting the few left is cheaper than
-    /// sorting every corner's face.
-    fn list_faces(&mut self, mesh: &Mesh, window: &[Vert]) {
+    /// The window's singularities, in window order, and `faces` sorted, each once: listing
+    /// first and sorting the few left is cheaper than sorting every corner's face. One walk
+    /// round each vertex gives its faces and its valence, so an interior vertex's defect
+    /// ([`super::defect::defect`]: valence - 4) costs no walk of its own.
+    fn list(&mut self, mesh: &Mesh, window: &[Vert]) {
         let map = &mesh.map;
+        self.sing.clear();
         self.faces.clear();
         self.listed.begin(map.face_slots());
         for &v in window {
-            for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
-                if self.listed.first(f.index()) {
-                    self.faces.push(f);
+            let mut valence = 0;
+            for d in map.vertex_darts(v) {
+                valence += 1;
+                if let Some(f) = map.face(d) {
+                    if self.listed.first(f.index()) {
+                        self.faces.push(f);
+                    }
                 }
+            }
+            let boundary = map.is_boundary_vertex(v);
+            let defect = match (map.is_live_vertex(v), boundary) {
+                (false, _) => 0,
+                (true, true) => super::defect::defect(mesh, v),
+                (true, false) => valence - 4,
+            };
+            if defect != 0 {
+                self.sing.push(Singularity {
+                    vertex: v,
+                    defect,
+                    boundary,
+                });
             }
         }
         self.faces.sort_unstable();
@@ -795,18 +815,8 @@ impl Scorer {
     /// the faces at its vertices. The quad terms read the
     /// values [`LocalScratch`] keeps for quads that did not move.
     pub(crate) fn local(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
-        let map = &mesh.map;
         let sc = &mut self.scratch;
-        sc.sing.clear();
-        sc.sing.extend(window.iter().filter_map(|&v| {
-            let d = super::defect::defect(mesh, v);
-            (d != 0).then(|| Singularity {
-                vertex: v,
-                defect: d,
-                boundary: map.is_boundary_vertex(v),
-            })
-        }));
-        sc.list_faces(mesh, window);
+        sc.list(mesh, window);
         sc.quad.clear();
         sc.quad.extend(
             self.terms
@@ -872,6 +882,44 @@ mod tests {
             .unwrap();
         let flipped = kept.local(&mesh, &window);
         assert_eq!(flipped.to_bits(), scorer().local(&mesh, &window).to_bits());
+    }
+
+    /// A window's listed singularities are the mesh's singularities in the window, in
+    /// window order, with boundary vertices (defects from their angles) and a dead slot
+    /// (none) among them; its faces are those at its vertices, sorted, each once.
+    #[test]
+    fn window_lists_its_singularities_and_faces() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(40, 1, 1, 8));
+        // A dead vertex slot in the window: a collapse frees one.
+        let darts: Vec<_> = mesh.map.darts().collect();
+        let gone = darts
+            .into_iter()
+            .find_map(|d| crate::ops::quad::collapse_quad(&mut mesh.map, d).ok())
+            .unwrap()
+            .removed();
+        assert!(!mesh.map.is_live_vertex(gone));
+        let mut window: Vec<Vert> = (0..mesh.map.vertex_slots() as u32)
+            .map(Vert::new)
+            .rev()
+            .step_by(2)
+            .collect();
+        window.push(gone);
+        let mut s = scorer();
+        s.local(&mesh, &window);
+        let all = singularities(&mesh);
+        let want: Vec<Singularity> = window
+            .iter()
+            .filter_map(|&v| all.iter().find(|x| x.vertex == v).copied())
+            .collect();
+        assert!(want.iter().any(|x| x.boundary) && want.iter().any(|x| !x.boundary));
+        assert_eq!(s.scratch.sing, want);
+        let mut faces: Vec<crate::Face> = window
+            .iter()
+            .flat_map(|&v| mesh.map.vertex_darts(v).filter_map(|d| mesh.map.face(d)))
+            .collect();
+        faces.sort_unstable();
+        faces.dedup();
+        assert_eq!(s.scratch.faces, faces);
     }
 
     /// The counting search visits what [`Bfs::run`] visits, in its order, stopped anywhere,
