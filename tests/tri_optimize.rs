@@ -188,3 +188,30 @@ fn the_lookahead_goes_on_where_the_greedy_passes_stop() {
     }
     assert!(kept > 0);
 }
+
+/// With relaxation, a batch's edits are the same and the vertices near them move on the
+/// input surface; without it they stay where the edits put them. One batch, so the
+/// relaxation cannot change later edits.
+#[test]
+fn relaxation_moves_vertices_and_keeps_the_edits() {
+    let input = gen::random_triangle(300, 1, 0, 17);
+    let run = |relax: bool| {
+        let mut mesh = input.clone();
+        let options = TriOptimizeOptions {
+            max_batches: 1,
+            relax,
+            ..TriOptimizeOptions::default()
+        };
+        let out = optimize_triangles(&mut mesh, &options, |_| {}).unwrap();
+        assert!(out.batches[0].flips + out.batches[0].cancellations > 0);
+        mesh
+    };
+    let (relaxed, still) = (run(true), run(false));
+    assert_eq!(relaxed.map, still.map);
+    // The relaxation moves some vertices (the batch's touched ones), not every one.
+    let moved: Vec<usize> = (0..still.positions.len())
+        .filter(|&i| relaxed.positions[i] != still.positions[i])
+        .collect();
+    assert!(!moved.is_empty());
+    assert!(moved.len() < still.map.num_vertices(), "{}", moved.len());
+}

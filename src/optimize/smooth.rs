@@ -393,6 +393,19 @@ mod tests {
                 "{p}: {grid} against {all}"
             );
             settled += usize::from(i % 2 == 0 && grid.distance(p) <= s.margin(p));
+            // The margin is the distance to the nearest wall of p's cell, 0 off the grid.
+            let c = s.cell_of(p);
+            let mut walls = f64::INFINITY;
+            for k in 0..3 {
+                let lo = s.min[k] + c[k] as f64 * s.cell;
+                let inside = p[k] >= s.min[k] && p[k] < s.min[k] + s.dims[k] as f64 * s.cell;
+                walls = walls.min(if inside {
+                    (p[k] - lo).min(lo + s.cell - p[k])
+                } else {
+                    0.0
+                });
+            }
+            assert!((s.margin(p) - walls).abs() <= 1e-9 * s.cell, "{p}");
         }
         assert!(
             settled > 400,
