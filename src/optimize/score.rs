@@ -690,9 +690,20 @@ impl LocalScratch {
         self.faces.sort_unstable();
     }
 
-    /// Adds each quad term's value of every listed quad to `totals`, in face order,
-    /// measuring only the quads whose corners changed since they were last measured.
-    fn quad_totals(&mut self, mesh: &Mesh, target_area: f64) {
+    /// Each weighted quad term's value of every listed quad added into `totals`, in face
+    /// order, measuring only the quads whose corners changed since they were last measured.
+    fn quad_totals(
+        &mut self,
+        terms: &[(f64, Box<dyn ScoreTerm + Send>)],
+        mesh: &Mesh,
+        target_area: f64,
+    ) {
+        self.quad.clear();
+        self.quad.extend(
+            terms
+                .iter()
+                .map(|(w, t)| t.quad_value().filter(|_| *w != 0.0)),
+        );
         let width = self.quad.len();
         self.totals.clear();
         self.totals.resize(width, 0.0);
@@ -780,13 +791,7 @@ impl Scorer {
         let sc = &mut self.scratch;
         sc.faces.clear();
         sc.faces.extend(mesh.map.faces());
-        sc.quad.clear();
-        sc.quad.extend(
-            self.terms
-                .iter()
-                .map(|(w, t)| t.quad_value().filter(|_| *w != 0.0)),
-        );
-        sc.quad_totals(mesh, self.target_area);
+        sc.quad_totals(&self.terms, mesh, self.target_area);
         let ctx = Context {
             mesh,
             singularities: &s,
@@ -817,13 +822,7 @@ impl Scorer {
     pub(crate) fn local(&mut self, mesh: &Mesh, window: &[Vert]) -> f64 {
         let sc = &mut self.scratch;
         sc.list(mesh, window);
-        sc.quad.clear();
-        sc.quad.extend(
-            self.terms
-                .iter()
-                .map(|(w, t)| t.quad_value().filter(|_| *w != 0.0)),
-        );
-        sc.quad_totals(mesh, self.target_area);
+        sc.quad_totals(&self.terms, mesh, self.target_area);
         let ctx = Context {
             mesh,
             singularities: &sc.sing,
