@@ -348,13 +348,48 @@ pub fn optimize_triangles(
     })
 }
 
+/// The valences of a pass's map by vertex slot, kept up to date across its edits: the
+/// passes test every edge with the valences of four vertices, and walking four rings per
+/// edge was most of a pass on the fuzz target's meshes.
+struct Valences(Vec<usize>);
+
+impl Valences {
+    fn of(map: &Map) -> Self {
+        Valences(
+            (0..map.vertex_slots() as u32)
+                .map(|i| map.valence(Vert::new(i)))
+                .collect(),
+        )
+    }
+
+    fn get(&self, v: Vert) -> usize {
+        self.0.get(v.index()).copied().unwrap_or(0)
+    }
+
+    /// Whether every live vertex's kept valence is its valence in `map`: checked (in debug
+    /// builds, the fuzz targets' too) once per pass rather than per read, which would cost
+    /// what the cache saves.
+    fn is_current(&self, map: &Map) -> bool {
+        map.vertices().all(|v| self.get(v) == map.valence(v))
+    }
+
+    /// Reads the valences of `verts` again after an edit there.
+    fn update(&mut self, map: &Map, verts: &[Vert]) {
+        for &v in verts {
+            if let Some(k) = self.0.get_mut(v.index()) {
+                *k = map.valence(v);
+            }
+        }
+    }
+}
+
 /// The valences of `d`'s ends and of the two opposite corners, `None` when one of the four
 /// is on the boundary (no edit changes a boundary valence).
-fn edge_valences(map: &Map, d: Dart) -> Option<[usize; 4]> {
+fn edge_valences(map: &Map, vals: &Valences, d: Dart) -> Option<[usize; 4]> {
     let (a, b) = (map.origin(d), map.dest(d));
     let (c, e) = (map.dest(map.next(d)), map.dest(map.next(d.twin())));
     let four = [a, b, c, e];
-    (!four.iter().any(|&v| map.is_boundary_vertex(v))).then(|| four.map(|v| map.valence(v)))
+    (!four.iter().any(|&v| map.is_boundary_vertex(v))).then(|| four.map(|v| vals.get(v)))
 }
 
 /// Whether an edit that turns the valences `before` into `after` is kept.
@@ -364,8 +399,8 @@ fn improves<const N: usize>(before: [usize; 4], after: [usize; N]) -> bool {
 }
 
 /// Whether flipping `d` is kept: its ends lose one, the opposite corners gain one.
-fn flip_gain(map: &Map, d: Dart) -> Option<bool> {
-    let [a, b, c, e] = edge_valences(map, d)?;
+fn flip_gain(map: &Map, vals: &Valences, d: Dart) -> Option<bool> {
+    let [a, b, c, e] = edge_valences(map, vals, d)?;
     let after = [a.saturating_sub(1), b.saturating_sub(1), c + 1, e + 1];
     Some(improves([a, b, c, e], after))
 }
@@ -388,12 +423,14 @@ fn turned_over(mesh: &Mesh, d: Dart, old: DVec3) -> bool {
 fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
     let mut kept = 0;
     let edges: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
+    let mut vals = Valences::of(&mesh.map);
     for d in edges {
         let map = &mesh.map;
-        if !map.is_live_dart(d) || can_flip_edge(map, d).is_err() {
+        // The gain first: both tests are pure, and the gain is the cheaper with `vals`.
+        if !map.is_live_dart(d) || flip_gain(map, &vals, d) != Some(true) {
             continue;
         }
-        if flip_gain(map, d) != Some(true) {
+        if can_flip_edge(map, d).is_err() {
             continue;
         }
         let old = match (face_normal(mesh, d), face_normal(mesh, d.twin())) {
@@ -409,21 +446,24 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
             continue;
         }
         let m = &mesh.map;
-        touched.extend([
+        let four = [
             m.origin(d),
             m.dest(d),
             m.dest(m.next(d)),
             m.dest(m.next(d.twin())),
-        ]);
+        ];
+        vals.update(m, &four);
+        touched.extend(four);
         kept += 1;
     }
+    debug_assert!(vals.is_current(&mesh.map), "a stale valence");
     kept
 }
 
 /// Whether collapsing `d` is kept: its ends merge (valence `a + b - 4`), the opposite
 /// corners lose one each.
-fn collapse_gain(map: &Map, d: Dart) -> Option<bool> {
-    let [a, b, c, e] = edge_valences(map, d)?;
+fn collapse_gain(map: &Map, vals: &Valences, d: Dart) -> Option<bool> {
+    let [a, b, c, e] = edge_valences(map, vals, d)?;
     let after = [
         (a + b).saturating_sub(4),
         c.saturating_sub(1),
@@ -437,9 +477,10 @@ fn collapse_gain(map: &Map, d: Dart) -> Option<bool> {
 fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usize {
     let mut kept = 0;
     let darts: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
+    let mut vals = Valences::of(&mesh.map);
     for d in darts {
         let map = &mesh.map;
-        if !map.is_live_dart(d) || collapse_gain(map, d) != Some(true) {
+        if !map.is_live_dart(d) || collapse_gain(map, &vals, d) != Some(true) {
             continue;
         }
         if can_collapse_edge(map, d).is_err() {
@@ -464,10 +505,14 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
         }
         let m = &mesh.map;
         let k = edit.record().kept();
+        let start = touched.len();
         touched.push(k);
         touched.extend(m.vertex_darts(k).map(|x| m.dest(x)));
+        // The merged vertex and its ring: the opposite corners lost an edge each.
+        vals.update(m, &touched[start..]);
         kept += 1;
     }
+    debug_assert!(vals.is_current(&mesh.map), "a stale valence");
     kept
 }
 
