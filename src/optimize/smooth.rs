@@ -49,6 +49,11 @@ const SMALL: usize = 64;
 #[derive(Clone, Debug)]
 pub struct Surface {
     triangles: Vec<[DVec3; 3]>,
+    /// Each triangle's bounding box (lower and upper corners): a triangle whose box is
+    /// farther than the best point so far is not measured.
+    boxes: Vec<[DVec3; 2]>,
+    /// The largest coordinate's magnitude: the scale of the rounding in a distance.
+    scale: f64,
     min: DVec3,
     cell: f64,
     dims: [usize; 3],
@@ -88,6 +93,8 @@ impl Surface {
         if triangles.is_empty() || !min.is_finite() || !max.is_finite() {
             return Surface {
                 triangles: Vec::new(),
+                boxes: Vec::new(),
+                scale: 0.0,
                 min: DVec3::ZERO,
                 cell: 1.0,
                 dims: [1; 3],
@@ -122,6 +129,8 @@ impl Surface {
         let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
         let mut s = Surface {
             triangles: Vec::new(),
+            boxes: Vec::new(),
+            scale: min.abs().max(max.abs()).max_element(),
             min,
             cell,
             dims,
@@ -138,6 +147,10 @@ impl Surface {
                 }
             }
         }
+        s.boxes = triangles
+            .iter()
+            .map(|t| [t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2])])
+            .collect();
         s.triangles = triangles;
         s.cells = cells;
         s
@@ -190,7 +203,7 @@ impl Surface {
         }
         let c = self.cell_of(p);
         let margin = self.margin(p);
-        let (mut best, mut best_d) = (p, f64::INFINITY);
+        let mut best = Best::new(p, self.scale);
         let max_r = self.dims.iter().copied().max().unwrap_or(1);
         for r in 0..=max_r {
             let range = |i: usize, n: usize| i.saturating_sub(r)..=(i + r).min(n - 1);
@@ -202,22 +215,18 @@ impl Surface {
                             continue;
                         }
                         for &t in &self.cells[(x * self.dims[1] + y) * self.dims[2] + z] {
-                            let q = closest_on_triangle(p, &self.triangles[t as usize]);
-                            let d = q.distance_squared(p);
-                            if d < best_d {
-                                (best, best_d) = (q, d);
-                            }
+                            best.try_triangle(self, t as usize);
                         }
                     }
                 }
             }
             // Every triangle with a point within r cells of p's cell has been seen: the
             // others are farther than r cells and p's margin in its own cell.
-            if best_d.is_finite() && libm::sqrt(best_d) <= r as f64 * self.cell + margin {
+            if best.d.is_finite() && libm::sqrt(best.d) <= r as f64 * self.cell + margin {
                 break;
             }
         }
-        best
+        best.q
     }
 }
 
@@ -225,15 +234,61 @@ impl Surface {
     /// The closest point of every triangle's, tried in turn: on a small surface cheaper
     /// than walking the cells' shells.
     fn closest_of_all(&self, p: DVec3) -> DVec3 {
-        let (mut best, mut best_d) = (p, f64::INFINITY);
-        for t in &self.triangles {
-            let q = closest_on_triangle(p, t);
-            let d = q.distance_squared(p);
-            if d < best_d {
-                (best, best_d) = (q, d);
-            }
+        let mut best = Best::new(p, self.scale);
+        for t in 0..self.triangles.len() {
+            best.try_triangle(self, t);
         }
-        best
+        best.q
+    }
+}
+
+/// The squared distance from `p` to the box `[lo, hi]` (0 inside).
+fn box_gap(&[lo, hi]: &[DVec3; 2], p: DVec3) -> f64 {
+    (lo - p).max(p - hi).max(DVec3::ZERO).length_squared()
+}
+
+/// The closest point to `p` found so far (`p` itself, at distance infinity, before any)
+/// and its squared distance `d`.
+struct Best {
+    p: DVec3,
+    q: DVec3,
+    d: f64,
+    /// A triangle whose box is at a squared distance above this is farther than `q`, even
+    /// after the rounding of either distance: `(sqrt(d) + tol)^2`.
+    limit: f64,
+    tol: f64,
+}
+
+impl Best {
+    fn new(p: DVec3, scale: f64) -> Self {
+        // Rounding moves a computed closest point by about 1e-16 of the coordinates, far
+        // below this tolerance, so a skipped triangle could not have won: the results are
+        // those of measuring every triangle, to the bit.
+        let tol = 1e-9 * (scale + p.abs().max_element());
+        Best {
+            p,
+            q: p,
+            d: f64::INFINITY,
+            limit: f64::INFINITY,
+            tol,
+        }
+    }
+
+    /// Measures triangle `t` of `s` unless its box is farther than the best point.
+    #[inline]
+    fn try_triangle(&mut self, s: &Surface, t: usize) {
+        let (Some([lo, hi]), Some(tri)) = (s.boxes.get(t), s.triangles.get(t)) else {
+            return;
+        };
+        if box_gap(&[*lo, *hi], self.p) > self.limit {
+            return;
+        }
+        let q = closest_on_triangle(self.p, tri);
+        let d = q.distance_squared(self.p);
+        if d < self.d {
+            let r = libm::sqrt(d) + self.tol;
+            (self.q, self.d, self.limit) = (q, d, r * r);
+        }
     }
 }
 
@@ -410,6 +465,47 @@ mod tests {
         assert!(
             settled > 400,
             "the near points settled in their cell: {settled} of 2000"
+        );
+    }
+
+    /// The closest point of every triangle's, tried in order, the first strictly nearer
+    /// kept: what the search measured before it skipped triangles by their boxes.
+    fn every_triangle(s: &Surface, p: DVec3) -> DVec3 {
+        let (mut best, mut best_d) = (p, f64::INFINITY);
+        for t in &s.triangles {
+            let q = closest_on_triangle(p, t);
+            let d = q.distance_squared(p);
+            if d < best_d {
+                (best, best_d) = (q, d);
+            }
+        }
+        best
+    }
+
+    /// Skipping the triangles whose boxes are farther than the best point so far gives the
+    /// point of measuring every triangle, to the bit: on the corners themselves, points
+    /// 1e-12 off them and 1e-3 off the surface, and anywhere in the box; and it does skip.
+    #[test]
+    fn box_skips_change_no_bit() {
+        let s = Surface::new(&crate::gen::cube(2));
+        assert!(s.triangles.len() <= SMALL, "every triangle is tried");
+        let mut rng = Rng::new(9);
+        let mut u = |k: f64| (rng.below(1_000_001) as f64 / 1_000_000.0 - 0.5) * k;
+        let (mut skipped, mut points) = (0, 0);
+        for (i, t) in s.triangles.iter().enumerate() {
+            for off in [0.0, 1e-12, 1e-3, 3.0] {
+                let p = t[i % 3] + DVec3::new(u(off), u(off), u(off));
+                let q = s.closest_of_all(p);
+                assert_eq!(q, every_triangle(&s, p), "{p}");
+                let limit = (q.distance(p) + 1e-9 * (s.scale + p.abs().max_element())).powi(2);
+                skipped += s.boxes.iter().filter(|b| box_gap(b, p) > limit).count();
+                points += 1;
+            }
+        }
+        assert!(
+            skipped > points * s.triangles.len() / 4,
+            "the boxes skip: {skipped} of {}",
+            points * s.triangles.len()
         );
     }
 }
