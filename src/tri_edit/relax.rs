@@ -289,13 +289,29 @@ fn frame(map: &Map, pos: &[DVec3], v: Vert) -> Option<[DVec3; 3]> {
     Some([n, x, n.cross(x)])
 }
 
+/// The reused lists of [`targets`]: a relaxation's energy reads the targets of every
+/// vertex round its region, and four lists per vertex were most of its allocations.
+#[derive(Default)]
+struct Targets {
+    angle: Vec<(Vert, f64)>,
+    order: Vec<usize>,
+    rank: Vec<usize>,
+    out: Vec<(Vert, DVec3)>,
+}
+
 /// The targets `u_ij` at `v_i` (see the module documentation), one per neighbour in the
-/// order of `vertex_darts`; `None` when `v_i` has no tangent frame or a neighbour has no
-/// finite position.
-fn targets(map: &Map, pos: &[DVec3], i: Vert) -> Option<Vec<(Vert, DVec3)>> {
+/// order of `vertex_darts`, in `b`; `None` when `v_i` has no tangent frame or a neighbour
+/// has no finite position.
+fn targets<'b>(
+    map: &Map,
+    pos: &[DVec3],
+    i: Vert,
+    b: &'b mut Targets,
+) -> Option<&'b [(Vert, DVec3)]> {
     let [n, x, y] = frame(map, pos, i)?;
     let p = finite(pos, i)?;
-    let mut angle: Vec<(Vert, f64)> = Vec::new();
+    let angle = &mut b.angle;
+    angle.clear();
     for d in map.vertex_darts(i) {
         let j = map.dest(d);
         let w = finite(pos, j)? - p;
@@ -303,10 +319,14 @@ fn targets(map: &Map, pos: &[DVec3], i: Vert) -> Option<Vec<(Vert, DVec3)>> {
         let a = libm::atan2(t.dot(y), t.dot(x));
         angle.push((j, if a < 0.0 { a + TAU } else { a }));
     }
-    let mut order: Vec<usize> = (0..angle.len()).collect();
+    let order = &mut b.order;
+    order.clear();
+    order.extend(0..angle.len());
     order.sort_by(|&a, &b| angle[a].1.total_cmp(&angle[b].1));
     let step = TAU / angle.len().max(1) as f64;
-    let mut rank = vec![0usize; angle.len()];
+    let rank = &mut b.rank;
+    rank.clear();
+    rank.resize(angle.len(), 0);
     for (k, &o) in order.iter().enumerate() {
         rank[o] = k;
     }
@@ -321,13 +341,10 @@ fn targets(map: &Map, pos: &[DVec3], i: Vert) -> Option<Vec<(Vert, DVec3)>> {
         let a = alpha0 + rank[o] as f64 * step;
         x * libm::cos(a) + y * libm::sin(a)
     };
-    Some(
-        angle
-            .iter()
-            .enumerate()
-            .map(|(o, &(j, _))| (j, u(o)))
-            .collect(),
-    )
+    b.out.clear();
+    b.out
+        .extend(angle.iter().enumerate().map(|(o, &(j, _))| (j, u(o))));
+    Some(&b.out)
 }
 
 /// The region's vertices and their neighbours, each once: the `v_i` whose terms may depend
@@ -350,11 +367,12 @@ fn centres(map: &Map, region: &[Vert]) -> Vec<Vert> {
 fn energy(map: &Map, pos: &[DVec3], region: &[Vert], mask: &[bool], d: f64) -> f64 {
     let inside = |v: Vert| mask.get(v.index()).copied().unwrap_or(false);
     let mut e = 0.0;
+    let mut buf = Targets::default();
     for i in centres(map, region) {
-        let (Some(p), Some(t)) = (finite(pos, i), targets(map, pos, i)) else {
+        let (Some(p), Some(t)) = (finite(pos, i), targets(map, pos, i, &mut buf)) else {
             continue;
         };
-        for (j, u) in t {
+        for &(j, u) in t {
             if let (true, Some(q)) = (inside(i) || inside(j), finite(pos, j)) {
                 e += (q - p - u * d).length_squared();
             }

@@ -9,7 +9,7 @@ use nalgebra_sparse::factorization::CscCholesky;
 use nalgebra_sparse::na::DMatrix;
 use nalgebra_sparse::{CooMatrix, CscMatrix};
 
-use super::{centres, energy, finish, finite, frame, targets, RelaxError, Relaxed, Start};
+use super::{centres, energy, finish, finite, frame, targets, RelaxError, Relaxed, Start, Targets};
 use crate::optimize::Surface;
 use crate::{Map, Mesh, Vert};
 
@@ -114,11 +114,12 @@ fn solve(
     let mut rhs = vec![0.0; n];
     (0..n).for_each(|k| coo.push(k, k, RIDGE));
     let inside = |v: Vert| mask.get(v.index()).copied().unwrap_or(false);
+    let mut buf = Targets::default();
     for i in centres(map, region) {
-        let (Some(p), Some(t)) = (finite(pos, i), targets(map, pos, i)) else {
+        let (Some(p), Some(t)) = (finite(pos, i), targets(map, pos, i, &mut buf)) else {
             continue;
         };
-        for (j, u) in t {
+        for &(j, u) in t {
             let blocks = [(unknown(j), 1.0), (unknown(i), -1.0)];
             let Some(q) = finite(pos, j) else { continue };
             if (inside(i) || inside(j)) && blocks.iter().any(|b| b.0.is_some()) {
