@@ -248,20 +248,54 @@ pub fn remove_pair_v7_with<A: VertexAttributes>(
 /// See [`generate_pair_v7`] for an example.
 pub type V7Move = VertexMove;
 
-/// The interior v5 and the interior v7 among three live vertices, each in the order given.
-fn kinds(map: &Map, three: &[Vert]) -> Result<(Vec<Vert>, Vec<Vert>), TriEditError> {
+/// Up to three vertices, in order: [`kinds`] runs for every triple a pass tries, so it
+/// allocates nothing.
+struct Few {
+    v: [Vert; 3],
+    n: usize,
+}
+
+impl Few {
+    fn new() -> Self {
+        Few {
+            v: [Vert::new(0); 3],
+            n: 0,
+        }
+    }
+
+    fn push(&mut self, v: Vert) {
+        if let Some(x) = self.v.get_mut(self.n) {
+            *x = v;
+            self.n += 1;
+        }
+    }
+
+    fn as_slice(&self) -> &[Vert] {
+        &self.v[..self.n]
+    }
+}
+
+/// The interior v5 and the interior v7 among three live vertices, each in the order given
+/// (one walk round each vertex).
+fn kinds(map: &Map, three: &[Vert]) -> Result<(Few, Few), TriEditError> {
     let &[a, b, c] = three else {
         return Err(TriEditError::NotAPair);
     };
     if ![a, b, c].iter().all(|&v| map.is_live_vertex(v)) {
         return Err(TriEditError::DeadHandle);
     }
-    let of = |k| {
-        [a, b, c]
-            .into_iter()
-            .filter(move |&v| interior_of_valence(map, v, k))
-    };
-    Ok((of(5).collect(), of(7).collect()))
+    let (mut fives, mut sevens) = (Few::new(), Few::new());
+    for v in [a, b, c]
+        .into_iter()
+        .filter(|&v| !map.is_boundary_vertex(v))
+    {
+        match map.valence(v) {
+            5 => fives.push(v),
+            7 => sevens.push(v),
+            _ => {}
+        }
+    }
+    Ok((fives, sevens))
 }
 
 /// The roles of a 5-5-7 or 5-7-7 triple: the vertex that moves (the first of its type in
