@@ -41,6 +41,7 @@ pub struct Effect {
 struct Named {
     vertex: Vert,
     role: &'static str,
+    before: i64,
     after: i64,
 }
 
@@ -60,13 +61,27 @@ impl Effect {
     pub(crate) fn change(mut self, map: &Map, v: Vert, role: &'static str, delta: i64) -> Effect {
         match self.named.iter_mut().find(|n| n.vertex == v) {
             Some(n) => n.after += delta,
-            None => self.named.push(Named {
-                vertex: v,
-                role,
-                after: map.valence(v) as i64 + delta,
-            }),
+            None => {
+                let before = map.valence(v) as i64;
+                self.named.push(Named {
+                    vertex: v,
+                    role,
+                    before,
+                    after: before + delta,
+                })
+            }
         }
         self
+    }
+
+    /// The vertices whose valence the operator states, with their valence before (on the
+    /// map the effect was computed on) and after: what a caller scoring valences reads
+    /// without walking the vertices again.
+    pub(crate) fn changes(&self) -> impl Iterator<Item = (Vert, usize, usize)> + '_ {
+        let k = |x: i64| usize::try_from(x).unwrap_or(0);
+        self.named
+            .iter()
+            .map(move |n| (n.vertex, k(n.before), k(n.after)))
     }
 
     /// The operator deletes `v`.

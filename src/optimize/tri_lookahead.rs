@@ -56,11 +56,11 @@ impl Gain {
 /// `None` when it changes a boundary vertex's valence, which the optimizer never does.
 fn gain(map: &Map, effect: &Effect) -> Option<Gain> {
     let mut g = Gain::default();
-    for (v, after) in effect.valences() {
+    for (v, before, after) in effect.changes() {
         if map.is_boundary_vertex(v) {
             return None;
         }
-        g = g.add(Gain::of(after)).sub(Gain::of(map.valence(v)));
+        g = g.add(Gain::of(after)).sub(Gain::of(before));
     }
     if let Some(v) = effect.removed() {
         if map.is_boundary_vertex(v) {
