@@ -478,6 +478,8 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
     let mut kept = 0;
     let darts: Vec<Dart> = mesh.map.edges().map(|e| e.dart(0)).collect();
     let mut vals = Valences::of(&mesh.map);
+    // The normals round a collapse, in one list for the pass (not one grown per edge).
+    let mut normals: Vec<(Dart, DVec3)> = Vec::new();
     for d in darts {
         let map = &mesh.map;
         if !map.is_live_dart(d) || collapse_gain(map, &vals, d) != Some(true) {
@@ -487,10 +489,12 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
             continue;
         }
         let kept_vertex = map.dest(d);
-        let normals: Vec<(Dart, DVec3)> = fan(map, kept_vertex)
-            .chain(fan(map, map.origin(d)))
-            .filter_map(|x| face_normal(mesh, x).map(|n| (x, n)))
-            .collect();
+        normals.clear();
+        normals.extend(
+            fan(map, kept_vertex)
+                .chain(fan(map, map.origin(d)))
+                .filter_map(|x| face_normal(mesh, x).map(|n| (x, n))),
+        );
         let Ok(edit) = mesh_collapse_edge(mesh, d) else {
             continue;
         };
