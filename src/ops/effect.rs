@@ -396,6 +396,45 @@ mod tests {
         (before, map, effect, claim)
     }
 
+    /// `changes` gives each named vertex's valence on the map before and the one stated
+    /// after, which the applied map has.
+    #[test]
+    fn changes_are_the_valences_before_and_after() {
+        use crate::ops::quad::Rotation;
+        let d = Dart::new(0);
+        let ops = [
+            QuadOp::Collapse(d),
+            QuadOp::InsertDoublet(d),
+            QuadOp::Rotate(d, Rotation::Clockwise),
+        ];
+        for op in ops {
+            let (before, after, effect, _) = applied(op);
+            let changes: Vec<_> = effect.changes().collect();
+            assert!(changes.len() >= 2, "{op:?}");
+            assert_eq!(changes.len(), effect.valences().count());
+            for (v, b, a) in changes {
+                assert_eq!(
+                    (b, a),
+                    (before.valence(v), after.valence(v)),
+                    "{op:?} {v:?}"
+                );
+            }
+        }
+    }
+
+    /// A vertex named twice has its changes summed, from its valence before, and keeps
+    /// its first role.
+    #[test]
+    fn a_vertex_named_twice_sums_its_changes() {
+        let map = gen::torus_grid(5, 5).map;
+        let v = Vert::new(3);
+        let e = Effect::new([0, 0, 0], 4)
+            .change(&map, v, "first", 1)
+            .change(&map, v, "second", 2);
+        assert_eq!(e.changes().collect::<Vec<_>>(), [(v, 4, 7)]);
+        assert_eq!(e.named[0].role, "first");
+    }
+
     #[test]
     fn the_deleted_vertex_must_be_the_effects() {
         let (before, after, effect, claim) = applied(QuadOp::Collapse(Dart::new(0)));
