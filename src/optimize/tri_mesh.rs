@@ -21,8 +21,7 @@
 //! assert_eq!(mesh.map.check(), Ok(()));
 //! ```
 
-use alloc::collections::btree_map::Entry;
-use alloc::collections::{BTreeMap, VecDeque};
+use alloc::collections::BTreeMap;
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
@@ -604,27 +603,29 @@ fn triple_at(map: &Map, v: Vert) -> Option<[Vert; 3]> {
     None
 }
 
-/// Breadth-first distances from `from`, up to `radius` edges; a map, not a per-slot array,
-/// because the searches are small and many (one per pair and direction).
-struct Near(BTreeMap<u32, usize>);
+/// Breadth-first distances from `from`, up to `radius` edges; a hash map, not a per-slot
+/// array, because the searches are small and many (one per pair and direction).
+struct Near(hashbrown::HashMap<u32, usize>);
 
 impl Near {
     fn from(map: &Map, from: &[Vert], radius: usize) -> Near {
-        let mut dist = BTreeMap::new();
-        let mut queue = VecDeque::new();
+        let mut dist = hashbrown::HashMap::new();
+        // First in, first out: `queue[head..]` is still to expand, with its distance.
+        let mut queue: Vec<(Vert, usize)> = Vec::new();
         for &v in from {
             dist.insert(v.index() as u32, 0);
-            queue.push_back(v);
+            queue.push((v, 0));
         }
-        while let Some(v) = queue.pop_front() {
-            let dv = dist[&(v.index() as u32)];
+        let mut head = 0;
+        while let Some(&(v, dv)) = queue.get(head) {
+            head += 1;
             if dv == radius {
                 continue;
             }
             for w in map.vertex_darts(v).map(|d| map.dest(d)) {
-                if let Entry::Vacant(e) = dist.entry(w.index() as u32) {
+                if let hashbrown::hash_map::Entry::Vacant(e) = dist.entry(w.index() as u32) {
                     e.insert(dv + 1);
-                    queue.push_back(w);
+                    queue.push((w, dv + 1));
                 }
             }
         }
