@@ -515,4 +515,21 @@ mod tests {
             "the boxes skip: {measured} of {all} measured"
         );
     }
+
+    /// The skip leaves a margin above the best distance, not below: a triangle tried
+    /// later and nearer by less than the margin (1e-11 here, its box as near as itself)
+    /// still wins.
+    #[test]
+    fn a_nearer_triangle_within_the_margin_is_measured() {
+        let z = [1.0, 1.0 + 1e-11];
+        let corners =
+            |h: f64| [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].map(|(x, y)| DVec3::new(x, y, h));
+        let positions: Vec<DVec3> = z.iter().flat_map(|&h| corners(h)).collect();
+        let mesh = Mesh::from_polygons(positions, &[[0u32, 1, 2], [3, 4, 5]])
+            .unwrap()
+            .0;
+        let s = Surface::new(&mesh);
+        let p = DVec3::new(0.25, 0.25, 2.0);
+        assert_eq!(s.closest(p), DVec3::new(0.25, 0.25, z[1]));
+    }
 }
