@@ -891,6 +891,27 @@ mod tests {
         v
     }
 
+    /// The flip pass flips back an edge whose flip made two v5 and two v7 on a regular
+    /// triangulated torus (its ends lose an edge, its apexes gain one), and keeps the
+    /// valence cache current through it.
+    #[test]
+    fn the_flip_pass_undoes_a_harmful_flip() {
+        let grid = gen::torus_grid(6, 6);
+        let triangles: Vec<[u32; 3]> = gen::torus_quads(6, 6)
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        let mut mesh = Mesh::from_polygons(grid.positions, &triangles).unwrap().0;
+        assert!(irregular_valences(&mesh.map).is_empty());
+        let d = mesh.map.face_dart(crate::Face::new(7));
+        crate::ops::tri::flip_edge(&mut mesh.map, d).unwrap();
+        assert_eq!(irregular_valences(&mesh.map), [5, 5, 7, 7]);
+        let mut touched = Vec::new();
+        assert_eq!(flip_pass(&mut mesh, &mut touched), 1);
+        assert!(irregular_valences(&mesh.map).is_empty());
+        assert_eq!(touched.len(), 4);
+    }
+
     /// A far pair move keeps the pair's valences and every irregular valence, brings the
     /// pair strictly nearer its target, keeps the map valid and undoes to `==`.
     #[test]
