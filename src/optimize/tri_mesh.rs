@@ -881,6 +881,18 @@ mod tests {
     use super::*;
     use crate::gen;
 
+    /// A 6 x 6 torus of quads, each cut along the same diagonal: every valence 6.
+    fn regular_torus() -> Mesh {
+        let grid = gen::torus_grid(6, 6);
+        let triangles: Vec<[u32; 3]> = gen::torus_quads(6, 6)
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        let mesh = Mesh::from_polygons(grid.positions, &triangles).unwrap().0;
+        assert!(irregular_valences(&mesh.map).is_empty());
+        mesh
+    }
+
     fn irregular_valences(map: &Map) -> Vec<usize> {
         let mut v: Vec<usize> = map
             .vertices()
@@ -896,13 +908,7 @@ mod tests {
     /// valence cache current through it.
     #[test]
     fn the_flip_pass_undoes_a_harmful_flip() {
-        let grid = gen::torus_grid(6, 6);
-        let triangles: Vec<[u32; 3]> = gen::torus_quads(6, 6)
-            .iter()
-            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-            .collect();
-        let mut mesh = Mesh::from_polygons(grid.positions, &triangles).unwrap().0;
-        assert!(irregular_valences(&mesh.map).is_empty());
+        let mut mesh = regular_torus();
         let d = mesh.map.face_dart(crate::Face::new(7));
         crate::ops::tri::flip_edge(&mut mesh.map, d).unwrap();
         assert_eq!(irregular_valences(&mesh.map), [5, 5, 7, 7]);
@@ -910,6 +916,31 @@ mod tests {
         assert_eq!(flip_pass(&mut mesh, &mut touched), 1);
         assert!(irregular_valences(&mesh.map).is_empty());
         assert_eq!(touched.len(), 4);
+    }
+
+    /// The collapse pass collapses back the edge of a vertex split that made two v5 (the
+    /// split halves) and two v7 (the ends) on a regular triangulated torus, and keeps the
+    /// valence cache current through it.
+    #[test]
+    fn the_collapse_pass_undoes_a_harmful_split() {
+        let mut mesh = regular_torus();
+        let w = crate::Vert::new(14);
+        let d1 = mesh.map.vertex_dart(w);
+        let d2 = (0..3).fold(d1, |d, _| mesh.map.rotate_cw(d));
+        crate::ops::tri::mesh_split_vertex(&mut mesh, d1, d2).unwrap();
+        assert_eq!(irregular_valences(&mesh.map), [5, 5, 7, 7]);
+        let budget = Budget { min: 0, max: 1000 };
+        let mut touched = Vec::new();
+        assert_eq!(collapse_pass(&mut mesh, &budget, &mut touched), 1);
+        assert!(irregular_valences(&mesh.map).is_empty());
+        // Within the budget only: one face fewer than now is refused.
+        let faces = mesh.map.num_faces();
+        crate::ops::tri::mesh_split_vertex(&mut mesh, d1, d2).unwrap();
+        let tight = Budget {
+            min: faces + 1,
+            max: 1000,
+        };
+        assert_eq!(collapse_pass(&mut mesh, &tight, &mut touched), 0);
     }
 
     /// A far pair move keeps the pair's valences and every irregular valence, brings the
