@@ -214,8 +214,11 @@ impl Surface {
                         if !on_shell {
                             continue;
                         }
+                        // No box test here: a cell's triangles are near the point.
                         for &t in &self.cells[(x * self.dims[1] + y) * self.dims[2] + z] {
-                            best.try_triangle(self, t as usize);
+                            if let Some(tri) = self.triangles.get(t as usize) {
+                                best.measure(tri);
+                            }
                         }
                     }
                 }
@@ -287,9 +290,14 @@ impl Best {
         let (Some([lo, hi]), Some(tri)) = (s.boxes.get(t), s.triangles.get(t)) else {
             return;
         };
-        if box_gap(&[*lo, *hi], self.p) > self.limit {
-            return;
+        if box_gap(&[*lo, *hi], self.p) <= self.limit {
+            self.measure(tri);
         }
+    }
+
+    /// Measures triangle `tri`.
+    #[inline]
+    fn measure(&mut self, tri: &[DVec3; 3]) {
         self.measured += 1;
         let q = closest_on_triangle(self.p, tri);
         let d = q.distance_squared(self.p);
