@@ -49,8 +49,9 @@ const SMALL: usize = 64;
 #[derive(Clone, Debug)]
 pub struct Surface {
     triangles: Vec<[DVec3; 3]>,
-    /// Each triangle's bounding box (lower and upper corners): a triangle whose box is
-    /// farther than the best point so far is not measured.
+    /// Each triangle's bounding box (lower and upper corners), on a surface of at most
+    /// [`SMALL`] triangles: a triangle whose box is farther than the best point so far is
+    /// not measured. Empty on larger surfaces, whose grid search does not read them.
     boxes: Vec<[DVec3; 2]>,
     /// The largest coordinate's magnitude: the scale of the rounding in a distance.
     scale: f64,
@@ -147,10 +148,13 @@ impl Surface {
                 }
             }
         }
-        s.boxes = triangles
-            .iter()
-            .map(|t| [t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2])])
-            .collect();
+        // Only the whole search of a small surface reads the boxes.
+        if triangles.len() <= SMALL {
+            s.boxes = triangles
+                .iter()
+                .map(|t| [t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2])])
+                .collect();
+        }
         s.triangles = triangles;
         s.cells = cells;
         s
@@ -284,13 +288,17 @@ impl Best {
         }
     }
 
-    /// Measures triangle `t` of `s` unless its box is farther than the best point.
+    /// Measures triangle `t` of `s` unless its box (if the surface keeps boxes) is farther
+    /// than the best point.
     #[inline]
     fn try_triangle(&mut self, s: &Surface, t: usize) {
-        let (Some([lo, hi]), Some(tri)) = (s.boxes.get(t), s.triangles.get(t)) else {
+        let Some(tri) = s.triangles.get(t) else {
             return;
         };
-        if box_gap(&[*lo, *hi], self.p) <= self.limit {
+        if s.boxes
+            .get(t)
+            .is_none_or(|b| box_gap(b, self.p) <= self.limit)
+        {
             self.measure(tri);
         }
     }
