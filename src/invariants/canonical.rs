@@ -614,11 +614,15 @@ fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u
 /// The walks are compared symbol by symbol and stop at the first difference, which near an
 /// irregular vertex comes within a few rings: the cost is local, not O(map), unless two
 /// candidates are related by an automorphism (then the whole component is read, O(n log n),
-/// and either is right). Labels live in a `BTreeMap` so that a short walk allocates little.
+/// and either is right). The two walks' labels and lists are reused from one comparison to
+/// the next ([`Labels`]).
 pub(crate) fn least_start(map: &Map, candidates: &[crate::Dart]) -> Option<crate::Dart> {
     let mut best = *candidates.first()?;
+    let (mut wa, mut wb) = (Walk::new(map, best), Walk::new(map, best));
     for &c in &candidates[1..] {
-        if compare_starts((map, c), (map, best)) == core::cmp::Ordering::Less {
+        wa.restart(c);
+        wb.restart(best);
+        if compare_walks(map, &mut wa, map, &mut wb) == core::cmp::Ordering::Less {
             best = c;
         }
     }
@@ -627,10 +631,16 @@ pub(crate) fn least_start(map: &Map, candidates: &[crate::Dart]) -> Option<crate
 
 /// How the reading from `a` compares with the one from `b` (each dart with its map): `Equal`
 /// exactly when an isomorphism of their components maps `a` to `b`.
+#[cfg(test)]
 fn compare_starts(a: (&Map, crate::Dart), b: (&Map, crate::Dart)) -> core::cmp::Ordering {
-    let (mut wa, mut wb) = (Walk::new(a.1), Walk::new(b.1));
+    let (mut wa, mut wb) = (Walk::new(a.0, a.1), Walk::new(b.0, b.1));
+    compare_walks(a.0, &mut wa, b.0, &mut wb)
+}
+
+/// [`compare_starts`] on two walks just started (`wa` on `ma`, `wb` on `mb`).
+fn compare_walks(ma: &Map, wa: &mut Walk, mb: &Map, wb: &mut Walk) -> core::cmp::Ordering {
     loop {
-        match (wa.step(a.0), wb.step(b.0)) {
+        match (wa.step(ma), wb.step(mb)) {
             (Some(x), Some(y)) if x == y => continue,
             (x, y) => return x.cmp(&y),
         }
@@ -680,24 +690,74 @@ pub(crate) fn same_from(a: (&Map, crate::Dart), b: (&Map, crate::Dart)) -> bool 
 
 /// A breadth-first numbering from one dart, one symbol at a time.
 struct Walk {
-    label: alloc::collections::BTreeMap<u32, u32>,
+    label: Labels,
     order: Vec<u32>,
     i: usize,
 }
 
+/// At most this many dart slots, a [`Walk`]'s labels are an array (at most 16 KiB, cleared
+/// walk by walk); beyond, a hash map, so that a walk that stops after a few rings touches
+/// little of a large map.
+const DENSE_LABELS: usize = 4096;
+
+/// A walk's labels by dart.
+enum Labels {
+    Dense(Vec<u32>),
+    Sparse(hashbrown::HashMap<u32, u32>),
+}
+
 impl Walk {
-    fn new(s: crate::Dart) -> Walk {
-        let s = s.index() as u32;
-        Walk {
-            label: [(s, 0)].into_iter().collect(),
-            order: vec![s],
-            i: 0,
-        }
+    fn new(map: &Map, s: crate::Dart) -> Walk {
+        let n = map.next.len();
+        let label = if n <= DENSE_LABELS {
+            Labels::Dense(vec![NONE; n])
+        } else {
+            Labels::Sparse(hashbrown::HashMap::new())
+        };
+        Walk::with(label, s)
     }
 
+    /// A walk from `s` with the given (empty) labels.
+    fn with(label: Labels, s: crate::Dart) -> Walk {
+        let mut w = Walk {
+            label,
+            order: Vec::new(),
+            i: 0,
+        };
+        w.restart(s);
+        w
+    }
+
+    /// Forgets the last numbering (keeping its memory) and starts again at `s`.
+    fn restart(&mut self, s: crate::Dart) {
+        match &mut self.label {
+            Labels::Dense(l) => {
+                for &d in &self.order {
+                    l[d as usize] = NONE;
+                }
+            }
+            Labels::Sparse(l) => l.clear(),
+        }
+        self.order.clear();
+        self.i = 0;
+        self.label(s.index() as u32);
+    }
+
+    /// The label of dart `d`, numbering it next if it has none.
     fn label(&mut self, d: u32) -> u32 {
         let next = self.order.len() as u32;
-        let l = *self.label.entry(d).or_insert(next);
+        let l = match &mut self.label {
+            Labels::Dense(l) => match l.get_mut(d as usize) {
+                Some(x) if *x == NONE => {
+                    *x = next;
+                    next
+                }
+                Some(x) => *x,
+                // Not a slot of this map: a broken map's dart, numbered but never kept.
+                None => next,
+            },
+            Labels::Sparse(l) => *l.entry(d).or_insert(next),
+        };
         if l == next {
             self.order.push(d);
         }
@@ -746,7 +806,7 @@ mod tests {
                     .iter()
                     .filter(|&&d| keys.of(map, d) == key)
                     .map(|&d| {
-                        let mut w = Walk::new(Dart::new(d as u32));
+                        let mut w = Walk::new(map, Dart::new(d as u32));
                         core::iter::from_fn(|| w.step(map)).flatten().collect()
                     })
                     .min()
@@ -918,6 +978,40 @@ mod tests {
         assert!(all
             .iter()
             .any(|&d| compare_starts((&oblong, all[0]), (&oblong, d)) != Ordering::Equal));
+    }
+
+    /// Walks reused from comparison to comparison (dense labels on a small map, cleared walk
+    /// by walk; and sparse ones) compare every pair of starts as fresh walks do, on a cut
+    /// torus whose pairs read less, equal (a symmetric cut) and greater.
+    #[test]
+    fn reused_walks_compare_as_fresh_ones() {
+        let map = Map::from_polygons(36, &cut_torus(6, 6, 2, 3)).unwrap();
+        let all = darts(&map);
+        let fresh = |a: Dart, b: Dart| {
+            let sparse = || Labels::Sparse(hashbrown::HashMap::new());
+            let (mut wa, mut wb) = (Walk::with(sparse(), a), Walk::with(sparse(), b));
+            compare_walks(&map, &mut wa, &map, &mut wb)
+        };
+        let mut seen = [0usize; 3];
+        for sparse in [false, true] {
+            let (mut wa, mut wb) = (Walk::new(&map, all[0]), Walk::new(&map, all[0]));
+            if sparse {
+                wa = Walk::with(Labels::Sparse(hashbrown::HashMap::new()), all[0]);
+                wb = Walk::with(Labels::Sparse(hashbrown::HashMap::new()), all[0]);
+            } else {
+                assert!(matches!(wa.label, Labels::Dense(_)));
+            }
+            for (i, &a) in all.iter().enumerate() {
+                for &b in all.iter().skip(i % 7).step_by(7) {
+                    wa.restart(a);
+                    wb.restart(b);
+                    let reused = compare_walks(&map, &mut wa, &map, &mut wb);
+                    assert_eq!(reused, fresh(a, b), "{a:?} against {b:?}");
+                    seen[(reused as i8 + 1) as usize] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
     }
 
     #[test]

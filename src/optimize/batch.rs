@@ -637,7 +637,9 @@ pub(super) fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Ver
     for &e in r.scar_edges() {
         core.extend([map.origin(e.dart(0)), map.dest(e.dart(0))]);
     }
-    let mut out = core.clone();
+    // About five ring vertices per core vertex (quads): one allocation, not a growth per ring.
+    let mut out = Vec::with_capacity(5 * core.len());
+    out.extend_from_slice(&core);
     for v in core {
         out.extend(map.vertex_darts(v).map(|d| map.dest(d)));
     }

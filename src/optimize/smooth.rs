@@ -72,7 +72,8 @@ impl Surface {
                 .copied()
                 .unwrap_or(DVec3::ZERO)
         };
-        let mut triangles = Vec::new();
+        // Two triangles per quad: one allocation for a quad mesh.
+        let mut triangles = Vec::with_capacity(2 * mesh.map.num_faces());
         // Each face as a fan from its first corner, read as the walk goes (no list per face).
         for f in mesh.map.faces() {
             let mut corners = mesh.map.face_darts(f).map(|d| at(mesh.map.origin(d)));
