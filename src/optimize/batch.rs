@@ -693,6 +693,48 @@ mod tests {
         b
     }
 
+    /// A Q-zip's touched region is, sorted and each once, exactly its core (the live path
+    /// vertices, the moved singularities, the scar faces' corners and the scar edges' ends)
+    /// and the core's one-rings, on the mesh the Q-zip left.
+    #[test]
+    fn touched_region_is_the_core_and_its_rings() {
+        let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
+        mesh_preprocess(&mut mesh).unwrap();
+        let mut b = batcher(&mesh);
+        let sing = singularities(&mesh);
+        let mut checked = 0;
+        for (s, t) in sing.iter().zip(sing.iter().skip(1)).take(12) {
+            let Ok(path) = b.qzip.sketch(&mesh.map, s.vertex, t.vertex) else {
+                continue;
+            };
+            let Some(z) = b.apply(&mut mesh, &path, Tag::LC) else {
+                continue;
+            };
+            let (map, r) = (&mesh.map, z.record());
+            let mut core: Vec<Vert> = path.vertices().to_vec();
+            core.extend([r.moved_from(), r.moved_to()]);
+            core.retain(|&v| map.is_live_vertex(v));
+            for &f in r.scar_faces() {
+                core.extend(map.face_darts(f).map(|d| map.origin(d)));
+            }
+            for &e in r.scar_edges() {
+                core.extend([map.origin(e.dart(0)), map.dest(e.dart(0))]);
+            }
+            let mut want = core.clone();
+            for &v in &core {
+                want.extend(map.vertex_darts(v).map(|d| map.dest(d)));
+            }
+            want.sort_unstable();
+            want.dedup();
+            let region = touched_region(&mesh, &path, r);
+            assert_eq!(region, want);
+            assert!(region.len() > core.len() / 2 + path.len(), "{region:?}");
+            let _ = z.undo(&mut mesh);
+            checked += 1;
+        }
+        assert!(checked >= 4, "{checked}");
+    }
+
     /// The movements made on copies give the scores, to the bit, that editing the mesh
     /// itself gives, and leave the mesh as it was; so do the edits. The scorers keep their
     /// quad values from path to path, so a stale one would show here too.
