@@ -613,9 +613,9 @@ fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u
 ///
 /// The walks are compared symbol by symbol and stop at the first difference, which near an
 /// irregular vertex comes within a few rings: the cost is local, not O(map), unless two
-/// candidates are related by an automorphism (then the whole component is read, O(n log n),
-/// and either is right). The two walks' labels and lists are reused from one comparison to
-/// the next ([`Labels`]).
+/// candidates are related by an automorphism (then the whole component is read, and either
+/// is right). The two walks' labels and lists are reused from one comparison to the next
+/// ([`Labels`]).
 pub(crate) fn least_start(map: &Map, candidates: &[crate::Dart]) -> Option<crate::Dart> {
     let mut best = *candidates.first()?;
     let (mut wa, mut wb) = (Walk::new(map, best), Walk::new(map, best));
@@ -993,14 +993,13 @@ mod tests {
             compare_walks(&map, &mut wa, &map, &mut wb)
         };
         let mut seen = [0usize; 3];
-        for sparse in [false, true] {
-            let (mut wa, mut wb) = (Walk::new(&map, all[0]), Walk::new(&map, all[0]));
-            if sparse {
-                wa = Walk::with(Labels::Sparse(hashbrown::HashMap::new()), all[0]);
-                wb = Walk::with(Labels::Sparse(hashbrown::HashMap::new()), all[0]);
-            } else {
-                assert!(matches!(wa.label, Labels::Dense(_)));
-            }
+        for dense in [true, false] {
+            let walk = || match dense {
+                true => Walk::new(&map, all[0]),
+                false => Walk::with(Labels::Sparse(hashbrown::HashMap::new()), all[0]),
+            };
+            let (mut wa, mut wb) = (walk(), walk());
+            assert_eq!(matches!(wa.label, Labels::Dense(_)), dense);
             for (i, &a) in all.iter().enumerate() {
                 for &b in all.iter().skip(i % 7).step_by(7) {
                     wa.restart(a);
