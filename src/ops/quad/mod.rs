@@ -299,10 +299,15 @@ impl Neighbours {
             return Err(Refusal::Loop);
         }
         if list.len() <= 32 {
-            for i in 1..list.len() {
-                if list[..i].contains(&list[i]) {
+            // A 64-bit filter of hashed handles: only a handle whose bit is already set is
+            // looked for among the earlier ones (rarely), not every pair.
+            let mut seen = 0u64;
+            for (i, &x) in list.iter().enumerate() {
+                let bit = 1u64 << (x.wrapping_mul(0x9e37_79b1) >> 26);
+                if seen & bit != 0 && list[..i].contains(&x) {
                     return Err(Refusal::MultiEdge);
                 }
+                seen |= bit;
             }
         } else {
             list.sort_unstable();

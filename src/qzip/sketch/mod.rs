@@ -17,9 +17,10 @@
 //! and options, with or without a workspace or a guide (a correct one). The path is the one a
 //! one-sided breadth-first search from `from` would give: the outgoing darts of a vertex are
 //! expanded in increasing dart index, the queue is first-in first-out, and a vertex keeps the
-//! first predecessor that reached it. The bidirectional and A* searches find the vertices of
-//! all shortest paths and replay that rule over them (a vertex's first predecessor is always
-//! on a shortest path too). Dijkstra settles the vertex of smallest (distance, vertex index)
+//! first predecessor that reached it. That path is the least shortest path in the order of
+//! dart sequences (compared dart index by dart index from `from`), so the bidirectional and
+//! A* searches mark the vertices of the shortest paths and walk from `from` taking the
+//! smallest dart that stays on one. Dijkstra settles the vertex of smallest (distance, vertex index)
 //! first, and a vertex keeps the first predecessor that reached it at its final distance.
 //!
 //! ```

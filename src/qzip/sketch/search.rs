@@ -1,5 +1,5 @@
-//! The three searches of a sketch (bidirectional BFS, A*, Dijkstra) and the replay of the
-//! one-sided BFS's tie-breaking over the vertices of all shortest paths.
+//! The three searches of a sketch (bidirectional BFS, A*, Dijkstra) and the walk that reads
+//! the one-sided BFS's path off the vertices of the shortest paths.
 
 use alloc::vec::Vec;
 use core::cmp::Ordering;
@@ -187,26 +187,26 @@ fn trace<S: Store>(
 /// The two sides grow by whole layers, the smaller frontier first (forward on a tie), until a
 /// vertex is labelled by both: with forward layers `0..=kf` and backward layers `0..=kb`
 /// complete, the distance is `kf + kb + 1` and the shortest paths cross from forward layer
-/// `kf` to backward layer `kb` over one edge. The vertices of shortest paths are then marked
-/// (the middle layer, down the backward labels, [`mark_back`] up the forward ones) and
-/// [`replay`] replays the one-sided BFS over them.
+/// `kf` to backward layer `kb` over one edge. [`mark_front`] marks the forward half of the
+/// shortest paths and [`greedy`] walks the least of them: up to layer `kf` over the marked
+/// vertices, beyond it down the backward labels (exact there: a vertex one edge on from a
+/// vertex of a shortest path, with the right distance to `to`, is on one too).
 fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
     let (kf, kb) = meet(cx, st, b)?;
     let total = kf + kb + 1;
-    mark_shortest(cx, st, b, kf, kb);
-    // Labels are exact BFS distances, so a marked vertex's position is either.
-    replay(cx, st, b, total, |s| {
-        if s.has(FWD) {
-            s.fwd
+    mark_front(cx, st, b, kf, kb);
+    greedy(cx, st, total, |s, q| {
+        if q <= kf {
+            s.has(DAG) && s.fwd == q
         } else {
-            total.saturating_sub(s.bwd)
+            s.has(BWD) && s.bwd == total - q
         }
     })
 }
 
 /// The two searches of [`bfs`], grown by whole layers until a vertex is labelled by both:
-/// the complete layers `(kf, kb)`, or `None` when a side runs out (no path). The backward
-/// layer `kb` is left in `b.b`.
+/// the complete layers `(kf, kb)`, or `None` when a side runs out (no path). The forward
+/// layer `kf` is left in `b.a`.
 fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32, u32)> {
     let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
     let s = st.get_mut(from);
@@ -268,52 +268,27 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
     }
 }
 
-/// Marks (`DAG`) the vertices of all shortest paths once the searches met after layers
-/// `kf` and `kb`: the backward layer `kb` vertices one edge from forward layer `kf`, down the
-/// backward labels to `to`, and up the forward labels to `from`.
-fn mark_shortest<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, kf: u32, kb: u32) {
+/// Marks (`DAG`) the vertices of shortest paths in forward layers `0..=kf` once the
+/// searches met after layers `kf` and `kb`: the forward layer `kf` vertices one edge from
+/// backward layer `kb`, then up the forward labels (beyond layer `kf`, [`greedy`] reads the
+/// backward labels).
+fn mark_front<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers, kf: u32, kb: u32) {
     let (map, open) = (cx.map, cx.open());
-    let bk = &b.b;
-    // The middle: backward layer kb vertices one edge from forward layer kf.
-    let total = kf + kb + 1;
-    b.m.clear();
-    for &v in bk.iter() {
+    let (front, cur, nxt) = (&b.a, &mut b.c, &mut b.b);
+    cur.clear();
+    for &v in front.iter() {
         let crosses = map.vertex_darts(v).any(|d| {
             cx.step(open, d).is_some_and(|w| {
                 let s = st.get(w);
-                s.has(FWD) && s.fwd == kf
+                s.has(BWD) && s.bwd == kb
             })
         });
         if crosses {
-            let s = st.get_mut(v);
-            s.set(DAG);
-            b.m.push(v);
+            st.get_mut(v).set(DAG);
+            cur.push(v);
         }
     }
-    // Down to `to` along backward labels, then back to `from` along forward labels.
-    let (cur, nxt) = (&mut b.a, &mut b.c);
-    cur.clear();
-    cur.extend_from_slice(&b.m);
-    for pos in kf + 1..total {
-        nxt.clear();
-        for &v in cur.iter() {
-            for d in map.vertex_darts(v) {
-                let Some(w) = cx.step(open, d) else {
-                    continue;
-                };
-                let s = st.get(w);
-                if s.has(BWD) && !s.has(DAG) && s.bwd == total - pos - 1 {
-                    let s = st.get_mut(w);
-                    s.set(DAG);
-                    nxt.push(w);
-                }
-            }
-        }
-        core::mem::swap(cur, nxt);
-    }
-    cur.clear();
-    cur.extend_from_slice(&b.m);
-    mark_back(cx, st, cur, nxt, kf + 1, |s| s.has(FWD).then_some(s.fwd));
+    mark_back(cx, st, cur, nxt, kf, |s| s.has(FWD).then_some(s.fwd));
 }
 
 /// Marks, from the `DAG` vertices at position `pos` in `cur`, the vertices at positions
@@ -346,61 +321,46 @@ fn mark_back<S: Store>(
     }
 }
 
-/// Replays the one-sided BFS over the `DAG` vertices (every vertex of a shortest path, each
-/// marked with its distance from `from`): layer by layer, darts in increasing index, a vertex
-/// keeps the first predecessor that reaches it. A vertex's BFS predecessor is always on a
-/// shortest path too, so this gives the one-sided search's path.
-fn replay<S: Store>(
+/// The one-sided BFS's path in one walk from `from`: at each vertex, the smallest dart on to
+/// a vertex `on` accepts at the next position `q` (`on(slot, q)`: the vertex lies on a
+/// shortest path, at distance `q` from `from`).
+///
+/// The BFS's path to `to` is the least shortest path in the order of dart sequences: a vertex
+/// keeps its earliest dequeued predecessor, and by induction on the layers the queue holds a
+/// layer in that order. A walk that takes the smallest dart on each step finds it, because
+/// each step's choice extends to `to` (every vertex `on` accepts but `to` has an accepted
+/// neighbour one position further). It costs `total` rings, where replaying the BFS over the
+/// marked vertices took a pass per layer and a trace back. `None` when a step finds no way on
+/// or the walk ends elsewhere than `to` (A* with a wrong guide).
+fn greedy<S: Store>(
     cx: &Ctx<'_, '_>,
-    st: &mut S,
-    b: &mut Buffers,
+    st: &S,
     total: u32,
-    position: impl Fn(&Slot) -> u32,
+    on: impl Fn(&Slot, u32) -> bool,
 ) -> Option<Path> {
     let (map, open) = (cx.map, cx.open());
-    let (cur, nxt) = (&mut b.a, &mut b.c);
-    cur.clear();
-    if !st.get(cx.from).has(DAG) {
-        return None;
-    }
-    cur.push(cx.from);
+    let mut vertices = Vec::with_capacity(total as usize + 1);
+    let mut darts = Vec::with_capacity(total as usize);
+    let mut v = cx.from;
+    vertices.push(v);
     for pos in 0..total {
-        nxt.clear();
-        for &v in cur.iter() {
-            // The darts on to the next position, in increasing index: usually one or two,
-            // so they are picked before they are sorted.
-            let darts = &mut b.darts;
-            darts.clear();
-            darts.extend(map.vertex_darts(v).filter(|&d| {
-                cx.step(open, d).is_some_and(|w| {
-                    let s = st.get(w);
-                    s.has(DAG) && position(&s) == pos + 1
-                })
-            }));
-            if darts.len() > 1 {
-                darts.sort_unstable();
-            }
-            for &d in darts.iter() {
-                let w = map.dest(d);
-                let s = st.get_mut(w);
-                if !s.has(PRED) {
-                    s.set(PRED);
-                    s.pred = d.index() as u32;
-                    nxt.push(w);
-                }
-            }
-        }
-        core::mem::swap(cur, nxt);
+        let d = map
+            .vertex_darts(v)
+            .filter(|&d| cx.step(open, d).is_some_and(|w| on(&st.get(w), pos + 1)))
+            .min()?;
+        v = map.dest(d);
+        darts.push(d);
+        vertices.push(v);
     }
-    trace(cx, st, total as usize, |s| s.has(PRED).then_some(s.pred))
+    (v == cx.to).then_some(Path { vertices, darts })
 }
 
 /// A* on unit weights with the guide's heuristic, re-expanding a vertex whose distance
 /// improves (so an admissible heuristic suffices), until every vertex that could lie on a
 /// shortest path has its exact distance: the open vertices' `g + h` all exceed the best
-/// distance to `to` (beyond a margin for the rounding of `h`). Then [`mark_back`] from `to` and [`replay`] give the one-sided BFS's path. With
-/// an overestimating heuristic, the last improving darts still form a simple path to `to`,
-/// returned when the replay does not reach it.
+/// distance to `to` (beyond a margin for the rounding of `h`). Then [`mark_back`] from `to`
+/// and [`greedy`] give the one-sided BFS's path. With an overestimating heuristic, the last
+/// improving darts still form a simple path to `to`, returned when the walk does not reach it.
 fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers) -> Option<Path> {
     let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
     let target = g.point(to)?;
@@ -461,6 +421,6 @@ fn astar<S: Store>(cx: &Ctx<'_, '_>, g: &Guide<'_>, st: &mut S, b: &mut Buffers)
     cur.clear();
     cur.push(to);
     mark_back(cx, st, cur, nxt, best, |s| s.has(FWD).then_some(s.fwd));
-    replay(cx, st, b, best, |s| s.fwd)
+    greedy(cx, st, best, |s, q| s.has(DAG) && s.fwd == q)
         .or_else(|| trace(cx, st, best as usize, |s| s.has(FWD).then_some(s.bwd)))
 }

@@ -137,7 +137,6 @@ pub(super) struct Buffers {
     pub(super) a: Vec<Vert>,
     pub(super) b: Vec<Vert>,
     pub(super) c: Vec<Vert>,
-    pub(super) m: Vec<Vert>,
     pub(super) darts: Vec<Dart>,
     pub(super) astar: BinaryHeap<AEntry>,
     pub(super) dijkstra: BinaryHeap<Entry>,
