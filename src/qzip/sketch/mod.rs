@@ -677,10 +677,11 @@ impl SketchWorkspace {
         let rules = Rules::new(map, opts, core::mem::take(&mut self.forbidden))?;
         let mut store = ArrayStore {
             slots: &mut self.slots,
-            epoch: &mut self.epoch,
-            touched: &mut self.explored,
+            epoch: self.epoch,
+            touched: 0,
         };
         let found = run_passes(map, from, to, opts, &rules, &mut store, &mut self.bufs);
+        (self.epoch, self.explored) = (store.epoch, store.touched);
         self.forbidden = rules.forbidden;
         found.ok_or(SketchError::NoPath { from, to })
     }

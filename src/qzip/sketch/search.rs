@@ -208,7 +208,7 @@ fn bfs<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<Path> 
 /// the complete layers `(kf, kb)`, or `None` when a side runs out (no path). The forward
 /// layer `kf` is left in `b.a`.
 fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32, u32)> {
-    let (map, from, to, open) = (cx.map, cx.from, cx.to, cx.open());
+    let (from, to) = (cx.from, cx.to);
     let s = st.get_mut(from);
     s.set(FWD);
     s.fwd = 0;
@@ -226,35 +226,11 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
             return None;
         }
         let forward = fr.len() <= bk.len();
-        let (front, mine, theirs, k) = if forward {
-            (&*fr, FWD, BWD, kf)
+        let met = if forward {
+            grow::<true, S>(cx, st, fr, next, kf + 1)
         } else {
-            (&*bk, BWD, FWD, kb)
+            grow::<false, S>(cx, st, bk, next, kb + 1)
         };
-        next.clear();
-        let mut met = false;
-        'layer: for &u in front {
-            for d in map.vertex_darts(u) {
-                let Some(w) = cx.step(open, d) else {
-                    continue;
-                };
-                let s = st.get_mut(w);
-                if s.has(mine) {
-                    continue;
-                }
-                s.set(mine);
-                if forward {
-                    s.fwd = k + 1;
-                } else {
-                    s.bwd = k + 1;
-                }
-                if s.has(theirs) {
-                    met = true;
-                    break 'layer;
-                }
-                next.push(w);
-            }
-        }
         if met {
             return Some((kf, kb));
         }
@@ -266,6 +242,44 @@ fn meet<S: Store>(cx: &Ctx<'_, '_>, st: &mut S, b: &mut Buffers) -> Option<(u32,
             kb += 1;
         }
     }
+}
+
+/// One layer of one side of [`meet`]: labels the unlabelled neighbours of `front` with
+/// distance `k` into `next`; `true` as soon as one carries the other side's label. The side
+/// is a constant, so the inner loop has no branch on it.
+#[inline]
+fn grow<const FORWARD: bool, S: Store>(
+    cx: &Ctx<'_, '_>,
+    st: &mut S,
+    front: &[Vert],
+    next: &mut Vec<Vert>,
+    k: u32,
+) -> bool {
+    let (mine, theirs) = if FORWARD { (FWD, BWD) } else { (BWD, FWD) };
+    let open = cx.open();
+    next.clear();
+    for &u in front {
+        for d in cx.map.vertex_darts(u) {
+            let Some(w) = cx.step(open, d) else {
+                continue;
+            };
+            let s = st.get_mut(w);
+            if s.has(mine) {
+                continue;
+            }
+            s.set(mine);
+            if FORWARD {
+                s.fwd = k;
+            } else {
+                s.bwd = k;
+            }
+            if s.has(theirs) {
+                return true;
+            }
+            next.push(w);
+        }
+    }
+    false
 }
 
 /// Marks (`DAG`) the vertices of shortest paths in forward layers `0..=kf` once the

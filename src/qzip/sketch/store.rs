@@ -81,11 +81,13 @@ impl Store for HashStore {
 }
 
 /// Records in a reused array: a slot is valid when its stamp is the current epoch, so a new
-/// pass costs one increment, not an O(V) clear.
+/// pass costs one increment, not an O(V) clear. The epoch and the count of touched slots are
+/// held by value (through references, each slot access reloaded them) and handed back to
+/// the workspace after the search.
 pub(super) struct ArrayStore<'w> {
     pub(super) slots: &'w mut Vec<Slot>,
-    pub(super) epoch: &'w mut u32,
-    pub(super) touched: &'w mut usize,
+    pub(super) epoch: u32,
+    pub(super) touched: usize,
 }
 
 /// Grows `slots` to hold index `i`: only for handles past the map's slots, which live darts
@@ -93,40 +95,42 @@ pub(super) struct ArrayStore<'w> {
 /// searches call `get_mut` a few hundred times per sketch).
 #[cold]
 #[inline(never)]
-fn grow(slots: &mut Vec<Slot>, i: usize) {
+fn grow(slots: &mut Vec<Slot>, i: usize) -> &mut Slot {
     slots.resize(i + 1, Slot::default());
+    &mut slots[i]
 }
 
 impl Store for ArrayStore<'_> {
     #[inline]
     fn get(&self, v: Vert) -> Slot {
         match self.slots.get(v.index()) {
-            Some(s) if s.tag >> 8 == *self.epoch => *s,
+            Some(s) if s.tag >> 8 == self.epoch => *s,
             _ => Slot::default(),
         }
     }
     #[inline]
     fn get_mut(&mut self, v: Vert) -> &mut Slot {
         let i = v.index();
-        if i >= self.slots.len() {
-            grow(self.slots, i);
-        }
-        let s = &mut self.slots[i];
-        if s.tag >> 8 != *self.epoch {
+        let s = if i < self.slots.len() {
+            &mut self.slots[i]
+        } else {
+            grow(self.slots, i)
+        };
+        if s.tag >> 8 != self.epoch {
             *s = Slot {
-                tag: *self.epoch << 8,
+                tag: self.epoch << 8,
                 ..Slot::default()
             };
-            *self.touched += 1;
+            self.touched += 1;
         }
         s
     }
     fn next_pass(&mut self) {
         // A fresh epoch; on wrap-around, clear once so no old stamp matches.
-        *self.epoch += 1;
-        if *self.epoch >= EPOCHS {
+        self.epoch += 1;
+        if self.epoch >= EPOCHS {
             self.slots.fill(Slot::default());
-            *self.epoch = 1;
+            self.epoch = 1;
         }
     }
 }
@@ -150,11 +154,11 @@ mod tests {
     /// record, and stamps never leak from one pass into the next.
     #[test]
     fn array_store_grows_and_forgets() {
-        let (mut slots, mut epoch, mut touched) = (Vec::new(), 1, 0);
+        let mut slots = Vec::new();
         let mut st = ArrayStore {
             slots: &mut slots,
-            epoch: &mut epoch,
-            touched: &mut touched,
+            epoch: 1,
+            touched: 0,
         };
         let v = Vert::new(9);
         assert!(!st.get(v).has(FWD));
@@ -165,6 +169,7 @@ mod tests {
         st.next_pass();
         assert!(!st.get(v).has(FWD));
         assert!(!st.get_mut(v).has(FWD));
+        let touched = st.touched;
         assert_eq!((slots.len(), touched), (10, 2));
     }
 }
