@@ -534,80 +534,115 @@ fn put(code: &mut [u32], k: usize, y: Option<[u32; 2]>) {
 }
 
 /// The rarest key class of `darts` (smallest key on a tie), in dart order. Each key is
-/// computed once: the first pass notes, per dart, its key's slot in the short list.
+/// computed once: the first pass notes, per dart, its key's slot in the short list, unless
+/// every dart so far has the same key (a regular mesh: then nothing is noted, and the class
+/// is every dart).
 fn class(map: &Map, keys: &Keys, darts: impl Iterator<Item = usize> + Clone) -> Vec<u32> {
-    let mut slot: Vec<u8> = Vec::with_capacity(darts.size_hint().0);
-    let (best_key, best_slot) = rarest(darts.clone().map(|d| keys.of(map, d)), &mut slot);
-    darts
-        .zip(&slot)
-        .filter(|&(d, &j)| match best_slot {
-            Some(b) => j == b,
-            None => j == MANY && keys.of(map, d) == best_key,
-        })
-        .map(|(d, _)| d as u32)
-        .collect()
+    let mut slot: Vec<u8> = Vec::new();
+    let (best_key, best_slot, count) = rarest(darts.clone().map(|d| keys.of(map, d)), &mut slot);
+    // Sized once: collecting through the filter regrew the list about twice over.
+    let mut out = Vec::with_capacity(count);
+    if slot.is_empty() {
+        out.extend(darts.map(|d| d as u32));
+        return out;
+    }
+    out.extend(
+        darts
+            .zip(&slot)
+            .filter(|&(d, &j)| match best_slot {
+                Some(b) => j == b,
+                None => j == MANY && keys.of(map, d) == best_key,
+            })
+            .map(|(d, _)| d as u32),
+    );
+    out
 }
 
 /// A dart whose key is not in the short list of [`rarest`].
 const MANY: u8 = u8::MAX;
 
 /// Per dart: an isomorphism-invariant key (boundary bit, cycle length, origin and
-/// destination valences, each capped to 21 bits), computed on demand.
+/// destination valences, each capped to 21 bits), computed on demand. Cycle lengths are kept
+/// per face (a face dart's cycle is its face), and per dart only for boundary darts.
 struct Keys {
+    /// Per vertex: its valence; per face: its degree.
     valence: Vec<u32>,
-    cycle: Vec<u32>,
+    degree: Vec<u32>,
+    /// Per dart: its boundary loop's length, 0 off the boundary; empty on a closed map.
+    loops: Vec<u32>,
 }
 
 impl Keys {
     fn new(map: &Map) -> Keys {
-        let nd = map.next.len();
         let mut valence = vec![0u32; map.vdart.len()];
-        for d in 0..nd {
-            if map.next[d] != NONE {
-                valence[map.vert[d] as usize] += 1;
-            }
-        }
-        let mut cycle = vec![0u32; nd];
-        for d0 in 0..nd {
-            if map.next[d0] == NONE || cycle[d0] != 0 {
-                continue;
-            }
-            let mut len = 0u32;
-            let mut d = d0;
-            loop {
-                len += 1;
-                d = map.next[d] as usize;
-                if d == d0 {
-                    break;
-                }
-            }
-            loop {
-                cycle[d] = len;
-                d = map.next[d] as usize;
-                if d == d0 {
-                    break;
+        for (&n, &v) in map.next.iter().zip(&map.vert) {
+            if n != NONE {
+                if let Some(x) = valence.get_mut(v as usize) {
+                    *x += 1;
                 }
             }
         }
-        Keys { valence, cycle }
+        let degree = (map.fdart.iter())
+            .map(|&d| {
+                if d == NONE {
+                    0
+                } else {
+                    cycle_len(map, d as usize)
+                }
+            })
+            .collect();
+        // A vertex with a boundary dart keeps one as its dart, so the vertices tell whether
+        // there is a boundary (a quarter of the reads of a pass over the darts).
+        let closed = !(map.vdart.iter()).any(|&d| map.face.get(d as usize) == Some(&NONE));
+        Keys {
+            valence,
+            degree,
+            loops: if closed {
+                Vec::new()
+            } else {
+                boundary_loops(map)
+            },
+        }
     }
 
     #[inline]
     fn of(&self, map: &Map, d: usize) -> u64 {
         let cap = |x: u32| u64::from(x.min((1 << 21) - 1));
-        u64::from(map.face[d] == NONE) << 63
-            | cap(self.cycle[d]) << 42
+        let f = map.face[d];
+        let cycle = if f == NONE {
+            self.loops.get(d)
+        } else {
+            self.degree.get(f as usize)
+        };
+        u64::from(f == NONE) << 63
+            | cap(cycle.copied().unwrap_or(0)) << 42
             | cap(self.valence[map.vert[d] as usize]) << 21
             | cap(self.valence[map.vert[d ^ 1] as usize])
     }
 }
 
-/// The key with the fewest darts (the smallest key on a tie); per key, its slot in the short
-/// list (or [`MANY`]) is pushed to `slot`, and the winner's slot is returned with it. Meshes
-/// have few distinct keys, so a short list is scanned before a hash map is needed.
-fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u8>) {
+/// The key with the fewest darts (the smallest key on a tie), its slot in the short list
+/// (`None` for a key past it) and its count. Per key, its slot in the short list (or
+/// [`MANY`]) is pushed to `slot`, except while every key equals the first: `slot` stays
+/// empty if they all do. Meshes have few distinct keys, so a short list is scanned before a
+/// hash map is needed.
+fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u8>, usize) {
     let mut few: Vec<(u64, u32)> = Vec::new();
     let mut many: hashbrown::HashMap<u64, u32> = hashbrown::HashMap::new();
+    let mut keys = keys.peekable();
+    let Some(&first) = keys.peek() else {
+        return (0, None, 0);
+    };
+    // While the keys are all `first`, only count them.
+    let mut same = 0u32;
+    while keys.next_if_eq(&first).is_some() {
+        same += 1;
+    }
+    few.push((first, same));
+    if keys.peek().is_some() {
+        slot.reserve(same as usize + keys.size_hint().1.unwrap_or(0));
+        slot.resize(same as usize, 0);
+    }
     for k in keys {
         if let Some(j) = few.iter().position(|e| e.0 == k) {
             few[j].1 += 1;
@@ -620,14 +655,47 @@ fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u
             slot.push(MANY);
         }
     }
-    let (_, key, j) = few
+    let (count, key, j) = few
         .iter()
         .enumerate()
         .map(|(j, &(k, c))| (c, k, Some(j as u8)))
         .chain(many.iter().map(|(&k, &c)| (c, k, None)))
         .min()
         .unwrap_or((0, 0, None));
-    (key, j)
+    (key, j, count as usize)
+}
+
+/// The length of the `next` cycle through `d0` (bounded by the dart count, so that a broken
+/// cycle cannot loop forever).
+fn cycle_len(map: &Map, d0: usize) -> u32 {
+    let (mut len, mut d) = (0u32, d0);
+    while len as usize <= map.next.len() {
+        len += 1;
+        d = map.next.get(d).map_or(d0, |&n| n as usize);
+        if d == d0 {
+            break;
+        }
+    }
+    len
+}
+
+/// Per dart: the length of its boundary loop, 0 for a dart with a face.
+fn boundary_loops(map: &Map) -> Vec<u32> {
+    let mut loops = vec![0u32; map.next.len()];
+    for d0 in 0..map.next.len() {
+        if map.next[d0] == NONE || map.face[d0] != NONE || loops[d0] != 0 {
+            continue;
+        }
+        let len = cycle_len(map, d0);
+        let mut d = d0;
+        for _ in 0..len {
+            if let Some(x) = loops.get_mut(d) {
+                *x = len;
+            }
+            d = map.next.get(d).map_or(d0, |&n| n as usize);
+        }
+    }
+    loops
 }
 
 /// The dart of `candidates` whose breadth-first numbering (the one of the canonical code,
@@ -901,6 +969,48 @@ mod tests {
         }
         for map in &maps {
             assert_eq!(CanonicalCode::of(map), reference_code(map));
+        }
+    }
+
+    /// The keys as defined, dart by dart: the cycle length walked from each live dart, its
+    /// boundary bit and both valences, on closed and bounded maps and on one with dead slots
+    /// (the per-face degrees and the boundary-only loop lengths must give the same).
+    #[test]
+    fn keys_follow_their_definition() {
+        let mut edited = gen::random_quad(40, 0, 1, 3).map;
+        let collapsed = (0..edited.next.len() as u32)
+            .filter(|&d| crate::ops::quad::collapse_quad(&mut edited, Dart::new(d)).is_ok())
+            .take(3)
+            .count();
+        assert_eq!(collapsed, 3);
+        let maps = [
+            gen::torus_grid(5, 4).map,
+            gen::grid(4, 3).map,
+            gen::random_quad(60, 1, 2, 7).map,
+            gen::random_mixed(70, 0, 3, 9).map,
+            Map::from_polygons(9, &cut_torus(3, 3, 2, 1)).unwrap(),
+            edited,
+        ];
+        for map in &maps {
+            let keys = Keys::new(map);
+            for d in (0..map.next.len()).filter(|&d| map.next[d] != NONE) {
+                let mut len = 1u64;
+                let mut x = map.next[d] as usize;
+                while x != d {
+                    len += 1;
+                    x = map.next[x] as usize;
+                }
+                let valence = |v: u32| {
+                    (map.vert.iter().zip(&map.next))
+                        .filter(|&(&w, &n)| w == v && n != NONE)
+                        .count() as u64
+                };
+                let want = u64::from(map.face[d] == NONE) << 63
+                    | len << 42
+                    | valence(map.vert[d]) << 21
+                    | valence(map.vert[d ^ 1]);
+                assert_eq!(keys.of(map, d), want, "dart {d}");
+            }
         }
     }
 
