@@ -538,6 +538,11 @@ fn put(code: &mut [u32], k: usize, y: Option<[u32; 2]>) {
 /// every dart so far has the same key (a regular mesh: then nothing is noted, and the class
 /// is every dart).
 fn class(map: &Map, keys: &Keys, darts: impl Iterator<Item = usize> + Clone) -> Vec<u32> {
+    if keys.uniform {
+        let mut out = Vec::with_capacity(darts.size_hint().1.unwrap_or(0));
+        out.extend(darts.map(|d| d as u32));
+        return out;
+    }
     let mut slot: Vec<u8> = Vec::new();
     let (best_key, best_slot, count) = rarest(darts.clone().map(|d| keys.of(map, d)), &mut slot);
     // Sized once: collecting through the filter regrew the list about twice over.
@@ -570,6 +575,9 @@ struct Keys {
     degree: Vec<u32>,
     /// Per dart: its boundary loop's length, 0 off the boundary; empty on a closed map.
     loops: Vec<u32>,
+    /// Whether every dart has the same key: a closed map whose live vertices have one
+    /// valence and live faces one degree (told from the vertices and faces, without a key).
+    uniform: bool,
 }
 
 impl Keys {
@@ -582,7 +590,7 @@ impl Keys {
                 }
             }
         }
-        let degree = (map.fdart.iter())
+        let degree: Vec<u32> = (map.fdart.iter())
             .map(|&d| {
                 if d == NONE {
                     0
@@ -594,6 +602,11 @@ impl Keys {
         // A vertex with a boundary dart keeps one as its dart, so the vertices tell whether
         // there is a boundary (a quarter of the reads of a pass over the darts).
         let closed = !(map.vdart.iter()).any(|&d| map.face.get(d as usize) == Some(&NONE));
+        let one = |x: &[u32], live: &[u32]| {
+            let mut values = (x.iter().zip(live)).filter(|p| *p.1 != NONE).map(|p| *p.0);
+            values.next().is_none_or(|v| values.all(|w| w == v))
+        };
+        let uniform = closed && one(&valence, &map.vdart) && one(&degree, &map.fdart);
         Keys {
             valence,
             degree,
@@ -602,6 +615,7 @@ impl Keys {
             } else {
                 boundary_loops(map)
             },
+            uniform,
         }
     }
 
@@ -974,7 +988,8 @@ mod tests {
 
     /// The keys as defined, dart by dart: the cycle length walked from each live dart, its
     /// boundary bit and both valences, on closed and bounded maps and on one with dead slots
-    /// (the per-face degrees and the boundary-only loop lengths must give the same).
+    /// (the per-face degrees and the boundary-only loop lengths must give the same); and
+    /// `uniform` exactly when every key is the same.
     #[test]
     fn keys_follow_their_definition() {
         let mut edited = gen::random_quad(40, 0, 1, 3).map;
@@ -985,6 +1000,8 @@ mod tests {
         assert_eq!(collapsed, 3);
         let maps = [
             gen::torus_grid(5, 4).map,
+            gen::cube(2).map,
+            gen::icosahedron().map,
             gen::grid(4, 3).map,
             gen::random_quad(60, 1, 2, 7).map,
             gen::random_mixed(70, 0, 3, 9).map,
@@ -993,7 +1010,13 @@ mod tests {
         ];
         for map in &maps {
             let keys = Keys::new(map);
-            for d in (0..map.next.len()).filter(|&d| map.next[d] != NONE) {
+            let live: Vec<usize> = (0..map.next.len())
+                .filter(|&d| map.next[d] != NONE)
+                .collect();
+            let first = keys.of(map, live[0]);
+            let same = live.iter().all(|&d| keys.of(map, d) == first);
+            assert_eq!(keys.uniform, same);
+            for &d in &live {
                 let mut len = 1u64;
                 let mut x = map.next[d] as usize;
                 while x != d {
