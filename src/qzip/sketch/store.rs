@@ -151,7 +151,7 @@ mod tests {
     use super::*;
 
     /// A handle past the arrays grows them and starts empty; a new pass forgets every
-    /// record, and stamps never leak from one pass into the next.
+    /// record without clearing the array, and stamps never leak from one pass into the next.
     #[test]
     fn array_store_grows_and_forgets() {
         let mut slots = Vec::new();
@@ -167,9 +167,13 @@ mod tests {
         assert!(st.get(v).has(FWD) && st.get(v).fwd == 3);
         assert!(!st.get(Vert::new(8)).has(FWD));
         st.next_pass();
+        // The pass is one increment: the old record is still in the array, stale.
+        assert!(st.slots[9].has(FWD) && st.slots[9].fwd == 3);
         assert!(!st.get(v).has(FWD));
         assert!(!st.get_mut(v).has(FWD));
+        // The first handle past the end grows the arrays by one.
+        assert!(!st.get_mut(Vert::new(10)).has(FWD));
         let touched = st.touched;
-        assert_eq!((slots.len(), touched), (10, 2));
+        assert_eq!((slots.len(), touched), (11, 3));
     }
 }
