@@ -117,6 +117,35 @@ enum Cmp {
 /// so that a connected map's code is returned without a copy.
 const HEAD: usize = 2;
 
+/// One component's start class: every dart of a map with no dead slot, kept implicit (the
+/// list would be the identity, 1.6 MB written on a 100,000-quad torus), or a list.
+enum Starts {
+    All(usize),
+    Listed(Vec<u32>),
+}
+
+impl Starts {
+    fn len(&self) -> usize {
+        match self {
+            Starts::All(n) => *n,
+            Starts::Listed(l) => l.len(),
+        }
+    }
+
+    /// The start at position `k` (below [`Starts::len`]).
+    fn get(&self, k: usize) -> u32 {
+        match self {
+            Starts::All(_) => k as u32,
+            Starts::Listed(l) => l[k],
+        }
+    }
+
+    #[cfg(test)]
+    fn to_vec(&self) -> Vec<u32> {
+        (0..self.len()).map(|k| self.get(k)).collect()
+    }
+}
+
 /// What a walk reads of the map: `next`, and the boundary bits packed (a small array that
 /// stays in cache, where `face` would be one more stream of misses).
 struct Links<'a> {
@@ -183,6 +212,11 @@ impl Run {
     /// Clears the last numbering and starts a new one at `s`.
     fn start(&mut self, s: u32) {
         self.clear();
+        // An automorphism may have taken the labels (`Canonizer::automorphism`).
+        let nd = self.order.len() - 1;
+        if self.label.len() != nd {
+            self.label = vec![NONE; nd];
+        }
         self.label[s as usize] = 0;
         self.order[0] = s;
         self.len = 1;
@@ -347,7 +381,11 @@ impl<'a> Canonizer<'a> {
         // Most maps are connected: code the map as one component, and label components only
         // when a walk ends short of every dart (the labelling, a union-find over every edge,
         // was about 5 % of a cut torus's time).
-        let starts = class(map, &keys, (0..map.next.len()).filter(live));
+        let starts = if keys.uniform && map.num_darts() == map.next.len() {
+            Starts::All(map.next.len())
+        } else {
+            Starts::Listed(class(map, &keys, (0..map.next.len()).filter(live)))
+        };
         if let Some(mut code) = self.component_code(&starts, map.num_darts(), true) {
             code[0] = 1;
             code[1] = (code.len() - HEAD) as u32;
@@ -374,7 +412,7 @@ impl<'a> Canonizer<'a> {
         let mut parts: Vec<Vec<u32>> = Vec::with_capacity(n_comp);
         for c in 0..n_comp {
             let darts = &by_comp[comp_start[c]..comp_start[c + 1]];
-            let starts = class(map, &keys, darts.iter().map(|&d| d as usize));
+            let starts = Starts::Listed(class(map, &keys, darts.iter().map(|&d| d as usize)));
             let code = self.component_code(&starts, darts.len(), false);
             parts.push(code.unwrap_or_default().split_off(HEAD));
         }
@@ -397,21 +435,22 @@ impl<'a> Canonizer<'a> {
     /// With `whole`, the starts are the whole map's and `None` says, as soon as a walk ends
     /// short of `size` darts, that the map is not connected (before any automorphism is
     /// taken from two components).
-    fn component_code(&mut self, starts: &[u32], size: usize, whole: bool) -> Option<Vec<u32>> {
-        let Some(&first) = starts.first() else {
+    fn component_code(&mut self, starts: &Starts, size: usize, whole: bool) -> Option<Vec<u32>> {
+        if starts.len() == 0 {
             return Some(vec![0; HEAD]);
-        };
+        }
+        let first = starts.get(0);
         let short = |r: &Run| r.i >= r.len && r.len < size;
         self.best.start(first);
         self.best.code = vec![0; HEAD + 2 * size];
         self.orbits.reset(starts.len());
         self.orbits.add(0);
         let mut pos_ready = false;
-        for (k, &s) in starts.iter().enumerate().skip(1) {
+        for k in 1..starts.len() {
             if self.orbits.reached[k] {
                 continue;
             }
-            let result = self.race(s, size);
+            let result = self.race(starts.get(k), size);
             if whole && (short(&self.best) || short(&self.cand)) {
                 return None;
             }
@@ -421,8 +460,8 @@ impl<'a> Canonizer<'a> {
                 // Positions are darts when every dart is a start (`automorphism`).
                 if !pos_ready && starts.len() != self.map.next.len() {
                     self.pos.resize(self.map.next.len(), 0);
-                    for (j, &c) in starts.iter().enumerate() {
-                        self.pos[c as usize] = j as u32;
+                    for j in 0..starts.len() {
+                        self.pos[starts.get(j) as usize] = j as u32;
                     }
                     pos_ready = true;
                 }
@@ -444,23 +483,21 @@ impl<'a> Canonizer<'a> {
     /// Candidate and best read the same code, so mapping the candidate's numbering onto the
     /// best's is an automorphism; the start class is invariant under it. Its action on the
     /// starts, by position.
-    fn automorphism(&self, starts: &[u32]) -> Vec<u32> {
+    fn automorphism(&mut self, starts: &Starts) -> Vec<u32> {
         if starts.len() == self.map.next.len() {
             // Every dart is a start (a regular closed map with no dead slot), so positions
-            // are darts: read both runs in numbering order (`cand.order[i]` maps to
-            // `best.order[i]`), sequentially, in place of a random load per start.
-            let n = self.cand.len.min(self.best.len);
-            // Both runs numbered every dart (an `Equal` race), so the scatter below writes
-            // every entry; the identity only backs a broken invariant.
-            let mut g: Vec<u32> = if n == starts.len() {
-                vec![0; n]
-            } else {
-                (0..starts.len() as u32).collect()
-            };
-            for (&c, &b) in self.cand.order[..n].iter().zip(&self.best.order[..n]) {
-                if let Some(x) = g.get_mut(c as usize) {
-                    *x = b;
-                }
+            // are darts. Both runs numbered every dart (an `Equal` race): the candidate's
+            // labels become the map in place (`label[c]`, the position of `c`, to
+            // `best.order` there), and the candidate gets new labels only if another race
+            // follows. The identity backs only a broken invariant.
+            let mut g = core::mem::take(&mut self.cand.label);
+            for (c, x) in g.iter_mut().enumerate() {
+                *x = self
+                    .best
+                    .order
+                    .get(*x as usize)
+                    .copied()
+                    .unwrap_or(c as u32);
             }
             return g;
         }
@@ -470,8 +507,8 @@ impl<'a> Canonizer<'a> {
             let b = self.best.order.get(self.cand.label[c as usize] as usize)?;
             Some(self.pos[*b as usize]).filter(|&p| (p as usize) < starts.len())
         };
-        (starts.iter().enumerate())
-            .map(|(x, &c)| image(c).unwrap_or(x as u32))
+        (0..starts.len())
+            .map(|x| image(starts.get(x)).unwrap_or(x as u32))
             .collect()
     }
 
@@ -968,6 +1005,15 @@ mod tests {
         ];
         for (nx, ny) in [(3, 3), (4, 4), (6, 5), (9, 9)] {
             maps.push(gen::torus_grid(nx, ny).map);
+            // Two plain tori: one key everywhere, every dart a start, two components.
+            let plain = cut_torus(nx, ny, 0, 0);
+            let shift = |p: &Vec<u32>| p.iter().map(|&v| v + (nx * ny) as u32).collect();
+            let two: Vec<Vec<u32>> = plain
+                .iter()
+                .cloned()
+                .chain(plain.iter().map(shift))
+                .collect();
+            maps.push(Map::from_polygons(2 * nx * ny, &two).unwrap());
             for (cuts, seed) in [(1, 1), (2, 2), (3, 3), (5, 4)] {
                 let polys = cut_torus(nx, ny, cuts, seed);
                 maps.push(Map::from_polygons(nx * ny, &polys).unwrap());
