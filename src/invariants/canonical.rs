@@ -1035,7 +1035,8 @@ mod tests {
     /// The keys as defined, dart by dart: the cycle length walked from each live dart, its
     /// boundary bit and both valences, on closed and bounded maps and on one with dead slots
     /// (the per-face degrees and the boundary-only loop lengths must give the same); and
-    /// `uniform` exactly when every key is the same.
+    /// `uniform` exactly when every key is the same, and a loop length only on the
+    /// boundary.
     #[test]
     fn keys_follow_their_definition() {
         let mut edited = gen::random_quad(40, 0, 1, 3).map;
@@ -1056,6 +1057,7 @@ mod tests {
         ];
         for map in &maps {
             let keys = Keys::new(map);
+            let loops = boundary_loops(map);
             let live: Vec<usize> = (0..map.next.len())
                 .filter(|&d| map.next[d] != NONE)
                 .collect();
@@ -1079,6 +1081,12 @@ mod tests {
                     | valence(map.vert[d]) << 21
                     | valence(map.vert[d ^ 1]);
                 assert_eq!(keys.of(map, d), want, "dart {d}");
+                let on_boundary = map.face[d] == NONE;
+                assert_eq!(u64::from(loops[d]), if on_boundary { len } else { 0 });
+            }
+            // Dead slots have no loop either.
+            for d in (0..map.next.len()).filter(|&d| map.next[d] == NONE) {
+                assert_eq!(loops[d], 0, "dead dart {d}");
             }
         }
     }
