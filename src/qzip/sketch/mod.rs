@@ -20,8 +20,9 @@
 //! first predecessor that reached it. That path is the least shortest path in the order of
 //! dart sequences (compared dart index by dart index from `from`), so the bidirectional and
 //! A* searches mark the vertices of the shortest paths and walk from `from` taking the
-//! smallest dart that stays on one. Dijkstra settles the vertex of smallest (distance, vertex index)
-//! first, and a vertex keeps the first predecessor that reached it at its final distance.
+//! smallest dart that stays on one. Dijkstra settles the vertex of smallest (distance,
+//! vertex index) first, and a vertex keeps the first predecessor that reached it at its
+//! final distance.
 //!
 //! ```
 //! use zipmesh::{gen, Vert};
