@@ -570,24 +570,18 @@ fn put(code: &mut [u32], k: usize, y: Option<[u32; 2]>) {
     }
 }
 
-/// The rarest key class of `darts` (smallest key on a tie), in dart order. Each key is
-/// computed once: the first pass notes, per dart, its key's slot in the short list, unless
-/// every dart so far has the same key (a regular mesh: then nothing is noted, and the class
-/// is every dart).
+/// The rarest key class of `darts` (smallest key on a tie), in dart order: every dart when
+/// all keys are the same ([`Keys::uniform`]), else from a first pass that notes, per dart,
+/// its key's slot in the short list (each key computed once).
 fn class(map: &Map, keys: &Keys, darts: impl Iterator<Item = usize> + Clone) -> Vec<u32> {
+    // Sized once: collecting through a filter regrew the list about twice over.
+    let mut out = Vec::with_capacity(darts.size_hint().1.unwrap_or(0));
     if keys.uniform {
-        let mut out = Vec::with_capacity(darts.size_hint().1.unwrap_or(0));
         out.extend(darts.map(|d| d as u32));
         return out;
     }
-    let mut slot: Vec<u8> = Vec::new();
-    let (best_key, best_slot, count) = rarest(darts.clone().map(|d| keys.of(map, d)), &mut slot);
-    // Sized once: collecting through the filter regrew the list about twice over.
-    let mut out = Vec::with_capacity(count);
-    if slot.is_empty() {
-        out.extend(darts.map(|d| d as u32));
-        return out;
-    }
+    let mut slot: Vec<u8> = Vec::with_capacity(darts.size_hint().1.unwrap_or(0));
+    let (best_key, best_slot) = rarest(darts.clone().map(|d| keys.of(map, d)), &mut slot);
     out.extend(
         darts
             .zip(&slot)
@@ -672,28 +666,12 @@ impl Keys {
     }
 }
 
-/// The key with the fewest darts (the smallest key on a tie), its slot in the short list
-/// (`None` for a key past it) and its count. Per key, its slot in the short list (or
-/// [`MANY`]) is pushed to `slot`, except while every key equals the first: `slot` stays
-/// empty if they all do. Meshes have few distinct keys, so a short list is scanned before a
-/// hash map is needed.
-fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u8>, usize) {
+/// The key with the fewest darts (the smallest key on a tie); per key, its slot in the short
+/// list (or [`MANY`]) is pushed to `slot`, and the winner's slot is returned with it. Meshes
+/// have few distinct keys, so a short list is scanned before a hash map is needed.
+fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u8>) {
     let mut few: Vec<(u64, u32)> = Vec::new();
     let mut many: hashbrown::HashMap<u64, u32> = hashbrown::HashMap::new();
-    let mut keys = keys.peekable();
-    let Some(&first) = keys.peek() else {
-        return (0, None, 0);
-    };
-    // While the keys are all `first`, only count them.
-    let mut same = 0u32;
-    while keys.next_if_eq(&first).is_some() {
-        same += 1;
-    }
-    few.push((first, same));
-    if keys.peek().is_some() {
-        slot.reserve(same as usize + keys.size_hint().1.unwrap_or(0));
-        slot.resize(same as usize, 0);
-    }
     for k in keys {
         if let Some(j) = few.iter().position(|e| e.0 == k) {
             few[j].1 += 1;
@@ -706,14 +684,14 @@ fn rarest(keys: impl Iterator<Item = u64>, slot: &mut Vec<u8>) -> (u64, Option<u
             slot.push(MANY);
         }
     }
-    let (count, key, j) = few
+    let (_, key, j) = few
         .iter()
         .enumerate()
         .map(|(j, &(k, c))| (c, k, Some(j as u8)))
         .chain(many.iter().map(|(&k, &c)| (c, k, None)))
         .min()
         .unwrap_or((0, 0, None));
-    (key, j, count as usize)
+    (key, j)
 }
 
 /// The length of the `next` cycle through `d0` (bounded by the dart count, so that a broken
