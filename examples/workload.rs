@@ -22,7 +22,7 @@
 //! are run.
 
 use std::time::Instant;
-use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::invariants::canonical::{CanonicalCode, CanonicalWorkspace};
 use zipmesh::invariants::{euler_characteristic, Counts, Histograms};
 use zipmesh::ops::{quad, tri};
 use zipmesh::qzip::{self, SketchOptions, Tag};
@@ -758,7 +758,9 @@ fn memory_latency(bytes: usize, reps: usize) {
 }
 
 /// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
-/// the same with 5 quads cut into triangles, in ns per face. With the third argument
+/// the same with 5 quads cut into triangles, in ns per face; each by [`CanonicalCode::of`]
+/// and (`_ws`) by a [`CanonicalWorkspace`] kept from one repetition to the next, used once
+/// before them (as Traces keeps its arrays between its runs). With the third argument
 /// `canonical`, only these rows are run.
 /// Writes `faces` over `nv` vertices (all at the origin) as an OFF file, for the peers'
 /// harnesses (`benches/peers/traces_canon.c`).
@@ -792,24 +794,31 @@ fn canonical_rows(reps: usize, dump: Option<&str>) {
                 &cut,
             );
         }
-        report(
-            "quad",
-            &format!("canonical_torus_{faces}"),
-            measure(reps, || regular.clone(), |m| CanonicalCode::of(&m).hash()),
-            "ns/face",
-            faces,
-            reps,
-        );
         let cut =
             Map::from_polygons(side * side, &cut_some(&q, 5, side as u64)).expect("valid torus");
-        report(
-            "quad",
-            &format!("canonical_torus_{faces}_cut5"),
-            measure(reps, || cut.clone(), |m| CanonicalCode::of(&m).hash()),
-            "ns/face",
-            cut.num_faces(),
-            reps,
-        );
+        for (map, name) in [
+            (&regular, format!("{faces}")),
+            (&cut, format!("{faces}_cut5")),
+        ] {
+            report(
+                "quad",
+                &format!("canonical_torus_{name}"),
+                measure(reps, || map.clone(), |m| CanonicalCode::of(&m).hash()),
+                "ns/face",
+                map.num_faces(),
+                reps,
+            );
+            let mut ws = CanonicalWorkspace::new();
+            ws.hash(map);
+            report(
+                "quad",
+                &format!("canonical_torus_{name}_ws"),
+                measure(reps, || map.clone(), |m| ws.hash(&m)),
+                "ns/face",
+                map.num_faces(),
+                reps,
+            );
+        }
     }
 }
 

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
-use zipmesh::invariants::canonical::CanonicalCode;
+use zipmesh::invariants::canonical::{CanonicalCode, CanonicalWorkspace};
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
 use zipmesh::rng::Rng;
 use zipmesh::{gen, is_isomorphic, is_isomorphic_mirror, Face, Map, Mesh, Vert};
@@ -133,6 +133,63 @@ proptest! {
         }
         // Determinism.
         prop_assert_eq!(&generate(kind, faces, genus, holes, seed), &m);
+    }
+}
+
+/// One map of a workspace's sequence: a random mesh, or a regular torus (all its darts one
+/// start class, so its automorphisms take label arrays and give them back), and with `twice`
+/// two copies of it side by side (each component coded on its own).
+#[allow(clippy::too_many_arguments)]
+fn sequence_map(
+    kind: Kind,
+    faces: usize,
+    genus: usize,
+    holes: usize,
+    seed: u64,
+    torus: Option<(usize, usize)>,
+    twice: bool,
+) -> Map {
+    let m = match torus {
+        Some((a, b)) => gen::torus_grid(a, b),
+        None => generate(kind, faces, genus, holes, seed),
+    };
+    if !twice {
+        return m.map;
+    }
+    let n = m.map.vertex_slots();
+    let mut polys = polygons(&m.map);
+    let shifted: Vec<Vec<u32>> = (polys.iter())
+        .map(|p| p.iter().map(|&v| v + n as u32).collect())
+        .collect();
+    polys.extend(shifted);
+    Map::from_polygons(2 * n, &polys).unwrap()
+}
+
+proptest! {
+    #![proptest_config(cases(128))]
+
+    /// A workspace kept from map to map (growing and shrinking, regular tori among them,
+    /// one or two components) codes each map as a fresh call does.
+    #[test]
+    fn a_kept_workspace_codes_as_a_fresh_call(
+        maps in prop::collection::vec(
+            (
+                kind(),
+                0usize..400,
+                0usize..=2,
+                0usize..=2,
+                any::<u64>(),
+                prop::option::of((3usize..14, 3usize..14)),
+                any::<bool>(),
+            ),
+            1..6,
+        )
+    ) {
+        let mut ws = CanonicalWorkspace::new();
+        for (kind, faces, genus, holes, seed, torus, twice) in maps {
+            let map = sequence_map(kind, faces, genus, holes, seed, torus, twice);
+            prop_assert_eq!(ws.code(&map), &CanonicalCode::of(&map));
+        }
     }
 }
 

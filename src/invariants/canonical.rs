@@ -47,7 +47,7 @@ impl CanonicalCode {
     /// assert_eq!(CanonicalCode::of(&a), CanonicalCode::of(&b));
     /// ```
     pub fn of(map: &Map) -> CanonicalCode {
-        Canonizer::new(map).code()
+        Canonizer::new(map, Buffers::default()).code()
     }
 
     /// The 128-bit XXH3 hash of the code.
@@ -68,6 +68,83 @@ impl CanonicalCode {
             h.update(&buf[..chunk.len() * 4]);
         }
         h.digest128()
+    }
+}
+
+/// The arrays of canonical coding, kept from one map to the next: for many codes of large
+/// maps. [`CanonicalCode::of`] allocates about seven dart-sized arrays per call, and on a
+/// large map their fresh pages cost about a third of its time (the 99,856-quad torus: 19 ms
+/// a call, 12 ms with a workspace; `docs/benchmarks.md`). The codes are the same.
+///
+/// The workspace holds what its largest map needed (about 28 bytes per dart, and 4 more per
+/// dart for each automorphism the coding found); [`CanonicalWorkspace::bytes`] says how much.
+///
+/// ```
+/// use zipmesh::{gen, invariants::canonical::{CanonicalCode, CanonicalWorkspace}};
+/// let mut ws = CanonicalWorkspace::new();
+/// for m in [gen::torus_grid(6, 5).map, gen::cube(2).map, gen::grid(3, 4).map] {
+///     assert_eq!(ws.code(&m), &CanonicalCode::of(&m));
+///     assert_eq!(ws.hash(&m), CanonicalCode::of(&m).hash());
+/// }
+/// assert!(ws.bytes() > 0);
+/// ```
+pub struct CanonicalWorkspace {
+    buffers: Buffers,
+    code: CanonicalCode,
+}
+
+impl Default for CanonicalWorkspace {
+    fn default() -> Self {
+        CanonicalWorkspace {
+            buffers: Buffers::default(),
+            code: CanonicalCode(Vec::new()),
+        }
+    }
+}
+
+impl core::fmt::Debug for CanonicalWorkspace {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("CanonicalWorkspace")
+            .field("bytes", &self.bytes())
+            .finish_non_exhaustive()
+    }
+}
+
+impl CanonicalWorkspace {
+    /// An empty workspace; its arrays grow with the maps it codes.
+    ///
+    /// See [`CanonicalWorkspace`] for an example.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The canonical code of `map` ([`CanonicalCode::of`]), kept until the next call.
+    ///
+    /// See [`CanonicalWorkspace`] for an example.
+    pub fn code(&mut self, map: &Map) -> &CanonicalCode {
+        let mut buffers = core::mem::take(&mut self.buffers);
+        // The last code's array is written again, as the best run's code.
+        if buffers.best.code.capacity() < self.code.0.capacity() {
+            buffers.best.code = core::mem::take(&mut self.code.0);
+        }
+        let mut cz = Canonizer::new(map, buffers);
+        self.code = cz.code();
+        self.buffers = cz.buffers();
+        &self.code
+    }
+
+    /// The 128-bit hash of the canonical code of `map` ([`CanonicalCode::hash`]).
+    ///
+    /// See [`CanonicalWorkspace`] for an example.
+    pub fn hash(&mut self, map: &Map) -> u128 {
+        self.code(map).hash()
+    }
+
+    /// The bytes the workspace holds.
+    ///
+    /// See [`CanonicalWorkspace`] for an example.
+    pub fn bytes(&self) -> usize {
+        self.buffers.bytes() + 4 * self.code.0.capacity()
     }
 }
 
@@ -154,8 +231,10 @@ struct Links<'a> {
 }
 
 impl Links<'_> {
-    fn new(map: &Map) -> Links<'_> {
-        let mut boundary = vec![0u64; map.face.len().div_ceil(64)];
+    /// The links of `map`, the bits written into `boundary` (a buffer reused).
+    fn new(map: &Map, mut boundary: Vec<u64>) -> Links<'_> {
+        boundary.clear();
+        boundary.resize(map.face.len().div_ceil(64), 0);
         for (d, &f) in map.face.iter().enumerate() {
             boundary[d / 64] |= u64::from(f == NONE) << (d % 64);
         }
@@ -172,6 +251,7 @@ impl Links<'_> {
 }
 
 /// One breadth-first numbering in progress.
+#[derive(Default)]
 struct Run {
     /// Per dart: its number, or `NONE`.
     label: Vec<u32>,
@@ -185,14 +265,32 @@ struct Run {
 }
 
 impl Run {
-    fn new(nd: usize) -> Run {
-        Run {
-            label: vec![NONE; nd],
-            order: vec![0; nd + 1],
-            len: 0,
-            i: 0,
-            code: Vec::new(),
+    /// Ready for a map of `nd` dart slots, reusing the arrays of the last map: its labels
+    /// cleared (as [`Run::clear`] does), then the arrays sized.
+    fn prepare(&mut self, nd: usize, spare: &mut Vec<Vec<u32>>) -> bool {
+        let fresh = self.restock(spare);
+        self.clear();
+        self.label.resize(nd, NONE);
+        room(&mut self.order, nd + 1);
+        fresh
+    }
+
+    /// If an automorphism took the labels (`Canonizer::automorphism`): new ones, every dart
+    /// unnumbered, in an array from `spare` when there is one (a fresh array costs a page
+    /// fault per 1,024 darts). Whether a fresh array was needed.
+    fn restock(&mut self, spare: &mut Vec<Vec<u32>>) -> bool {
+        if self.label.len() + 1 == self.order.len() {
+            return false;
         }
+        let nd = self.order.len().saturating_sub(1);
+        let mut label = spare.pop().unwrap_or_default();
+        let fresh = label.capacity() < nd;
+        label.clear();
+        label.resize(nd, NONE);
+        self.label = label;
+        self.len = 0;
+        self.i = 0;
+        fresh
     }
 
     /// Clears the labels of the last numbering.
@@ -345,38 +443,102 @@ impl Orbits {
     }
 }
 
+/// The arrays of a [`Canonizer`], kept by a [`CanonicalWorkspace`] from one map to the next.
+#[derive(Default)]
+struct Buffers {
+    boundary: Vec<u64>,
+    keys: Keys,
+    best: Run,
+    cand: Run,
+    orbits: Orbits,
+    pos: Vec<u32>,
+    /// Dart-sized arrays that automorphisms took and gave back: the next labels to use.
+    spare: Vec<Vec<u32>>,
+}
+
+impl Buffers {
+    /// The bytes held.
+    fn bytes(&self) -> usize {
+        let words = |v: &Vec<u32>| v.capacity();
+        let run = |r: &Run| words(&r.label) + words(&r.order) + words(&r.code);
+        let o = &self.orbits;
+        let k = &self.keys;
+        8 * self.boundary.capacity()
+            + 4 * (words(&k.valence) + words(&k.degree) + words(&k.loops))
+            + 4 * (run(&self.best) + run(&self.cand) + words(&self.pos))
+            + 4 * (o.gens.iter().chain(&self.spare).map(words).sum::<usize>() + words(&o.members))
+            + o.reached.capacity()
+    }
+}
+
 struct Canonizer<'a> {
     map: &'a Map,
     links: Links<'a>,
+    keys: Keys,
     /// The best run so far (recording) and the candidate run.
     best: Run,
     cand: Run,
     orbits: Orbits,
     /// Per dart: its position in the current component's start class, once needed.
     pos: Vec<u32>,
+    spare: Vec<Vec<u32>>,
     /// Every automorphism found, with its start class (the tests check each one).
     #[cfg(test)]
     found: Vec<(Vec<u32>, Vec<u32>)>,
+    /// How many label arrays had to grow (none on a second call with the same workspace).
+    fresh: usize,
 }
 
 impl<'a> Canonizer<'a> {
-    fn new(map: &'a Map) -> Self {
+    /// A canonizer of `map` working in `b`'s arrays (given back by [`Canonizer::buffers`]).
+    fn new(map: &'a Map, b: Buffers) -> Self {
         let nd = map.next.len();
-        Canonizer {
+        let mut cz = Canonizer {
             map,
-            links: Links::new(map),
-            best: Run::new(nd),
-            cand: Run::new(nd),
-            orbits: Orbits::default(),
-            pos: Vec::new(),
+            links: Links::new(map, b.boundary),
+            keys: b.keys,
+            best: b.best,
+            cand: b.cand,
+            orbits: b.orbits,
+            pos: b.pos,
+            spare: b.spare,
             #[cfg(test)]
             found: Vec::new(),
+            fresh: 0,
+        };
+        let fresh = [
+            cz.best.prepare(nd, &mut cz.spare),
+            cz.cand.prepare(nd, &mut cz.spare),
+        ];
+        cz.fresh = fresh.iter().filter(|&&f| f).count();
+        cz
+    }
+
+    /// The arrays back, for the next map.
+    fn buffers(self) -> Buffers {
+        let (mut spare, mut orbits) = (self.spare, self.orbits);
+        spare.append(&mut orbits.gens);
+        Buffers {
+            boundary: self.links.boundary,
+            keys: self.keys,
+            best: self.best,
+            cand: self.cand,
+            orbits,
+            pos: self.pos,
+            spare,
         }
     }
 
     fn code(&mut self) -> CanonicalCode {
+        let mut keys = core::mem::take(&mut self.keys);
+        keys.fill(self.map);
+        let code = self.code_with(&keys);
+        self.keys = keys;
+        code
+    }
+
+    fn code_with(&mut self, keys: &Keys) -> CanonicalCode {
         let map = self.map;
-        let keys = Keys::new(map);
         let live = |d: &usize| map.next[*d] != NONE;
         // Most maps are connected: code the map as one component, and label components only
         // when a walk ends short of every dart (the labelling, a union-find over every edge,
@@ -384,7 +546,7 @@ impl<'a> Canonizer<'a> {
         let starts = if keys.uniform && map.num_darts() == map.next.len() {
             Starts::All(map.next.len())
         } else {
-            Starts::Listed(class(map, &keys, (0..map.next.len()).filter(live)))
+            Starts::Listed(class(map, keys, (0..map.next.len()).filter(live)))
         };
         if let Some(mut code) = self.component_code(&starts, map.num_darts(), true) {
             code[0] = 1;
@@ -412,7 +574,7 @@ impl<'a> Canonizer<'a> {
         let mut parts: Vec<Vec<u32>> = Vec::with_capacity(n_comp);
         for c in 0..n_comp {
             let darts = &by_comp[comp_start[c]..comp_start[c + 1]];
-            let starts = Starts::Listed(class(map, &keys, darts.iter().map(|&d| d as usize)));
+            let starts = Starts::Listed(class(map, keys, darts.iter().map(|&d| d as usize)));
             let code = self.component_code(&starts, darts.len(), false);
             parts.push(code.unwrap_or_default().split_off(HEAD));
         }
@@ -442,7 +604,8 @@ impl<'a> Canonizer<'a> {
         let first = starts.get(0);
         let short = |r: &Run| r.i >= r.len && r.len < size;
         self.best.start(first);
-        self.best.code = vec![0; HEAD + 2 * size];
+        room(&mut self.best.code, HEAD + 2 * size);
+        self.spare.append(&mut self.orbits.gens);
         self.orbits.reset(starts.len());
         self.orbits.add(0);
         let mut pos_ready = false;
@@ -480,6 +643,11 @@ impl<'a> Canonizer<'a> {
         Some(core::mem::take(&mut self.best.code))
     }
 
+    /// A dart-sized array given back by an old automorphism, if any (its contents stale).
+    fn spare_array(&mut self) -> Vec<u32> {
+        self.spare.pop().unwrap_or_default()
+    }
+
     /// Candidate and best read the same code, so mapping the candidate's numbering onto the
     /// best's is an automorphism; the start class is invariant under it. Its action on the
     /// starts, by position.
@@ -503,19 +671,21 @@ impl<'a> Canonizer<'a> {
         }
         // Both runs numbered the component, so every start has an image; the fallback only
         // keeps a broken invariant from indexing out of range.
+        let mut g = self.spare_array();
         let image = |c: u32| {
             let b = self.best.order.get(self.cand.label[c as usize] as usize)?;
             Some(self.pos[*b as usize]).filter(|&p| (p as usize) < starts.len())
         };
-        (0..starts.len())
-            .map(|x| image(starts.get(x)).unwrap_or(x as u32))
-            .collect()
+        g.clear();
+        g.extend((0..starts.len()).map(|x| image(starts.get(x)).unwrap_or(x as u32)));
+        g
     }
 
     /// Numbers the component from `s` in the candidate run, symbol by symbol against the best
     /// run (stepped, and its code written, only as far as needed), until they differ. On
     /// `Better` the candidate gets its code so far, so it can take the best run's place.
     fn race(&mut self, s: u32, size: usize) -> Cmp {
+        self.fresh += usize::from(self.cand.restock(&mut self.spare));
         self.cand.start(s);
         let links = &self.links;
         let (mut b, code) = self.best.walker();
@@ -542,11 +712,12 @@ impl<'a> Canonizer<'a> {
         (self.best.len, self.best.i) = (b.len, b.i);
         (self.cand.len, self.cand.i) = (c.len, c.i);
         if result == Cmp::Better {
+            // The candidate's code so far, in its own array.
             let k = HEAD + 2 * i;
-            let mut new = vec![0; HEAD + 2 * size];
+            let new = &mut self.cand.code;
+            room(new, HEAD + 2 * size);
             new[..k].copy_from_slice(&self.best.code[..k]);
-            put(&mut new, k, x);
-            self.cand.code = new;
+            put(new, k, x);
         }
         result
     }
@@ -559,6 +730,18 @@ impl<'a> Canonizer<'a> {
         }
         (self.best.len, self.best.i) = (b.len, b.i);
         self.best.code.truncate(HEAD + 2 * self.best.i);
+    }
+}
+
+/// Sizes `v` to `n` entries whose values do not matter (a run's order and code: each entry
+/// is written before it is read): in place if it has the room, else a new zeroed array, whose
+/// pages the system provides only where they are written (a run that loses early writes a
+/// few; resizing would write every one).
+fn room(v: &mut Vec<u32>, n: usize) {
+    if v.capacity() < n {
+        *v = vec![0; n];
+    } else {
+        v.resize(n, 0);
     }
 }
 
@@ -600,6 +783,7 @@ const MANY: u8 = u8::MAX;
 /// Per dart: an isomorphism-invariant key (boundary bit, cycle length, origin and
 /// destination valences, each capped to 21 bits), computed on demand. Cycle lengths are kept
 /// per face (a face dart's cycle is its face), and per dart only for boundary darts.
+#[derive(Default)]
 struct Keys {
     /// Per vertex: its valence; per face: its degree.
     valence: Vec<u32>,
@@ -612,8 +796,18 @@ struct Keys {
 }
 
 impl Keys {
+    #[cfg(test)]
     fn new(map: &Map) -> Keys {
-        let mut valence = vec![0u32; map.vdart.len()];
+        let mut keys = Keys::default();
+        keys.fill(map);
+        keys
+    }
+
+    /// The keys of `map`, in the arrays of the last map's.
+    fn fill(&mut self, map: &Map) {
+        let valence = &mut self.valence;
+        valence.clear();
+        valence.resize(map.vdart.len(), 0);
         for (&n, &v) in map.next.iter().zip(&map.vert) {
             if n != NONE {
                 if let Some(x) = valence.get_mut(v as usize) {
@@ -621,15 +815,14 @@ impl Keys {
                 }
             }
         }
-        let degree: Vec<u32> = (map.fdart.iter())
-            .map(|&d| {
-                if d == NONE {
-                    0
-                } else {
-                    cycle_len(map, d as usize)
-                }
-            })
-            .collect();
+        self.degree.clear();
+        self.degree.extend(map.fdart.iter().map(|&d| {
+            if d == NONE {
+                0
+            } else {
+                cycle_len(map, d as usize)
+            }
+        }));
         // A vertex with a boundary dart keeps one as its dart, so the vertices tell whether
         // there is a boundary (a quarter of the reads of a pass over the darts).
         let closed = !(map.vdart.iter()).any(|&d| map.face.get(d as usize) == Some(&NONE));
@@ -637,16 +830,10 @@ impl Keys {
             let mut values = (x.iter().zip(live)).filter(|p| *p.1 != NONE).map(|p| *p.0);
             values.next().is_none_or(|v| values.all(|w| w == v))
         };
-        let uniform = closed && one(&valence, &map.vdart) && one(&degree, &map.fdart);
-        Keys {
-            valence,
-            degree,
-            loops: if closed {
-                Vec::new()
-            } else {
-                boundary_loops(map)
-            },
-            uniform,
+        self.uniform = closed && one(&self.valence, &map.vdart) && one(&self.degree, &map.fdart);
+        self.loops.clear();
+        if !closed {
+            boundary_loops(map, &mut self.loops);
         }
     }
 
@@ -708,9 +895,11 @@ fn cycle_len(map: &Map, d0: usize) -> u32 {
     len
 }
 
-/// Per dart: the length of its boundary loop, 0 for a dart with a face.
-fn boundary_loops(map: &Map) -> Vec<u32> {
-    let mut loops = vec![0u32; map.next.len()];
+/// Per dart: the length of its boundary loop, 0 for a dart with a face (into `loops`,
+/// empty).
+fn boundary_loops(map: &Map, loops: &mut Vec<u32>) {
+    loops.clear();
+    loops.resize(map.next.len(), 0);
     for d0 in 0..map.next.len() {
         if map.next[d0] == NONE || map.face[d0] != NONE || loops[d0] != 0 {
             continue;
@@ -724,7 +913,6 @@ fn boundary_loops(map: &Map) -> Vec<u32> {
             d = map.next.get(d).map_or(d0, |&n| n as usize);
         }
     }
-    loops
 }
 
 /// The dart of `candidates` whose breadth-first numbering (the one of the canonical code,
@@ -1035,7 +1223,8 @@ mod tests {
         ];
         for map in &maps {
             let keys = Keys::new(map);
-            let loops = boundary_loops(map);
+            let mut loops = Vec::new();
+            boundary_loops(map, &mut loops);
             let live: Vec<usize> = (0..map.next.len())
                 .filter(|&d| map.next[d] != NONE)
                 .collect();
@@ -1090,8 +1279,10 @@ mod tests {
             maps.push(Map::from_polygons(2 * n * n, &polys).unwrap());
         }
         let mut checked = 0;
+        // One set of arrays for every map, as a workspace keeps them.
+        let mut kept = Buffers::default();
         for map in &maps {
-            let mut cz = Canonizer::new(map);
+            let mut cz = Canonizer::new(map, core::mem::take(&mut kept));
             assert_eq!(cz.code(), reference_code(map));
             for (starts, g) in &cz.found {
                 let mut seen = vec![false; g.len()];
@@ -1102,8 +1293,32 @@ mod tests {
                 }
                 checked += 1;
             }
+            kept = cz.buffers();
         }
         assert!(checked >= maps.len(), "only {checked} automorphisms found");
+    }
+
+    /// A second coding of a regular torus in the same arrays finds its automorphisms
+    /// again (their labels taken from the runs) and needs no new label array: the arrays
+    /// the first coding's automorphisms took came back as spares. Then a smaller map in them
+    /// codes as a fresh call does.
+    #[test]
+    fn a_workspace_gives_automorphisms_their_arrays_back() {
+        let torus = gen::torus_grid(12, 12).map;
+        let mut cz = Canonizer::new(&torus, Buffers::default());
+        let first = cz.code();
+        let found = cz.found.len();
+        assert!(found >= 2, "{found} automorphisms");
+        assert!(
+            cz.fresh >= 1,
+            "the first coding takes new labels after an automorphism"
+        );
+        let mut cz = Canonizer::new(&torus, cz.buffers());
+        assert_eq!(cz.code(), first);
+        assert_eq!((cz.found.len(), cz.fresh), (found, 0));
+        let small = gen::random_quad(40, 1, 1, 3).map;
+        let mut cz = Canonizer::new(&small, cz.buffers());
+        assert_eq!(cz.code(), reference_code(&small));
     }
 
     #[test]

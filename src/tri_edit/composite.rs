@@ -26,7 +26,7 @@ use super::triple::{
     cancel_triple_along_with, distance, generate_pair_v7_with, TripleCancel, Via7,
 };
 use super::{interior_of_valence, TriEditError};
-use crate::invariants::canonical::canonical_hash;
+use crate::invariants::canonical::CanonicalWorkspace;
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::{Refusal, Undo};
@@ -245,6 +245,8 @@ pub fn far_pair_directions(
             .ok_or(TriEditError::NotAPair)?,
     )?;
     let r = reference(map, s, o);
+    // One workspace for the probes' codes (one per dart of `s`, start and mover).
+    let mut codes = CanonicalWorkspace::new();
     let mut seen = Vec::new();
     let mut found = Vec::new();
     let mut d = r;
@@ -253,7 +255,7 @@ pub fn far_pair_directions(
             for moved in [Moved::First, Moved::Second] {
                 let mut probe = map.clone();
                 if move_far_pair(&mut probe, d, start, moved, o, max_steps).is_ok() {
-                    let h = canonical_hash(&probe);
+                    let h = codes.hash(&probe);
                     if !seen.contains(&h) {
                         seen.push(h);
                         found.push((d, start, moved));
