@@ -72,12 +72,13 @@ impl CanonicalCode {
 }
 
 /// The arrays of canonical coding, kept from one map to the next: for many codes of large
-/// maps. [`CanonicalCode::of`] allocates about seven dart-sized arrays per call, and on a
-/// large map their fresh pages cost about a third of its time (the 99,856-quad torus: 19 ms
-/// a call, 12 ms with a workspace; `docs/benchmarks.md`). The codes are the same.
+/// maps. [`CanonicalCode::of`] allocates its dart-sized arrays per call, and on a large map
+/// their fresh pages cost a quarter to a third of its time (the 99,856-quad torus: about
+/// 22 ms a call, 16 ms with a workspace; cut, 14 and 9.5 ms; `docs/benchmarks.md`). The codes
+/// are the same.
 ///
-/// The workspace holds what its largest map needed (about 28 bytes per dart, and 4 more per
-/// dart for each automorphism the coding found); [`CanonicalWorkspace::bytes`] says how much.
+/// The workspace holds what its largest map needed, about 35 bytes per dart on those tori;
+/// [`CanonicalWorkspace::bytes`] says how much.
 ///
 /// ```
 /// use zipmesh::{gen, invariants::canonical::{CanonicalCode, CanonicalWorkspace}};
