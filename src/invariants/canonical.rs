@@ -267,9 +267,10 @@ struct Run {
 
 impl Run {
     /// Ready for a map of `nd` dart slots, reusing the arrays of the last map: its labels
-    /// cleared (as [`Run::clear`] does), then the arrays sized.
+    /// cleared (as [`Run::clear`] does), then the arrays sized. Whether the labels needed a
+    /// new array.
     fn prepare(&mut self, nd: usize, spare: &mut Vec<Vec<u32>>) -> bool {
-        let fresh = self.restock(spare);
+        let fresh = self.restock(spare) || self.label.capacity() < nd;
         self.clear();
         self.label.resize(nd, NONE);
         room(&mut self.order, nd + 1);
@@ -308,17 +309,19 @@ impl Run {
         self.i = 0;
     }
 
-    /// Clears the last numbering and starts a new one at `s`.
-    fn start(&mut self, s: u32) {
+    /// Clears the last numbering and starts a new one at `s`. Whether the labels needed a
+    /// new array: only if an automorphism took them and [`Run::restock`] was not called.
+    fn start(&mut self, s: u32) -> bool {
         self.clear();
-        // An automorphism may have taken the labels (`Canonizer::automorphism`).
         let nd = self.order.len() - 1;
-        if self.label.len() != nd {
+        let fresh = self.label.len() != nd;
+        if fresh {
             self.label = vec![NONE; nd];
         }
         self.label[s as usize] = 0;
         self.order[0] = s;
         self.len = 1;
+        fresh
     }
 
     /// The walk state in locals, so that the hot loop keeps it in registers.
@@ -604,7 +607,7 @@ impl<'a> Canonizer<'a> {
         }
         let first = starts.get(0);
         let short = |r: &Run| r.i >= r.len && r.len < size;
-        self.best.start(first);
+        self.fresh += usize::from(self.best.start(first));
         room(&mut self.best.code, HEAD + 2 * size);
         self.spare.append(&mut self.orbits.gens);
         self.orbits.reset(starts.len());
@@ -687,7 +690,7 @@ impl<'a> Canonizer<'a> {
     /// `Better` the candidate gets its code so far, so it can take the best run's place.
     fn race(&mut self, s: u32, size: usize) -> Cmp {
         self.fresh += usize::from(self.cand.restock(&mut self.spare));
-        self.cand.start(s);
+        self.fresh += usize::from(self.cand.start(s));
         let links = &self.links;
         let (mut b, code) = self.best.walker();
         let (mut c, _) = self.cand.walker();
@@ -1317,9 +1320,31 @@ mod tests {
         let mut cz = Canonizer::new(&torus, cz.buffers());
         assert_eq!(cz.code(), first);
         assert_eq!((cz.found.len(), cz.fresh), (found, 0));
+        // Every array an automorphism took is a spare again, and no other.
+        let kept = cz.buffers();
+        assert_eq!(kept.spare.len(), found);
         let small = gen::random_quad(40, 1, 1, 3).map;
-        let mut cz = Canonizer::new(&small, cz.buffers());
+        let mut cz = Canonizer::new(&small, kept);
         assert_eq!(cz.code(), reference_code(&small));
+        // The public workspace reports what it holds.
+        let mut ws = CanonicalWorkspace::new();
+        assert_eq!(ws.code(&torus), &first);
+        assert_eq!(ws.hash(&torus), first.hash());
+        let shown = alloc::format!("{ws:?}");
+        assert_eq!(
+            shown,
+            alloc::format!("CanonicalWorkspace {{ bytes: {}, .. }}", ws.bytes())
+        );
+        assert!(
+            ws.bytes() >= 4 * 4 * torus.dart_slots(),
+            "two runs' labels and order"
+        );
+        let code = 4 * ws.code.0.capacity();
+        assert_eq!(ws.bytes(), ws.buffers.bytes() + code);
+        assert!(
+            code >= 4 * 2 * torus.dart_slots(),
+            "the code, two entries per dart"
+        );
     }
 
     #[test]
