@@ -757,11 +757,6 @@ fn memory_latency(bytes: usize, reps: usize) {
     );
 }
 
-/// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
-/// the same with 5 quads cut into triangles, in ns per face; each by [`CanonicalCode::of`]
-/// and (`_ws`) by a [`CanonicalWorkspace`] kept from one repetition to the next, used once
-/// before them (as Traces keeps its arrays between its runs). With the third argument
-/// `canonical`, only these rows are run.
 /// Writes `faces` over `nv` vertices (all at the origin) as an OFF file, for the peers'
 /// harnesses (`benches/peers/traces_canon.c`).
 fn write_off<F: AsRef<[u32]>>(path: &std::path::Path, nv: usize, faces: &[F]) {
@@ -778,6 +773,12 @@ fn write_off<F: AsRef<[u32]>>(path: &std::path::Path, nv: usize, faces: &[F]) {
     std::fs::write(path, s).expect("the OFF file is written");
 }
 
+/// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
+/// the same with 5 quads cut into triangles, in ns per face; each by [`CanonicalCode::of`]
+/// and (`_ws`) by a [`CanonicalWorkspace`] kept from one repetition to the next, used once
+/// before them (as Traces keeps its arrays between its runs). With the third argument
+/// `canonical`, only these rows are run; with a folder after it, the tori are also written
+/// there as OFF files for the peers' harnesses.
 fn canonical_rows(reps: usize, dump: Option<&str>) {
     for side in [32usize, 100, 316] {
         let q = zipmesh::gen::torus_quads(side, side);
