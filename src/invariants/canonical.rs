@@ -585,7 +585,8 @@ impl<'a> Canonizer<'a> {
         }
         let first = starts.get(0);
         let short = |r: &Run| r.i >= r.len && r.len < size;
-        self.fresh += usize::from(self.best.start(first));
+        // The best run's labels are never taken: its start needs no new array.
+        self.best.start(first);
         room(&mut self.best.code, HEAD + 2 * size);
         self.spare.append(&mut self.orbits.gens);
         self.orbits.reset(starts.len());
@@ -654,6 +655,7 @@ impl<'a> Canonizer<'a> {
         // Both runs numbered the component, so every start has an image; the fallback only
         // keeps a broken invariant from indexing out of range.
         let mut g = self.spare_array();
+        self.fresh += usize::from(g.capacity() < starts.len());
         let image = |c: u32| {
             let b = self.best.order.get(self.cand.label[c as usize] as usize)?;
             Some(self.pos[*b as usize]).filter(|&p| (p as usize) < starts.len())
@@ -1302,6 +1304,16 @@ mod tests {
         let small = gen::random_quad(40, 1, 1, 3).map;
         let mut cz = Canonizer::new(&small, kept);
         assert_eq!(cz.code(), reference_code(&small));
+        // A map whose start class is a list (two valences): its automorphisms' arrays come
+        // back too.
+        let cube = gen::cube(2).map;
+        let mut cz = Canonizer::new(&cube, cz.buffers());
+        let first_cube = cz.code();
+        let found = cz.found.len();
+        assert!(found >= 1, "{found} automorphisms of the cube");
+        let mut cz = Canonizer::new(&cube, cz.buffers());
+        assert_eq!(cz.code(), first_cube);
+        assert_eq!((cz.found.len(), cz.fresh), (found, 0));
         // The public workspace: the same code and hash; it shows its last code's length.
         let mut ws = CanonicalWorkspace::new();
         assert_eq!(ws.code(&torus), &first);
