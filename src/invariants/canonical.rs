@@ -467,7 +467,8 @@ struct Canonizer<'a> {
     /// Every automorphism found, with its start class (the tests check each one).
     #[cfg(test)]
     found: Vec<(Vec<u32>, Vec<u32>)>,
-    /// How many label arrays had to grow (none on a second call with the same workspace).
+    /// How many label or automorphism arrays were new (none on a second call with the same
+    /// workspace).
     fresh: usize,
 }
 
