@@ -407,71 +407,11 @@ fn base_quads(
     } else {
         0
     };
-    let mut hole_sites = Vec::with_capacity(holes);
-    let mut pool = Vec::new();
-    if genus == 0 {
-        // 2 (ab + bc + ca) = faces + the quads removed later.
-        let target = (faces + holes + n_collapse) / 2;
-        let lo = if holes > 0 { 5 } else { 1 };
-        let hi = (isqrt(target / 3) * 3 / 2).max(lo);
-        let (mut a, mut b) = (rng.range(lo, hi), rng.range(lo, hi));
-        if a * b + (a + b) * lo > target {
-            // Too small a request for random sides: the smallest box that fits.
-            (a, b) = (lo, lo);
-        }
-        let c = (target.saturating_sub(a * b) + (a + b) / 2) / (a + b);
-        let mut dims = [a, b, c.max(lo)];
-        while box_sites(dims) < holes {
-            let k = (0..3).min_by_key(|&k| dims[k]).unwrap_or(0);
-            dims[k] += 4;
-        }
-        let mut sites = add_box(&mut s, dims, rng);
-        hole_sites.extend(sites.drain(sites.len().saturating_sub(holes)..));
-        pool = sites;
+    let (hole_sites, pool) = if genus == 0 {
+        sphere_box(&mut s, faces + holes + n_collapse, holes, rng)
     } else {
-        let mut holes_on = vec![0usize; genus];
-        for _ in 0..holes {
-            holes_on[rng.below(genus)] += 1;
-        }
-        // Every gluing removes two quads, every hole and collapse one.
-        let mut remaining = faces + 2 * (genus - 1) + holes + n_collapse;
-        let mut glue_prev = Vec::with_capacity(genus);
-        let mut glue_next = Vec::with_capacity(genus);
-        for (t, &h) in holes_on.iter().enumerate() {
-            let left = genus - t;
-            let share = if left == 1 {
-                remaining
-            } else {
-                remaining / left * rng.range(50, 150) / 100
-            };
-            let hi = isqrt(share).saturating_mul(2).min(share / 4).max(4);
-            let nx = rng.range(4, hi);
-            let mut ny = ((share + nx / 2) / nx).max(4);
-            let mut nx = nx;
-            let need = usize::from(t > 0) + usize::from(t + 1 < genus) + h;
-            while (nx / 4) * (ny / 4) < need {
-                if nx <= ny {
-                    nx += 4;
-                } else {
-                    ny += 4;
-                }
-            }
-            remaining = remaining.saturating_sub(nx * ny);
-            let offset = DVec3::new(6.0 * t as f64, 0.0, 0.0);
-            let mut sites = add_torus(&mut s, nx, ny, offset, rng);
-            // `need` sites exist, so these pops succeed; `unwrap_or` keeps the code total.
-            glue_prev.push(if t > 0 { sites.pop() } else { None });
-            glue_next.push(if t + 1 < genus { sites.pop() } else { None });
-            hole_sites.extend(sites.drain(sites.len().saturating_sub(h)..));
-            pool.extend(sites);
-        }
-        for t in 1..genus {
-            if let (Some(f), Some(g)) = (glue_next[t - 1], glue_prev[t]) {
-                glue(&mut s, f, g, rng.below(4));
-            }
-        }
-        shuffle(&mut pool, rng);
-    }
+        chained_tori(&mut s, faces + holes + n_collapse, genus, holes, rng)
+    };
     for &f in &hole_sites {
         s.alive[f] = false;
     }
@@ -483,6 +423,86 @@ fn base_quads(
         s.merge(keep, gone);
     }
     s.finish()
+}
+
+/// Genus 0: the surface of a box of about `quads` quads (the faces asked for plus those
+/// the holes and collapses remove) with room for `holes` hole sites; returns the hole
+/// sites and the other sites (for the collapses).
+fn sphere_box(s: &mut Soup, quads: usize, holes: usize, rng: &mut Rng) -> (Vec<usize>, Vec<usize>) {
+    // 2 (ab + bc + ca) = faces + the quads removed later.
+    let target = quads / 2;
+    let lo = if holes > 0 { 5 } else { 1 };
+    let hi = (isqrt(target / 3) * 3 / 2).max(lo);
+    let (mut a, mut b) = (rng.range(lo, hi), rng.range(lo, hi));
+    if a * b + (a + b) * lo > target {
+        // Too small a request for random sides: the smallest box that fits.
+        (a, b) = (lo, lo);
+    }
+    let c = (target.saturating_sub(a * b) + (a + b) / 2) / (a + b);
+    let mut dims = [a, b, c.max(lo)];
+    while box_sites(dims) < holes {
+        let k = (0..3).min_by_key(|&k| dims[k]).unwrap_or(0);
+        dims[k] += 4;
+    }
+    let mut sites = add_box(s, dims, rng);
+    let hole_sites = sites.drain(sites.len().saturating_sub(holes)..).collect();
+    (hole_sites, sites)
+}
+
+/// Genus `genus` (at least 1): a chain of tori glued end to end, about `quads` quads in
+/// all before the gluings, the holes spread over them at random; returns the hole sites
+/// and the other sites, shuffled (for the collapses).
+fn chained_tori(
+    s: &mut Soup,
+    quads: usize,
+    genus: usize,
+    holes: usize,
+    rng: &mut Rng,
+) -> (Vec<usize>, Vec<usize>) {
+    let mut holes_on = vec![0usize; genus];
+    for _ in 0..holes {
+        holes_on[rng.below(genus)] += 1;
+    }
+    // Every gluing removes two quads.
+    let mut remaining = quads + 2 * (genus - 1);
+    let (mut hole_sites, mut pool) = (Vec::with_capacity(holes), Vec::new());
+    let mut glue_prev = Vec::with_capacity(genus);
+    let mut glue_next = Vec::with_capacity(genus);
+    for (t, &h) in holes_on.iter().enumerate() {
+        let left = genus - t;
+        let share = if left == 1 {
+            remaining
+        } else {
+            remaining / left * rng.range(50, 150) / 100
+        };
+        let hi = isqrt(share).saturating_mul(2).min(share / 4).max(4);
+        let nx = rng.range(4, hi);
+        let mut ny = ((share + nx / 2) / nx).max(4);
+        let mut nx = nx;
+        let need = usize::from(t > 0) + usize::from(t + 1 < genus) + h;
+        while (nx / 4) * (ny / 4) < need {
+            if nx <= ny {
+                nx += 4;
+            } else {
+                ny += 4;
+            }
+        }
+        remaining = remaining.saturating_sub(nx * ny);
+        let offset = DVec3::new(6.0 * t as f64, 0.0, 0.0);
+        let mut sites = add_torus(s, nx, ny, offset, rng);
+        // `need` sites exist, so these pops succeed; `unwrap_or` keeps the code total.
+        glue_prev.push(if t > 0 { sites.pop() } else { None });
+        glue_next.push(if t + 1 < genus { sites.pop() } else { None });
+        hole_sites.extend(sites.drain(sites.len().saturating_sub(h)..));
+        pool.extend(sites);
+    }
+    for t in 1..genus {
+        if let (Some(f), Some(g)) = (glue_next[t - 1], glue_prev[t]) {
+            glue(s, f, g, rng.below(4));
+        }
+    }
+    shuffle(&mut pool, rng);
+    (hole_sites, pool)
 }
 
 /// Removes quads `f` and `g` and glues their holes: corner `i` of `f` meets corner

@@ -30,6 +30,57 @@ pub fn spring_stiffness(sum: usize) -> f64 {
     }
 }
 
+/// `mesh`'s faces as triangles, each fanned from its first corner (corners without a
+/// position at the origin); faces of fewer than three corners give none.
+fn fan_triangles(mesh: &Mesh) -> Vec<[DVec3; 3]> {
+    let at = |v: Vert| {
+        mesh.positions
+            .get(v.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    };
+    // Two triangles per quad: one allocation for a quad mesh.
+    let mut triangles = Vec::with_capacity(2 * mesh.map.num_faces());
+    // Each face as a fan from its first corner, read as the walk goes (no list per face).
+    for f in mesh.map.faces() {
+        let mut corners = mesh.map.face_darts(f).map(|d| at(mesh.map.origin(d)));
+        let (Some(first), Some(mut last)) = (corners.next(), corners.next()) else {
+            continue;
+        };
+        for p in corners {
+            triangles.push([first, last, p]);
+            last = p;
+        }
+    }
+    triangles
+}
+
+/// The cell size and the cells per axis of a grid over a box of `extent` holding `n`
+/// triangles: about two triangles per cell along the surface, at most 256 cells per axis
+/// and about two cells per triangle in all (a volume-filling box of a dense surface would
+/// otherwise ask for 256^3 cells).
+fn grid_shape(extent: DVec3, n: usize) -> (f64, [usize; 3]) {
+    let mut cell = libm::sqrt(
+        (extent.x * extent.y + extent.y * extent.z + extent.z * extent.x) / n as f64 * 2.0,
+    )
+    .max(extent.max_element() / 256.0);
+    let dim = |e: f64, cell: f64| ((e / cell) as usize + 1).min(256);
+    let dims_at = |cell: f64| {
+        [
+            dim(extent.x, cell),
+            dim(extent.y, cell),
+            dim(extent.z, cell),
+        ]
+    };
+    let budget = 2 * n + 64;
+    let mut dims = dims_at(cell);
+    while dims[0] * dims[1] * dims[2] > budget {
+        cell *= 1.25;
+        dims = dims_at(cell);
+    }
+    (cell, dims)
+}
+
 /// Surfaces of at most this many triangles are searched whole: below it one pass over the
 /// triangles costs less than the shells of cells (measured on the `tri_optimize` fuzz
 /// target's meshes of 12 to 60 triangles, docs/fuzzing.md).
@@ -66,25 +117,7 @@ impl Surface {
     ///
     /// See [`Surface`] for an example.
     pub fn new(mesh: &Mesh) -> Self {
-        let at = |v: Vert| {
-            mesh.positions
-                .get(v.index())
-                .copied()
-                .unwrap_or(DVec3::ZERO)
-        };
-        // Two triangles per quad: one allocation for a quad mesh.
-        let mut triangles = Vec::with_capacity(2 * mesh.map.num_faces());
-        // Each face as a fan from its first corner, read as the walk goes (no list per face).
-        for f in mesh.map.faces() {
-            let mut corners = mesh.map.face_darts(f).map(|d| at(mesh.map.origin(d)));
-            let (Some(first), Some(mut last)) = (corners.next(), corners.next()) else {
-                continue;
-            };
-            for p in corners {
-                triangles.push([first, last, p]);
-                last = p;
-            }
-        }
+        let triangles = fan_triangles(mesh);
         let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for t in &triangles {
             for p in t {
@@ -103,31 +136,7 @@ impl Surface {
                 cells: vec![Vec::new()],
             };
         }
-        let extent = (max - min).max(DVec3::splat(1e-9));
-        // About two triangles per cell along the surface.
-        let cell = libm::sqrt(
-            (extent.x * extent.y + extent.y * extent.z + extent.z * extent.x)
-                / triangles.len() as f64
-                * 2.0,
-        )
-        .max(extent.max_element() / 256.0);
-        let dim = |e: f64, cell: f64| ((e / cell) as usize + 1).min(256);
-        let dims_at = |cell: f64| {
-            [
-                dim(extent.x, cell),
-                dim(extent.y, cell),
-                dim(extent.z, cell),
-            ]
-        };
-        // At most about two cells per triangle: a volume-filling box of a dense surface
-        // would otherwise ask for 256^3 cells.
-        let budget = 2 * triangles.len() + 64;
-        let mut cell = cell;
-        let mut dims = dims_at(cell);
-        while dims[0] * dims[1] * dims[2] > budget {
-            cell *= 1.25;
-            dims = dims_at(cell);
-        }
+        let (cell, dims) = grid_shape((max - min).max(DVec3::splat(1e-9)), triangles.len());
         let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
         let mut s = Surface {
             triangles: Vec::new(),

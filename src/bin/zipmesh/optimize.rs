@@ -10,8 +10,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 use zipmesh::io;
 use zipmesh::optimize::{
-    optimize, optimize_triangles, Constraints, OptimizeOptions, SingularityCounts, TriCounts,
-    TriOptimizeOptions,
+    optimize, optimize_triangles, BatchReport, Constraints, OptimizeOptions, SingularityCounts,
+    TriCounts, TriOptimizeOptions,
 };
 use zipmesh::{Face, Mesh, Vert};
 
@@ -282,6 +282,48 @@ fn summary(c: &SingularityCounts) -> String {
     )
 }
 
+/// The quad optimizer's options from the command line.
+fn quad_options(args: &OptimizeArgs) -> OptimizeOptions {
+    let mut options = OptimizeOptions::default()
+        .batches(args.batches)
+        .seed(args.seed)
+        .smoothing(!args.no_smooth)
+        .chains(!args.no_chains)
+        .fold_guard(args.fold_guard);
+    for (name, w) in &args.weights {
+        options = options.weight(name, *w);
+    }
+    options
+}
+
+/// One batch's JSON row; `seconds` is the batch's time.
+fn batch_row(b: &BatchReport, seconds: f64, with_paths: bool) -> Value {
+    let mut row = counts(&b.counts);
+    row.insert("batch".into(), json!(b.batch));
+    // The batch's Q-zips and face change include the kept chains' (broken down under
+    // "chains"), so they add up to the counts from row to row.
+    row.insert("qzips".into(), json!(b.qzips + b.chains.qzips));
+    row.insert("candidates".into(), json!(b.candidates));
+    row.insert(
+        "chains".into(),
+        json!({"tried": b.chains.tried, "cancelled": b.chains.cancelled, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
+    );
+    let faces = b.stats.face_change + b.chains.face_change;
+    row.insert("face_change".into(), json!(faces));
+    row.insert("score".into(), json!(b.score));
+    row.insert("smoothed".into(), json!(b.smoothed));
+    row.insert("seconds".into(), json!(seconds));
+    if with_paths {
+        let paths: Vec<Vec<[f64; 3]>> = b
+            .paths
+            .iter()
+            .map(|p| p.iter().map(|x| x.to_array()).collect())
+            .collect();
+        row.insert("paths".into(), json!(paths));
+    }
+    Value::Object(row)
+}
+
 pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     let (mut mesh, _) = io::read_mesh(&args.file)?;
     let name = out::escape(&args.file.display().to_string());
@@ -302,45 +344,13 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         )));
     }
     let c = constraints(&args, &mesh)?;
-    let mut options = OptimizeOptions::default()
-        .batches(args.batches)
-        .seed(args.seed)
-        .smoothing(!args.no_smooth)
-        .chains(!args.no_chains)
-        .fold_guard(args.fold_guard);
-    for (name, w) in &args.weights {
-        options = options.weight(name, *w);
-    }
     let bar = progress(args.batches);
     let start = Instant::now();
     let mut last = Instant::now();
     let mut rows = Vec::new();
-    let outcome = optimize(&mut mesh, c, options, |b| {
-        let mut row = counts(&b.counts);
-        row.insert("batch".into(), json!(b.batch));
-        // The batch's Q-zips and face change include the kept chains' (broken down under
-        // "chains"), so they add up to the counts from row to row.
-        row.insert("qzips".into(), json!(b.qzips + b.chains.qzips));
-        row.insert("candidates".into(), json!(b.candidates));
-        row.insert(
-            "chains".into(),
-            json!({"tried": b.chains.tried, "cancelled": b.chains.cancelled, "kept": b.chains.kept, "qzips": b.chains.qzips, "face_change": b.chains.face_change}),
-        );
-        let faces = b.stats.face_change + b.chains.face_change;
-        row.insert("face_change".into(), json!(faces));
-        row.insert("score".into(), json!(b.score));
-        row.insert("smoothed".into(), json!(b.smoothed));
-        row.insert("seconds".into(), json!(last.elapsed().as_secs_f64()));
-        if args.paths {
-            let paths: Vec<Vec<[f64; 3]>> = b
-                .paths
-                .iter()
-                .map(|p| p.iter().map(|x| x.to_array()).collect())
-                .collect();
-            row.insert("paths".into(), json!(paths));
-        }
+    let outcome = optimize(&mut mesh, c, quad_options(&args), |b| {
+        rows.push(batch_row(b, last.elapsed().as_secs_f64(), args.paths));
         last = Instant::now();
-        rows.push(Value::Object(row));
         if let Some(bar) = &bar {
             bar.set_position(b.batch as u64);
             bar.set_message(summary(&b.counts));
