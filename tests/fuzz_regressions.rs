@@ -120,3 +120,48 @@ fn the_torus_loop_regression_wraps() {
     assert!(wraps(&c.original, &c.path), "{}", c.path);
     assert!(one_quad_sweeps(&c.original, &c.path).is_empty());
 }
+
+/// The input found by a 12-minute `qzip_homotopy` run (session 25): on an 8 x 10 grid with
+/// two vertex splits, `LC` along `37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46` (which ends
+/// round the quad `47 56 55 46`, shortened by the end rule) and along its sweep across the
+/// regular quad `47 48 57 56` differed: the end rule shortened the first path only. Now the
+/// sweep is straightened before the end rule, and every movement done along the path and
+/// along each of its sweeps gives the same map (labels matched by `start_turn`).
+#[test]
+fn the_sweep_before_the_end_turn_regression_gives_one_map() {
+    use zipmesh::qzip::{one_quad_sweeps, start_turn};
+    let data = regression("qzip_homotopy", "sweep-before-the-end-turn");
+    let c = qzip_case::case(&data).unwrap();
+    assert_eq!(
+        c.path.to_string(),
+        "37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46"
+    );
+    let run = |p, t| {
+        let mut m = c.original.clone();
+        Qzip::new()
+            .zip_along(&mut m, p, t)
+            .ok()
+            .map(|_| CanonicalCode::of(&m))
+    };
+    let sweeps = one_quad_sweeps(&c.original, &c.path);
+    let mut compared = 0;
+    for (_, swept) in &sweeps {
+        let k = start_turn(&c.original, &c.path, swept).unwrap();
+        for t in Tag::CCW {
+            if let (Some(a), Some(b)) = (run(&c.path, t), run(swept, t.turned(k))) {
+                assert!(
+                    a == b,
+                    "{t} along {} and {} along {swept}",
+                    c.path,
+                    t.turned(k)
+                );
+                compared += 1;
+            }
+        }
+    }
+    // The failing pair (LC along the sweep across 47 48 57 56) is among them.
+    assert!(sweeps
+        .iter()
+        .any(|(_, s)| s.to_string().contains("47 -> 48 -> 57 -> 56")));
+    assert!(compared >= 1, "no movement done on both sides");
+}

@@ -20,7 +20,9 @@
 //! Before the end rule, a path that reaches the terminal singularity by going round a quad
 //! that touches it (`a -> b -> c -> end`, `a` and `end` joined by the quad's fourth side) is
 //! shortened to `a -> end` (a homotopy across that quad; the hand along `a -> end` is the
-//! hand along the parallel side `b -> c`). After the adjustments, edges crossed twice in
+//! hand along the parallel side `b -> c`); a path swept round a regular quad just before that
+//! U-turn (`p -> x -> y -> b -> c -> end`, `p x y b` a quad) is first straightened to
+//! `p -> b`, so that it is shortened the same way. After the adjustments, edges crossed twice in
 //! opposite directions (`a -> b -> a`) cancel in pairs, keeping the compass unchanged: the
 //! surviving vertex takes the hand of the edge that leaves the fold; loops that go round one
 //! quad with regular corners (`a -> x -> y -> z -> a`) are cut the same way. If a v3 start's
@@ -372,6 +374,24 @@ fn repeated(v: &[Vert]) -> Option<Vert> {
     sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
 }
 
+/// The dart `a -> d` if `a -> b -> c -> d` goes round one quad (its fourth side joins `d`
+/// to `a`) whose corners `b` and `c` are regular.
+fn round_regular_quad(map: &Map, [a, b, c, d]: [Vert; 4]) -> Option<Dart> {
+    // Not a path dart: the quad's fourth side, looked up in the map.
+    let side = map.dart_between(a, d)?;
+    let quad = [side, side.twin()].iter().any(|&x| {
+        map.face(x).is_some_and(|f| {
+            map.degree(f) == 4
+                && map
+                    .face_darts(f)
+                    .map(|y| map.origin(y))
+                    .all(|w| [a, b, c, d].contains(&w))
+        })
+    });
+    let regular = |w: Vert| is_regular_interior(map, MeshKind::Quad, w);
+    (quad && regular(b) && regular(c)).then_some(side)
+}
+
 /// Vertices the end rules may add to a draft beyond the plan's (two at each end).
 const SLACK: usize = 4;
 
@@ -469,29 +489,46 @@ impl Draft {
             return;
         }
         let m = v.len() - 1;
-        let (a, b, c, e) = (v[m - 3], v[m - 2], v[m - 1], v[m]);
-        // Not a path dart: the quad's fourth side, looked up in the map.
-        let Some(side) = map.dart_between(a, e) else {
+        if self.noops[m - 3] {
             return;
-        };
-        let quad = [side, side.twin()].iter().any(|&x| {
-            map.face(x).is_some_and(|f| {
-                map.degree(f) == 4
-                    && map
-                        .face_darts(f)
-                        .map(|y| map.origin(y))
-                        .all(|w| [a, b, c, e].contains(&w))
-            })
-        });
-        let regular = |w: Vert| is_regular_interior(map, MeshKind::Quad, w);
-        if quad && regular(b) && regular(c) && !self.noops[m - 3] {
-            self.hands[m - 3] = self.hands[m - 2];
-            self.darts[m - 3] = side;
-            self.vertices.drain(m - 2..m);
-            self.darts.drain(m - 2..m);
-            self.hands.drain(m - 2..m);
-            self.noops.drain(m - 2..m);
         }
+        if let Some(side) = round_regular_quad(map, [v[m - 3], v[m - 2], v[m - 1], v[m]]) {
+            self.cut_round_quad(m - 3, side);
+        }
+    }
+
+    /// A path swept round a regular quad just before the U-turn that
+    /// [`Draft::shorten_round_quad_end`] shortens (`p -> x -> y -> b -> c -> end`, with
+    /// `[p, x, y, b]` and `[p, b, c, end]` quads and `x`, `y`, `b`, `c` regular) is
+    /// straightened to `p -> b` (the hand along `x -> y`, the parallel side), so that the end
+    /// rule then shortens it to `p -> end` as it shortens the path it was swept from; again
+    /// while the pattern holds. Found by the `qzip_homotopy` fuzz target (`docs/qzip.md`).
+    fn straighten_before_end_quad(&mut self, map: &Map) {
+        while self.vertices.len() >= 6 {
+            let v = &self.vertices;
+            let m = v.len() - 1;
+            let (p, b) = (v[m - 5], v[m - 2]);
+            let end_turn = round_regular_quad(map, [p, b, v[m - 1], v[m]]).is_some();
+            let swept = round_regular_quad(map, [p, v[m - 4], v[m - 3], b]);
+            let (Some(side), true) = (swept, end_turn) else {
+                return;
+            };
+            if self.noops[m - 5..=m - 3].iter().any(|&n| n) {
+                return;
+            }
+            self.cut_round_quad(m - 5, side);
+        }
+    }
+
+    /// Replaces `v[i] -> x -> y -> v[i + 3]` by `side` (`v[i] -> v[i + 3]`), which takes the
+    /// hand along `x -> y`, the parallel side.
+    fn cut_round_quad(&mut self, i: usize, side: Dart) {
+        self.hands[i] = self.hands[i + 1];
+        self.darts[i] = side;
+        self.vertices.drain(i + 1..i + 3);
+        self.darts.drain(i + 1..i + 3);
+        self.hands.drain(i + 1..i + 3);
+        self.noops.drain(i + 1..i + 3);
     }
 
     /// The end rule of Sec. 2.6 for the compass arriving with `arriving`; `index` is the end's
@@ -650,6 +687,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     let initial = plan.initial();
     let (from, to) = (steps[0].vertex, steps[steps.len() - 1].vertex);
     let start = draft.adjust_start(map, initial)?;
+    draft.straighten_before_end_quad(map);
     draft.shorten_round_quad_end(map);
     let arriving = draft.hands[draft.hands.len() - 1];
     let end = draft.adjust_end(map, steps.len() - 1, arriving)?;
@@ -788,6 +826,39 @@ mod tests {
         assert_eq!(dr.vertices, [e, a]);
         assert_eq!((dr.darts.len(), dr.hands.len()), (1, 1));
         assert_eq!(dr.noops, [true]);
+    }
+
+    /// A path swept round a regular quad just before the end's U-turn is straightened there
+    /// (the parallel side's hand), and the end rule then shortens it as it shortens the path
+    /// it was swept from; without the U-turn, or with a no-op on the quad, it is kept.
+    #[test]
+    fn a_sweep_before_the_end_turn_is_straightened() {
+        let map = gen::grid(6, 6).map;
+        // 16 -> 17 -> 24 -> 23 goes round the end's quad; 16 -> 9 -> 10 -> 17 round the
+        // quad on the other side of 16 -> 17.
+        let [p, x, y, b, c, e] = [16u32, 9, 10, 17, 24, 23].map(Vert::new);
+        let mut dr = draft(&map, &[p, x, y, b, c, e], &HANDS[..5]);
+        dr.noops[0] = false;
+        dr.straighten_before_end_quad(&map);
+        assert_eq!(dr.vertices, [p, b, c, e]);
+        assert_eq!(dr.darts[0], map.dart_between(p, b).unwrap());
+        assert_eq!(dr.hands, [HANDS[1], HANDS[3], HANDS[4]]);
+        assert_eq!(dr.noops, [false; 3]);
+        dr.shorten_round_quad_end(&map);
+        assert_eq!(
+            (dr.vertices.as_slice(), dr.hands.as_slice()),
+            (&[p, e][..], &HANDS[3..4])
+        );
+        // The same sweep before a straight end (b -> c -> 25 bounds no quad with p).
+        let straight = [p, x, y, b, c, Vert::new(25)];
+        let mut dr = draft(&map, &straight, &HANDS[..5]);
+        dr.noops[0] = false;
+        dr.straighten_before_end_quad(&map);
+        assert_eq!(dr.vertices, straight);
+        // A no-op where the sweep starts keeps it.
+        let mut dr = draft(&map, &[p, x, y, b, c, e], &HANDS[..5]);
+        dr.straighten_before_end_quad(&map);
+        assert_eq!(dr.vertices.len(), 6);
     }
 
     /// A path that goes round one quad to the end is shortened across it; three edges whose
