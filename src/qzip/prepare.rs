@@ -855,10 +855,13 @@ mod tests {
         dr.noops[0] = false;
         dr.straighten_before_end_quad(&map);
         assert_eq!(dr.vertices, straight);
-        // A no-op where the sweep starts keeps it.
-        let mut dr = draft(&map, &[p, x, y, b, c, e], &HANDS[..5]);
-        dr.straighten_before_end_quad(&map);
-        assert_eq!(dr.vertices.len(), 6);
+        // A no-op where the sweep starts, or on its far side, keeps it.
+        for i in [0, 2] {
+            let mut dr = draft(&map, &[p, x, y, b, c, e], &HANDS[..5]);
+            (dr.noops[0], dr.noops[i]) = (false, true);
+            dr.straighten_before_end_quad(&map);
+            assert_eq!(dr.vertices.len(), 6, "no-op at {i}");
+        }
     }
 
     /// A path that goes round one quad to the end is shortened across it; three edges whose
@@ -880,6 +883,12 @@ mod tests {
         let mut dr = draft(&map, &[a, b, c, e], &HANDS[..3]);
         dr.shorten_round_quad_end(&map);
         assert_eq!(dr.vertices.len(), 4);
+        // So does a quad with a boundary corner: 13 -> 7 -> 6 -> 12 (6 on the boundary).
+        let round = [13u32, 7, 6, 12].map(Vert::new);
+        let mut dr = draft(&map, &round, &HANDS[..3]);
+        dr.noops[0] = false;
+        dr.shorten_round_quad_end(&map);
+        assert_eq!(dr.vertices, round);
         let torus = gen::torus_grid(4, 8).map;
         let d = (0..4)
             .map(|k| {
