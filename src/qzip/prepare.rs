@@ -849,6 +849,13 @@ mod tests {
             (dr.vertices.as_slice(), dr.hands.as_slice()),
             (&[p, e][..], &HANDS[3..4])
         );
+        // One vertex more in front (15), so that the sweep is not at the path's start.
+        let q = Vert::new(15);
+        let mut dr = draft(&map, &[q, p, x, y, b, c, e], &HANDS[..6]);
+        dr.straighten_before_end_quad(&map);
+        dr.shorten_round_quad_end(&map);
+        assert_eq!(dr.vertices, [q, p, e]);
+        assert_eq!(dr.hands, [HANDS[0], HANDS[4]]);
         // The same sweep before a straight end (b -> c -> 25 bounds no quad with p).
         let straight = [p, x, y, b, c, Vert::new(25)];
         let mut dr = draft(&map, &straight, &HANDS[..5]);
