@@ -44,7 +44,7 @@ use alloc::vec::Vec;
 use core::fmt;
 
 use super::compass::{Plan, Tag};
-use super::quad::{bounds_one_quad, side_quad, SideQuad};
+use super::quad::{bounds_one_quad, quad_on_edge, side_quad, SideQuad};
 use crate::invariants::{is_regular_interior, MeshKind};
 use crate::{Dart, Map, Vert};
 
@@ -377,19 +377,9 @@ fn repeated(v: &[Vert]) -> Option<Vert> {
 /// The dart `a -> d` if `a -> b -> c -> d` goes round one quad (its fourth side joins `d`
 /// to `a`) whose corners `b` and `c` are regular.
 fn round_regular_quad(map: &Map, [a, b, c, d]: [Vert; 4]) -> Option<Dart> {
-    // Not a path dart: the quad's fourth side, looked up in the map.
-    let side = map.dart_between(a, d)?;
-    let quad = [side, side.twin()].iter().any(|&x| {
-        map.face(x).is_some_and(|f| {
-            map.degree(f) == 4
-                && map
-                    .face_darts(f)
-                    .map(|y| map.origin(y))
-                    .all(|w| [a, b, c, d].contains(&w))
-        })
-    });
     let regular = |w: Vert| is_regular_interior(map, MeshKind::Quad, w);
-    (quad && regular(b) && regular(c)).then_some(side)
+    // Not a path dart: the quad's fourth side, looked up in the map.
+    quad_on_edge(map, a, d, [a, b, c, d]).filter(|_| regular(b) && regular(c))
 }
 
 /// Vertices the end rules may add to a draft beyond the plan's (two at each end).

@@ -14,14 +14,19 @@ pub(super) fn bounds_one_quad(map: &Map, ring: [Vert; 4], ends: [Vert; 2], regul
             && !ends.contains(&w)
             && (!regular || is_regular_interior(map, MeshKind::Quad, w))
     };
-    ring[1..].iter().all(|&w| ok(w))
-        && map.dart_between(ring[0], ring[1]).is_some_and(|d| {
-            [d, d.twin()].iter().any(|&x| {
-                map.face(x).is_some_and(|f| {
-                    map.degree(f) == 4 && map.face_darts(f).all(|y| ring.contains(&map.origin(y)))
-                })
+    ring[1..].iter().all(|&w| ok(w)) && quad_on_edge(map, ring[0], ring[1], ring).is_some()
+}
+
+/// The dart `a -> b` if a quad on either side of the edge `a`-`b` has all its corners among
+/// `corners`.
+pub(super) fn quad_on_edge(map: &Map, a: Vert, b: Vert, corners: [Vert; 4]) -> Option<Dart> {
+    map.dart_between(a, b).filter(|&d| {
+        [d, d.twin()].iter().any(|&x| {
+            map.face(x).is_some_and(|f| {
+                map.degree(f) == 4 && map.face_darts(f).all(|y| corners.contains(&map.origin(y)))
             })
         })
+    })
 }
 
 /// The quad on one side of a dart `d: a -> b`, as its three other sides read from `a` to `b`.
