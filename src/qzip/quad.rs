@@ -76,3 +76,33 @@ pub(super) fn side_quad(map: &Map, d: Dart, left: bool) -> Option<SideQuad> {
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gen;
+
+    /// A walk round one quad bounds it; a straight 4-cycle round a thin torus does not; a
+    /// corner that is an end, or irregular when regular corners are asked for, refuses it.
+    #[test]
+    fn one_quad_is_bounded_only_by_its_own_corners() {
+        let v = |i: u32| Vert::new(i);
+        let grid = gen::grid(5, 5).map; // 6 vertices a row
+        let ring = [v(7), v(8), v(14), v(13)];
+        assert!(bounds_one_quad(&grid, ring, [v(0), v(35)], true));
+        assert!(
+            !bounds_one_quad(&grid, ring, [v(14), v(35)], true),
+            "an end"
+        );
+        // 6 is on the boundary: refused when regular corners are asked for.
+        let edge = [v(13), v(7), v(6), v(12)];
+        assert!(!bounds_one_quad(&grid, edge, [v(0), v(35)], true));
+        assert!(bounds_one_quad(&grid, edge, [v(0), v(35)], false));
+        // A row of the 4 x 4 torus closes after four edges without bounding a quad.
+        let torus = gen::torus_grid(4, 4).map;
+        let row = [v(0), v(1), v(2), v(3)];
+        assert!(torus.dart_between(v(3), v(0)).is_some());
+        assert!(!bounds_one_quad(&torus, row, [v(5), v(10)], false));
+        assert_eq!(quad_on_edge(&torus, v(0), v(1), row), None);
+    }
+}
