@@ -1,6 +1,6 @@
 //! Criterion benches of the kernel: build per face, check per dart, canonical code per face,
 //! on the 1000 x 1000 torus, the same torus with a few quads cut into triangles, and the
-//! largest mesh in `../shared/data/`. Numbers go to `docs/benchmarks.md`.
+//! largest mesh in `tests/data/`. Numbers go to `docs/benchmarks.md`.
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use zipmesh::invariants::canonical::CanonicalCode;
@@ -41,7 +41,7 @@ fn inputs() -> Vec<(String, usize, Vec<Vec<u32>>)> {
     ];
     let largest = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/quad/blub_quadrangulated.obj"
+        "/tests/data/quad/blub_quadrangulated.obj"
     );
     if let Ok((mesh, _)) = zipmesh::io::read_mesh(largest) {
         out.push((

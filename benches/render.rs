@@ -11,7 +11,7 @@ use zipmesh::{gen, io, Mesh};
 
 fn meshes() -> Vec<(&'static str, Mesh)> {
     let spot =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/spot_quadrangulated.obj");
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/spot_quadrangulated.obj");
     let mut out = vec![("sphere 3840 quads", gen::subdivided_icosahedron(4))];
     if let Ok((mesh, _)) = io::read_mesh(spot) {
         out.insert(0, ("spot 2928 quads", mesh));

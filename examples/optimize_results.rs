@@ -77,7 +77,7 @@ type Input = (String, String, Box<dyn Fn() -> Option<Mesh>>);
 
 /// The rows by name.
 fn inputs() -> Vec<Input> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
     let file = move |f: &str| io::read_mesh(format!("{dir}/{f}")).ok().map(|m| m.0);
     let mut rows: Vec<Input> = Vec::new();
     for g in [2, 3, 4] {
@@ -145,7 +145,7 @@ fn constraint_rows() {
         }
         c
     });
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
     let spikes = io::read_mesh(format!("{dir}/quad/cubespikes.obj"))
         .unwrap()
         .0;

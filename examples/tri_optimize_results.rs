@@ -46,7 +46,7 @@ fn main() {
         "| mesh | faces | irregular | left | batches | flips / cancellations / look-aheads / pair moves / far pair moves | s |"
     );
     println!("|---|---|---|---|---|---|---|");
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tri");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
         .unwrap_or_default();

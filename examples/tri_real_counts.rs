@@ -1,7 +1,7 @@
 //! The semantic triangle edits on every start of the shared triangle meshes:
 //! `cargo run --release --example tri_real_counts`.
 //!
-//! For each mesh of `../shared/data/tri/`, runs the sweeps of `tests/common/tri_sweep.rs`
+//! For each mesh of `tests/data/tri/`, runs the sweeps of `tests/common/tri_sweep.rs`
 //! (every adjacent interior 5-7 pair x six directions; every regular interior vertex x dart
 //! x 5-5-7-7 configuration; every interior v5 x dart x 5-7 generation x reading), which
 //! assert each attempt's contract as `tests/tri_real_meshes.rs` does, and prints markdown
@@ -89,7 +89,7 @@ fn table<const N: usize>(
 }
 
 fn main() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tri");
     let maps: Vec<(&str, zipmesh::Map)> = MESHES
         .iter()
         .map(|&name| {

@@ -112,7 +112,7 @@ fn optimize_rows(reps: usize) {
         .collect();
     let spot = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/quad/spot_quadrangulated.obj"
+        "/tests/data/quad/spot_quadrangulated.obj"
     );
     if let Ok((m, _)) = zipmesh::io::read_mesh(spot) {
         meshes.push(("spot".to_string(), m));
@@ -440,7 +440,7 @@ fn qzip_rows(n: usize, reps: usize) {
 
     let spot = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/quad/spot_quadrangulated.obj"
+        "/tests/data/quad/spot_quadrangulated.obj"
     );
     let Ok((mesh, _)) = zipmesh::io::read_mesh(spot) else {
         eprintln!("# qzip_spot skipped: cannot read {spot}");

@@ -381,7 +381,7 @@ fn replay_of_an_unshrunk_given_case_names_the_file_seed_and_focus() {
 #[test]
 fn reversal_misses_are_counted_as_unchecked() {
     let file = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/quad/osd_catmark_toroidal_tet.obj");
+        .join("tests/data/quad/osd_catmark_toroidal_tet.obj");
     let (mut mesh, _) = io::read_mesh(&file).unwrap();
     zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
     let cases = [Case::from_mesh(mesh, 0, 0, "toroidal tet, preprocessed")];

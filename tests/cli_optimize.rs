@@ -90,7 +90,7 @@ fn rows_add_up(batches: &[Value]) {
 fn kept_chains_are_reported_and_add_up() {
     let dir = temp_dir("optimize-chains");
     let inp =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/cubespikes.obj");
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/cubespikes.obj");
     let out = dir.join("out.obj");
     let args = ["optimize", s(&inp), "-o", s(&out), "--json", "--paths"];
     let o = zipmesh(&[&args[..], &["--batches", "24"]].concat());

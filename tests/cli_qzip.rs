@@ -13,7 +13,7 @@ use zipmesh::{io, is_isomorphic, Vert};
 
 fn spot() -> String {
     let p =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/spot_quadrangulated.obj");
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/spot_quadrangulated.obj");
     p.to_str().unwrap().to_string()
 }
 
@@ -141,9 +141,9 @@ fn bad_input_exits_2_without_output() {
     let dir = temp_dir("qzip-bad");
     let out = dir.join("out.obj");
     let o = out.to_str().unwrap();
-    let torus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri/torus.obj");
+    let torus = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tri/torus.obj");
     let helmet =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad/osd_catmark_helmet.obj");
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/osd_catmark_helmet.obj");
     let cases: Vec<(Vec<String>, &str)> = vec![
         (
             vec!["--from".into(), FROM.into(), "--to".into(), "16".into()],
@@ -210,7 +210,7 @@ fn bad_input_exits_2_without_output() {
 #[test]
 fn zip_without_a_reverse_run_gives_undo_null() {
     let file = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/quad/osd_catmark_toroidal_tet.obj")
+        .join("tests/data/quad/osd_catmark_toroidal_tet.obj")
         .to_str()
         .unwrap()
         .to_string();

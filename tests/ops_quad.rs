@@ -1,5 +1,5 @@
 //! Property tests of the quad operators on large meshes: generated tori, cubes, grids and
-//! random quad meshes of thousands of faces, and the quad meshes in `../shared/data/quad/`.
+//! random quad meshes of thousands of faces, and the quad meshes in `tests/data/quad/`.
 //!
 //! Each case runs a random sequence of operators at random places (half of them near the
 //! previous edits, so that operators interact). Every step is either refused, with the same
@@ -137,10 +137,10 @@ fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
 }
 
 fn data(rel: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     assert!(
         dir.join("SOURCES.md").is_file(),
-        "the shared test meshes are missing: expected {}",
+        "the test meshes are missing: expected {}",
         dir.display()
     );
     dir.join(rel)
@@ -203,7 +203,7 @@ proptest! {
 proptest! {
     #![proptest_config(cases(96))]
 
-    /// Random operator sequences on the real quad meshes of `../shared/data/quad/`.
+    /// Random operator sequences on the real quad meshes of `tests/data/quad/`.
     #[test]
     fn random_sequences_on_shared_meshes(which in 0usize..6, seed in any::<u64>()) {
         let s = run_sequence(shared(which), seed, 80);

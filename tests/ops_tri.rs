@@ -1,6 +1,6 @@
 //! Property tests of the triangle operators on large meshes: random triangle meshes of
 //! thousands of faces (several genera and holes), a triangulated torus grid, a random
-//! quad-dominant mesh, and the triangle meshes in `../shared/data/tri/`.
+//! quad-dominant mesh, and the triangle meshes in `tests/data/tri/`.
 //!
 //! Each case runs a random sequence of operators at random darts, half of them next to the
 //! previous edits so that operators meet each other's results. Every step goes through the
@@ -38,7 +38,7 @@ fn torus_triangles(nx: usize, ny: usize) -> Mesh {
 
 fn data(rel: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
+        .join("tests/data")
         .join(rel)
 }
 

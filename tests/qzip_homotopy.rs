@@ -102,7 +102,7 @@ fn homotopic_paths_give_isomorphic_maps_on_the_icosahedron() {
 fn homotopic_paths_give_isomorphic_maps_on_real_meshes() {
     for (name, max_len) in [("cubespikes.obj", 8), ("spot_quadrangulated.obj", 6)] {
         let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../shared/data/quad")
+            .join("tests/data/quad")
             .join(name);
         let map = zipmesh::io::read_mesh(p).expect("shared mesh").0.map;
         let t = sweep(&map, max_len);

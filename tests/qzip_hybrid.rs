@@ -3,7 +3,7 @@
 //! irregular valences, the triangles unchanged), has a reverse run restoring the input, and
 //! homotopic paths give isomorphic results. A plan that meets a triangle in a counted fan
 //! is refused and changes nothing: no collapse is ever attempted on a triangle. The
-//! fixtures include the polygon cages of `../shared/data/poly/` after one Catmull-Clark step
+//! fixtures include the polygon cages of `tests/data/poly/` after one Catmull-Clark step
 //! with quads re-split; the campaign's `qzip-hybrid-*` properties are run here too.
 
 use zipmesh::campaign::{self, Case, Config, PairChoice};

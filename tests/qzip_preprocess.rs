@@ -141,7 +141,7 @@ fn same_operations_as_the_scan_on_random_meshes() {
 
 #[test]
 fn same_operations_as_the_scan_on_the_shared_meshes() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/quad");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad");
     let mut steps = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();

@@ -1,4 +1,4 @@
-//! Q-zip on the real quad meshes of `../shared/data/quad/`: every pair of irregular vertices
+//! Q-zip on the real quad meshes of `tests/data/quad/`: every pair of irregular vertices
 //! within 12 edges, every movement; grid preservation, exact undo and the moved valences
 //! hold for every movement done, refusals leave the mesh untouched, and the reverse run
 //! restores the original.
@@ -60,7 +60,7 @@ fn campaign(map: &Map, reverse_every: usize) -> Tally {
 
 fn mesh(name: &str) -> Map {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/quad")
+        .join("tests/data/quad")
         .join(name);
     io::read_mesh(p).expect("shared mesh").0.map
 }

@@ -1,4 +1,4 @@
-//! Every mesh in `../shared/data/` against the independently computed table in its
+//! Every mesh in `tests/data/` against the independently computed table in its
 //! `SOURCES.md`: valid meshes load, pass `check()`, and match every column; invalid ones
 //! are refused with an error naming a face line.
 
@@ -26,11 +26,11 @@ struct Row {
 }
 
 fn data_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     assert!(
         dir.join("SOURCES.md").is_file(),
-        "the shared test meshes are missing: expected {} with SOURCES.md \
-         (this test needs ../shared/data next to the crate and must not be skipped)",
+        "the test meshes are missing: expected {} with SOURCES.md \
+         (the test meshes ship in the repository under tests/data)",
         dir.display()
     );
     dir

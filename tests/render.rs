@@ -17,7 +17,7 @@ use zipmesh::{gen, io, Map, Mesh, Vert};
 
 fn shared(rel: &str) -> Mesh {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
+        .join("tests/data")
         .join(rel);
     io::read_mesh(&p)
         .unwrap_or_else(|e| panic!("shared mesh {rel}: {e}"))

@@ -75,12 +75,12 @@ fn generated_meshes_lose_most_of_their_irregular_vertices() {
     assert!(after * 2 <= before, "{before} -> {after}");
 }
 
-/// The triangle meshes of `../shared/data/tri/`: every kept triangle faces the way the
+/// The triangle meshes of `tests/data/tri/`: every kept triangle faces the way the
 /// surface did (no fold), and the irregular vertices fall by at least 70 % (issue 13's
 /// goal; measured 73 % and 72 %, docs/optimize.md) where there are some.
 #[test]
 fn shared_triangle_meshes() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/tri");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tri");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())

@@ -80,20 +80,20 @@ pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), Q
     Ok((m, r))
 }
 
-/// A mesh of `../shared/data`, which must exist.
+/// A mesh of `tests/data`, which must exist.
 pub fn shared(rel: &str) -> std::path::PathBuf {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
+        .join("tests/data")
         .join(rel);
     assert!(p.is_file(), "missing shared test mesh {}", p.display());
     p
 }
 
-/// The polygon cages of `../shared/data/poly/` after one Catmull-Clark step (quads only,
+/// The polygon cages of `tests/data/poly/` after one Catmull-Clark step (quads only,
 /// singularities where the cage had non-quads or irregular vertices), with `pairs` quads
 /// re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
 pub fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/poly");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/poly");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
