@@ -130,13 +130,145 @@ fn mesh_files(dir: &Path) -> Vec<String> {
     out
 }
 
+/// One row of the second "Combinatorics" table (the quad and quad-dominant meshes listed
+/// under "More real quad and quad-dominant meshes"), in its own notation.
+#[derive(Debug)]
+struct MoreRow {
+    file: String,
+    v: usize,
+    f: usize,
+    e: usize,
+    face_degrees: BTreeMap<usize, usize>,
+    interior_valences: BTreeMap<usize, usize>,
+    boundary_loops: usize,
+    boundary_edges: usize,
+    components: usize,
+    chi: i64,
+    genus: i64,
+}
+
+/// `{4: 27352}` or `{3: 1, 4: 864}`.
+fn braced_histogram(cell: &str) -> BTreeMap<usize, usize> {
+    cell.trim_matches(|c| c == '{' || c == '}')
+        .split(',')
+        .map(|pair| {
+            let (k, v) = pair
+                .split_once(':')
+                .unwrap_or_else(|| panic!("bad histogram entry {pair:?}"));
+            (k.trim().parse().unwrap(), v.trim().parse().unwrap())
+        })
+        .collect()
+}
+
+/// An integer written with a Unicode minus or in bold (`−2`, `**1**`).
+fn integer(cell: &str) -> i64 {
+    cell.trim_matches('*')
+        .replace('\u{2212}', "-")
+        .parse()
+        .unwrap()
+}
+
+fn more_table(dir: &Path) -> Vec<MoreRow> {
+    let text = fs::read_to_string(dir.join("SOURCES.md")).unwrap();
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.starts_with("| file | V | F | E | face-degree histogram"));
+    let header = cells(
+        lines
+            .next()
+            .expect("no second Combinatorics table in SOURCES.md"),
+    );
+    assert_eq!(
+        header.len(),
+        11,
+        "the second table's columns changed: {header:?}"
+    );
+    lines
+        .skip(1)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| {
+            let c = cells(l);
+            assert_eq!(c.len(), 11, "row {l:?}");
+            // `4 (328)`: loops and their edges; `0` without boundary.
+            let mut loops = c[7].split([' ', '(', ')']);
+            let boundary_loops = loops.next().unwrap().parse().unwrap();
+            let boundary_edges = loops
+                .find(|w| !w.is_empty())
+                .map_or(0, |w| w.parse().unwrap());
+            MoreRow {
+                file: c[0].trim_matches('`').to_string(),
+                v: c[1].parse().unwrap(),
+                f: c[2].parse().unwrap(),
+                e: c[3].parse().unwrap(),
+                face_degrees: braced_histogram(&c[4]),
+                interior_valences: braced_histogram(&c[5]),
+                boundary_loops,
+                boundary_edges,
+                components: c[8].parse().unwrap(),
+                chi: integer(&c[9]),
+                genus: integer(&c[10]),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn more_meshes_match_their_table() {
+    let dir = data_dir();
+    let rows = more_table(&dir);
+    assert_eq!(rows.len(), 10, "{rows:?}");
+    for row in &rows {
+        let (mesh, _) = io::read_mesh(dir.join(&row.file)).unwrap_or_else(|e| panic!("{e}"));
+        let map = &mesh.map;
+        map.check()
+            .unwrap_or_else(|v| panic!("{}: check() failed: {v:?}", row.file));
+        let c = Counts::of(map);
+        let h = Histograms::of(map);
+        let boundary_edges = map.darts().filter(|&d| map.is_boundary_dart(d)).count();
+        assert_eq!(
+            (
+                c.vertices,
+                c.faces,
+                c.edges,
+                c.boundary_loops,
+                boundary_edges
+            ),
+            (row.v, row.f, row.e, row.boundary_loops, row.boundary_edges),
+            "{}: (V, F, E, loops, boundary edges)",
+            row.file
+        );
+        assert_eq!(
+            (c.components, c.euler_characteristic, c.genus),
+            (row.components, row.chi, row.genus),
+            "{}: (components, chi, genus)",
+            row.file
+        );
+        assert_eq!(h.face_degrees, row.face_degrees, "{}", row.file);
+        assert_eq!(h.interior_valences, row.interior_valences, "{}", row.file);
+    }
+}
+
+/// Both tables together list every mesh file of `tests/data` but the counterexamples, which
+/// `counterexamples/README.md` lists (and the Q-zip tests replay).
 #[test]
 fn the_table_covers_every_mesh_file() {
     let dir = data_dir();
     let rows = table(&dir);
     let mut listed: Vec<String> = rows.iter().map(|r| r.file.clone()).collect();
+    listed.extend(more_table(&dir).into_iter().map(|r| r.file));
     listed.sort();
-    assert_eq!(listed, mesh_files(&dir));
+    let (counterexamples, files): (Vec<String>, Vec<String>) = mesh_files(&dir)
+        .into_iter()
+        .partition(|f| f.starts_with("counterexamples/"));
+    assert_eq!(listed, files);
+    let readme = fs::read_to_string(dir.join("counterexamples/README.md")).unwrap();
+    for f in &counterexamples {
+        let name = f.trim_start_matches("counterexamples/");
+        assert!(
+            readme.contains(name),
+            "{name} is not in counterexamples/README.md"
+        );
+    }
     assert!(rows.iter().any(|r| r.valid) && rows.iter().any(|r| !r.valid));
 }
 
