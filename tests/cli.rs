@@ -736,3 +736,48 @@ fn the_time_limit_cuts_a_long_case_and_the_report_says_which_property() {
     assert_eq!(out.status.code(), Some(0));
     assert!(stdout(&out).contains("all properties hold\n"));
 }
+
+/// `singularities --json` lists exactly the library's irregular vertices, each with its
+/// valence, place, defect and the file's position, in the numbering the file has.
+#[test]
+fn singularities_lists_every_irregular_vertex() {
+    for (rel, kind) in [
+        ("quad/spot_quadrangulated.obj", MeshKind::Quad),
+        ("tri/spot_triangulated.obj", MeshKind::Triangle),
+    ] {
+        let path = shared(rel);
+        let out = zipmesh(&["singularities", "--json", s(&path)]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        let (mesh, _) = io::read_mesh(&path).unwrap();
+        let listed: Vec<u64> = json["singularities"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| e["vertex"].as_u64().unwrap())
+            .collect();
+        let want: Vec<u64> = irregular_vertices(&mesh.map, kind)
+            .into_iter()
+            .map(|v| v.index() as u64)
+            .collect();
+        assert_eq!(listed, want, "{rel}");
+        let regular = if kind == MeshKind::Quad { 4 } else { 6 };
+        for e in json["singularities"].as_array().unwrap() {
+            let v = zipmesh::Vert::new(e["vertex"].as_u64().unwrap() as u32);
+            let valence = mesh.map.valence(v);
+            assert_eq!(e["valence"], valence, "{rel}");
+            assert_eq!(e["defect"], valence as i64 - regular, "{rel}");
+            assert_eq!(e["boundary"], false, "{rel}");
+            let p = mesh.positions[v.index()];
+            assert_eq!(e["position"], serde_json::json!([p.x, p.y, p.z]), "{rel}");
+        }
+        // The table says the same count in its first line.
+        let text = stdout(&zipmesh(&["singularities", s(&path)]));
+        let first = text.lines().next().unwrap();
+        assert!(
+            first.contains(&format!(": {} singularities", want.len())),
+            "{first}"
+        );
+        assert_eq!(text.lines().count(), want.len() + 2, "{rel}");
+    }
+}

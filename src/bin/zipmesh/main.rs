@@ -13,6 +13,7 @@ mod out;
 mod qzip;
 mod render;
 mod signals;
+mod singular;
 mod tri;
 
 use out::outln;
@@ -57,6 +58,9 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Every singularity (irregular vertex): its number, valence, place (interior or
+    /// boundary), defect (valence minus the regular or ideal valence) and position.
+    Singularities(singular::SingularitiesArgs),
     /// The 128-bit canonical hash of the mesh's connectivity, in 32 hex digits.
     Hash {
         /// An .obj or .off file.
@@ -160,6 +164,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriWalk(_)
         | Command::Optimize(_)
         | Command::Render(_) => {}
+        Command::Singularities(args) => singular::run(args)?,
         Command::Stats { file, json } => {
             let (name, (mesh, report)) = match &file {
                 Some(path) => (path.display().to_string(), io::read_mesh(path)?),
