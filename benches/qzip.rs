@@ -1,4 +1,4 @@
-//! Criterion benches of Q-zip (issue 4) on the 1000 x 1000 torus with 16 inserted
+//! Criterion benches of Q-zip on the 1000 x 1000 torus with 16 inserted
 //! singularity pairs (two vertex splits each, `benches/support/qzip_torus.rs`): a v5 and a v3
 //! 7 or 100 edges apart, initial operation LC (all collapses). Iterations cycle through the
 //! 16 pairs on one warm map. `zip` and `zip_along` time only the Q-zip: each is undone after

@@ -1,4 +1,4 @@
-//! Criterion benches of `render` (issue 12): a scene (camera, depth buffer, visibility of
+//! Criterion benches of `render`: a scene (camera, depth buffer, visibility of
 //! faces, balls and paths), its SVG text, and its PNG (resvg), on the shared Spot quad mesh
 //! (2,928 quads) and a Catmull-Clark sphere of 3,840 quads (the icosahedron, four steps), at the default 800 x 600.
 

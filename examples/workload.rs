@@ -7,8 +7,8 @@
 //! `RESULT zipmesh <tri|quad> <what> <median> <min> <max> <unit> <count> <reps>`
 //!
 //! Peer programs print the same format so that one run can compare them. Operator rows
-//! (issue 3) give ns per attempted operation on 100,000 random darts, refusals included;
-//! how many were applied goes to stderr. Q-zip rows (issue 4) give microseconds per Q-zip
+//! give ns per attempted operation on 100,000 random darts, refusals included;
+//! how many were applied goes to stderr. Q-zip rows give microseconds per Q-zip
 //! on the same N x N torus (at least 128 x 128, and wider than 2 L + 20 for L-edge paths)
 //! and on a real mesh; see `qzip_rows`. With the third argument `qzip`, only the Q-zip rows
 //! (with `optimize`, only the optimizer rows: `optimize_rows`; with `tri_moves`, only the
@@ -97,7 +97,7 @@ fn report(
     );
 }
 
-/// Optimizer rows (issue 12): seconds for the first batch (the one with the most
+/// Optimizer rows: seconds for the first batch (the one with the most
 /// singularities) on one Catmull-Clark step of a random genus-3 triangle mesh of 250, 1,000
 /// and 4,000 triangles (750 to 12,000 quads), and on Spot; `count` is the number of
 /// singularities before the batch. With the third argument `optimize`.
@@ -144,7 +144,7 @@ mod qzip_torus;
 #[path = "../benches/support/tri_torus.rs"]
 mod tri_torus;
 
-/// Triangle-edit rows (issue 13), microseconds per edit with its undo (both timed; the map is
+/// Triangle-edit rows, microseconds per edit with its undo (both timed; the map is
 /// the same after each), on the `n x n` triangulated torus for `n` = 48 and 192 (4,608 and
 /// 73,728 faces), with a lone 5-7 pair made by `tri_torus::far_pair`:
 ///
@@ -323,7 +323,7 @@ fn sketch_row(
     report("quad", name, t, "us/qzip", ends.len() * rounds, reps);
 }
 
-/// Q-zip rows (issue 4), microseconds per Q-zip, undo not timed (see `measure_zips`):
+/// Q-zip rows, microseconds per Q-zip, undo not timed (see `measure_zips`):
 ///
 /// * `qzip{L}_{TAG}`: the full Q-zip (`qzip::Qzip::zip`: sketch in the entry point's reused
 ///   workspace, plan, prepare, execute) of a v5
@@ -498,7 +498,7 @@ fn qzip_rows(n: usize, reps: usize) {
     spot_movements(&mut map, &cases, reps);
 }
 
-/// The optimizer's form on Spot (issue 15's "per movement"): one sketch per pair, then
+/// The optimizer's form on Spot ("per movement" in docs/benchmarks.md): one sketch per pair, then
 /// each of its realizable movements along that path (each undone outside the clock), so a
 /// movement costs its share of the sketch plus one `zip_along`. Microseconds per movement.
 fn spot_movements(map: &mut Map, cases: &[(Vert, Vert, Tag, usize)], reps: usize) {
@@ -630,7 +630,7 @@ fn apply_all(m: &mut Map, darts: &[Dart], op: fn(&mut Map, Dart) -> bool) -> usi
     darts.iter().filter(|&&d| op(m, d)).count()
 }
 
-/// Operator rows (issue 3): 100,000 random darts from a fixed seed per repetition (one per
+/// Operator rows: 100,000 random darts from a fixed seed per repetition (one per
 /// eight quads on smaller tori, such as the 64 x 64 one that fits in the L2 cache), each
 /// repetition on a fresh copy; refused attempts are included in the time. With `only`,
 /// just the rows whose name is `only` (`ops NAME` on the command line).
@@ -706,7 +706,7 @@ fn operator_rows(tri_map: &Map, quad_map: &Map, reps: usize, only: Option<&str>)
     }
 }
 
-/// The validity check of the `n` x `n` quad torus beside what bounds it (issue 15): one
+/// The validity check of the `n` x `n` quad torus beside what bounds it: one
 /// sequential read of as many `u32`s as the map's five arrays hold (three per dart, one per
 /// vertex and per face), the least memory traffic of any check that reads every entry once.
 /// Milliseconds; with the third argument `check`.
@@ -773,7 +773,7 @@ fn write_off<F: AsRef<[u32]>>(path: &std::path::Path, nv: usize, faces: &[F]) {
     std::fs::write(path, s).expect("the OFF file is written");
 }
 
-/// Canonical code rows (issue 15): the regular torus of 1,024, 10,000 and 99,856 quads, and
+/// Canonical code rows: the regular torus of 1,024, 10,000 and 99,856 quads, and
 /// the same with 5 quads cut into triangles, in ns per face; each by [`CanonicalCode::of`]
 /// and (`_ws`) by a [`CanonicalWorkspace`] kept from one repetition to the next, used once
 /// before them (as Traces keeps its arrays between its runs). With the third argument

@@ -121,7 +121,7 @@ fn the_torus_loop_regression_wraps() {
     assert!(one_quad_sweeps(&c.original, &c.path).is_empty());
 }
 
-/// The input found by a 12-minute `qzip_homotopy` run (session 25): on an 8 x 10 grid with
+/// The input found by a 12-minute `qzip_homotopy` run: on an 8 x 10 grid with
 /// two vertex splits, `LC` along `37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46` (which ends
 /// round the quad `47 56 55 46`, shortened by the end rule) and along its sweep across the
 /// regular quad `47 48 57 56` differed: the end rule shortened the first path only. Now the

@@ -170,14 +170,14 @@ proptest! {
 /// On a genus-3 mesh after one Catmull-Clark step (the paper's robustness test, Fig. 17, at
 /// a small size) the batches remove at least the paper's 55 % of the singularities (it
 /// reports 55-90 % on real meshes) while the face count stays within 10 % of the input's
-/// (the goal of issue 12), and Gauss-Bonnet still holds.
+/// (the optimizer's goal, docs/optimize.md), and Gauss-Bonnet still holds.
 #[test]
 fn removes_most_singularities_of_a_subdivided_genus_3_mesh() {
     let mut mesh = subdivided(300, 3, 0, 1);
     assert_meets_the_goal(&mut mesh);
 }
 
-/// Runs 40 batches (seed 0) and asserts issue 12's goal: at most 45 % of the singularities
+/// Runs 40 batches (seed 0) and asserts the optimizer's goal: at most 45 % of the singularities
 /// left, the face count within 10 %, Gauss-Bonnet and a valid map.
 fn assert_meets_the_goal(mesh: &mut Mesh) {
     let before = SingularityCounts::of(mesh);
@@ -369,7 +369,7 @@ fn cancelling_qzips_are_valid_and_undo_exactly() {
 }
 
 // ------------------------------------------------------------------------------------
-// Quad-dominant input (issue 14): pairs of triangles crawl together and merge.
+// Quad-dominant input: pairs of triangles crawl together and merge.
 
 /// Generated quad-dominant meshes of genus 0 to 2, with and without boundary, and the
 /// cages, each with an even number of triangles.

@@ -76,7 +76,7 @@ fn generated_meshes_lose_most_of_their_irregular_vertices() {
 }
 
 /// The triangle meshes of `tests/data/tri/`: every kept triangle faces the way the
-/// surface did (no fold), and the irregular vertices fall by at least 70 % (issue 13's
+/// surface did (no fold), and the irregular vertices fall by at least 70 % (the
 /// goal; measured 73 % and 72 %, docs/optimize.md) where there are some.
 #[test]
 fn shared_triangle_meshes() {

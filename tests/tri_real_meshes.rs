@@ -1,5 +1,5 @@
 //! The semantic triangle edits (`zipmesh::tri_edit`) on the shared triangle meshes of
-//! `tests/data/tri/` (issue 13): every adjacent interior 5-7 pair in every direction,
+//! `tests/data/tri/`: every adjacent interior 5-7 pair in every direction,
 //! every regular interior vertex x dart x 5-5-7-7 configuration, and every interior v5 x
 //! dart x 5-7 generation x reading. Each attempt is a refusal equal to its `can_*`'s with the
 //! map `==`, or the documented effect and an exact undo (`common::tri_sweep`); every 50th

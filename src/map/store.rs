@@ -28,7 +28,7 @@ impl Map {
     /// The map is unchanged (`==` to what it was) whatever the outcome. Without it, the first
     /// edit that adds an element to a freshly built or cloned map (whose arrays are full)
     /// copies every per-dart array once: on a million-face map that copy, and touching the
-    /// fresh pages, cost more than the edit (`docs/benchmarks.md`, "Speed (issue 15)").
+    /// fresh pages, cost more than the edit (`docs/benchmarks.md`, "What bounds the operator rows").
     ///
     /// # Errors
     /// When the allocator cannot give that much memory, or the sizes overflow; the map may

@@ -1,4 +1,4 @@
-//! Automatic singularity reduction of pure triangle meshes (issue 13, "beyond the paper"):
+//! Automatic singularity reduction of pure triangle meshes (beyond the paper):
 //! batches of valence-improving edge flips, triple cancellations (Sec. 7.2), 5-7 pair
 //! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
 //! a two-edit look-ahead ([`super::tri_lookahead`]) and far pair moves (Sec. 7.1.1) of 5-7
