@@ -781,3 +781,51 @@ fn singularities_lists_every_irregular_vertex() {
         assert_eq!(text.lines().count(), want.len() + 2, "{rel}");
     }
 }
+
+/// `check FILE --pairs N` samples N Q-zip pairs within reach on a large mesh (every movement
+/// of each, so 4N grid checks), names the sample and refuses to sample generated cases.
+#[test]
+fn check_samples_pairs_of_a_given_file() {
+    let spot = shared("quad/spot_quadrangulated.obj");
+    let run = |seed: &str| -> (u64, Value) {
+        let out = zipmesh(&[
+            "check",
+            s(&spot),
+            "--property",
+            "qzip-grid",
+            "--pairs",
+            "20",
+            "--seed",
+            seed,
+            "--json",
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        assert_eq!(json["settings"]["pairs"], "20", "{json}");
+        let row = &json["properties"][0];
+        (row["checks"].as_u64().unwrap(), json)
+    };
+    let (checks, _) = run("0");
+    // Spot's singularities are spread over the cow: random pairs would rarely be 12 edges
+    // apart, the sample's partners are.
+    assert_eq!(checks, 4 * 20);
+    let text = stdout(&zipmesh(&[
+        "check",
+        s(&spot),
+        "--property",
+        "qzip-grid",
+        "--pairs",
+        "20",
+    ]));
+    assert!(
+        text.contains("Q-zip pairs: a sample of 20 per file, drawn by seed 0"),
+        "{text}"
+    );
+    let out = zipmesh(&["check", "--pairs", "3", "--cases", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--pairs samples the pairs of given files"),
+        "{}",
+        stderr(&out)
+    );
+}

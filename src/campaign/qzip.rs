@@ -25,8 +25,10 @@ use crate::{Map, Vert};
 pub struct PairChoice {
     /// Pairs whose shortest path is longer than this are not tried.
     pub max_distance: usize,
-    /// `Some(n)`: n pairs drawn from the case's random stream (generated campaigns);
-    /// `None`: every ordered pair within `max_distance` (`zipmesh check FILE`).
+    /// `Some(n)`: n pairs drawn from the case's random stream, each a random singularity and
+    /// a random partner among those within `max_distance` edges of it (generated campaigns,
+    /// `zipmesh check FILE --pairs n`); `None`: every ordered pair within `max_distance`
+    /// (`zipmesh check FILE`).
     pub per_case: Option<usize>,
 }
 
@@ -115,7 +117,11 @@ fn pairs(case: &Case, s: &Subject<'_>, choice: PairChoice, salt: u64) -> Option<
                     Some(f) if k < n => f,
                     _ => sing[rng.below(sing.len())],
                 };
-                let b = sing[rng.below(sing.len())];
+                let near = within(map, sing, a, choice.max_distance);
+                let b = match near.len() {
+                    0 => sing[rng.below(sing.len())],
+                    len => near[rng.below(len)],
+                };
                 if a != b {
                     out.extend(fits(a, b));
                 }
@@ -123,6 +129,36 @@ fn pairs(case: &Case, s: &Subject<'_>, choice: PairChoice, salt: u64) -> Option<
         }
     }
     (!out.is_empty()).then_some(out)
+}
+
+/// The singularities other than `a` within `radius` edges of it (breadth-first over the
+/// edges, so a superset of those whose sketch fits): drawing the partner among them keeps a
+/// sample's pairs within reach on a large mesh, where two random singularities are rarely
+/// `radius` edges apart. `sing` is in vertex order.
+fn within(map: &Map, sing: &[Vert], a: Vert, radius: usize) -> Vec<Vert> {
+    let mut seen = std::collections::BTreeSet::from([a]);
+    let mut ring = std::vec![a];
+    let mut out = Vec::new();
+    for _ in 0..radius {
+        let mut next = Vec::new();
+        for &v in &ring {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                if seen.insert(w) {
+                    next.push(w);
+                    if sing.binary_search(&w).is_ok() {
+                        out.push(w);
+                    }
+                }
+            }
+        }
+        if next.is_empty() {
+            break;
+        }
+        ring = next;
+    }
+    out.sort_unstable();
+    out
 }
 
 /// One movement checked for grid preservation and exact undo: `Ok(Some(edited))` if done,

@@ -52,7 +52,7 @@ pub struct CheckArgs {
     /// written again into --out.
     #[arg(long, conflicts_with_all = [
         "seed", "cases", "max_faces", "properties", "jobs", "shard", "time_limit",
-        "max_distance", "case", "focus", "list",
+        "max_distance", "pairs", "case", "focus", "list",
     ])]
     merge: bool,
     /// Stop after this many seconds: no new case starts and properties stop between their
@@ -63,6 +63,10 @@ pub struct CheckArgs {
     /// on given files every such ordered pair is tried with every movement.
     #[arg(long, default_value_t = DEFAULT_MAX_DISTANCE)]
     max_distance: usize,
+    /// Q-zip pairs on given files: draw N ordered pairs within --max-distance from the
+    /// seed's random stream, instead of every pair; the report names the sample (seed and N).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    pairs: Option<u64>,
     /// Run only generated case number INDEX (what a replay line uses).
     #[arg(long, value_name = "INDEX")]
     case: Option<u64>,
@@ -122,6 +126,9 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
     if args.case.is_some() && !args.files.is_empty() {
         return Err("--case selects a generated case; it cannot be used with files".into());
     }
+    if args.pairs.is_some() && args.files.is_empty() {
+        return Err("--pairs samples the pairs of given files; generated cases draw 4 each".into());
+    }
     let config = Config {
         seed: args.seed,
         cases: args.cases,
@@ -160,11 +167,14 @@ fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
 }
 
 /// The settings the properties depend on besides the cases: `--max-distance` when it is not
-/// the default (so default campaigns keep short replay lines).
+/// the default (so default campaigns keep short replay lines), and `--pairs`.
 fn settings(args: &CheckArgs) -> BTreeMap<String, String> {
     let mut settings = BTreeMap::new();
     if args.max_distance != DEFAULT_MAX_DISTANCE {
         settings.insert("max-distance".into(), args.max_distance.to_string());
+    }
+    if let Some(n) = args.pairs {
+        settings.insert("pairs".into(), n.to_string());
     }
     settings
 }
@@ -269,7 +279,11 @@ fn show_checks(
 /// Every property `check` knows. On given meshes the Q-zip properties try every ordered
 /// pair of singularities within `--max-distance` (generated cases draw a few pairs each).
 fn properties(args: &CheckArgs) -> Vec<Property> {
-    let per_case = if args.files.is_empty() { Some(4) } else { None };
+    let per_case = if args.files.is_empty() {
+        Some(4)
+    } else {
+        args.pairs.map(|n| n as usize)
+    };
     campaign::builtin_with(campaign::PairChoice {
         max_distance: args.max_distance,
         per_case,
@@ -290,6 +304,12 @@ fn print_text(report: &Report) {
         report.seed,
         report.elapsed.as_secs_f64()
     );
+    if let Some(n) = report.campaign.settings.get("pairs") {
+        outln!(
+            "Q-zip pairs: a sample of {n} per file, drawn by seed {} (the same seed, the same sample)",
+            report.seed
+        );
+    }
     if report.timed_out {
         outln!(
             "time limit reached: {} cases not run",
