@@ -284,6 +284,54 @@ f 1 2 3\nf 2 1 4\nf 1 2 5\n",
     assert!(stderr(&out).contains("notes.txt"));
 }
 
+/// Messages number vertices from 0, as `--from`, `--path` and `--tip` take them, with an OBJ
+/// file's own 1-based numbers quoted beside; lines stay 1-based; the help says so.
+#[test]
+fn messages_number_vertices_from_0_as_the_arguments_do() {
+    let expect = |args: &[&str], message: &str| {
+        let out = zipmesh(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains(message), "{args:?}: {err}");
+    };
+    // Lines 57, 60 and 64 of the fan all hold the file's `8` and `9`: vertices 7 and 8.
+    let fan = shared("invalid/osd_catmark_fan.obj");
+    expect(
+        &["stats", s(&fan)],
+        "osd_catmark_fan.obj:64: edge 7-8 (0-based; `8`-`9` in the file) is used by three \
+         or more faces (lines 57, 60 and 64): non-manifold edge",
+    );
+    // Line 131 of the pole is `f 4 3 5 5`: the file's `5` is vertex 4.
+    let pole = shared("invalid/osd_catmark_nonman_quadpole64.obj");
+    expect(
+        &["hash", s(&pole)],
+        "osd_catmark_nonman_quadpole64.obj:131: face uses vertex 4 (0-based; `5` in the \
+         file) twice: repeated corner",
+    );
+    let dir = temp_dir("numbers");
+    let (obj, off) = (dir.join("far.obj"), dir.join("far.off"));
+    fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+    fs::write(&off, "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 2\n").unwrap();
+    expect(
+        &["stats", s(&obj)],
+        "far.obj:4: vertex 8 (0-based; `9` in the file) is out of range for 3 vertices \
+         (0 to 2): index out of range",
+    );
+    // OFF numbers from 0 itself: no note.
+    expect(
+        &["stats", s(&off)],
+        "far.off:7: face uses vertex 2 twice: repeated corner\n",
+    );
+    let help = stdout(&zipmesh(&["--help"]));
+    assert!(
+        help.contains(
+            "Vertices and faces are numbered from 0 in file order, in arguments and in every \
+             message"
+        ),
+        "{help}"
+    );
+}
+
 #[test]
 fn usage_errors_exit_2() {
     for args in [

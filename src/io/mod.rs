@@ -8,7 +8,8 @@
 //!   typed [`ErrorKind`]. Its `Display` reads `path:LINE: problem`. Topology defects found
 //!   by [`Map::from_polygons_with_report`](crate::Map::from_polygons_with_report) are the
 //!   kernel's error in [`ErrorKind::Topology`], traced back to the line of the offending
-//!   face, with vertices numbered as the file numbers them.
+//!   face. Messages number vertices from 0 in file order, as the kernel and the command
+//!   line do, with OBJ's own 1-based number quoted beside (see [`ErrorKind`]).
 //! * Reading returns the [`Mesh`] and the [`BuildReport`]. Vertices that no face uses are
 //!   kept as dead vertex slots (their positions stay in `mesh.positions`), so every other
 //!   vertex keeps its number from the file; the report lists them.
@@ -86,7 +87,8 @@ impl Format {
     }
 
     /// The number a file of this format writes for vertex slot `slot`: OBJ counts from 1,
-    /// OFF from 0. Error messages use it to show the kernel's vertex numbers.
+    /// OFF from 0. Error messages number vertices from 0 and quote this number beside
+    /// when it differs (see [`ErrorKind`]).
     ///
     /// ```
     /// use zipmesh::io::Format;

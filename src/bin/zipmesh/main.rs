@@ -36,7 +36,9 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
     name = "zipmesh",
     version,
     about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)",
-    after_help = "Exit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
+    after_help = "Vertices and faces are numbered from 0 in file order, in arguments and in every \
+message (an OBJ file's vertex `1` is vertex 0; a message about an OBJ file quotes the file's \
+number beside); lines are counted from 1.\n\nExit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
 2 an error (bad file, bad usage, output that cannot be written); 3 `check`: every property held \
 on what ran but --time-limit cut the run; 141 standard output closed by its reader (quietly); \
 130/143 ended by SIGINT/SIGTERM (temporary files removed). A command that writes a file leaves \
