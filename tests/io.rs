@@ -673,9 +673,42 @@ fn writing_into_a_missing_directory_fails_and_creates_nothing() {
     let dir = temp_dir("missing-dir");
     let target = dir.join("no").join("such").join("mesh.obj");
     let e = io::write_mesh(&target, &gen::grid(2, 2)).unwrap_err();
-    assert!(matches!(e.kind(), ErrorKind::Io(_)));
+    let ErrorKind::MissingDirectory { dir: missing } = e.kind() else {
+        panic!("{e}")
+    };
+    assert_eq!(missing, &dir.join("no").join("such"));
+    assert!(e.to_string().ends_with("such does not exist"), "{e}");
     assert!(!dir.join("no").exists());
     assert!(dir_entries(&dir).is_empty());
+}
+
+#[test]
+fn targets_and_inputs_that_are_directories_or_under_a_file_are_refused_before_work() {
+    let dir = temp_dir("target-checks");
+    let file = dir.join("plain.obj");
+    io::write_mesh(&file, &gen::grid(1, 1)).unwrap();
+    assert!(io::check_target(dir.join("new.obj")).is_ok());
+    // The output is a directory; a mesh input is a directory (even one named like a mesh).
+    let e = io::check_target(&dir).unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::IsDirectory), "{e}");
+    let named = dir.join("dir.obj");
+    fs::create_dir(&named).unwrap();
+    for e in [io::read_mesh(&named), io::read_mesh(&dir)].map(Result::unwrap_err) {
+        assert!(matches!(e.kind(), ErrorKind::IsDirectory), "{e}");
+        assert!(e.to_string().ends_with(": is a directory"), "{e}");
+    }
+    // The output's directory is a file, or lies under one.
+    for target in [file.join("x.obj"), file.join("a").join("b").join("x.obj")] {
+        let e = io::check_target(&target).unwrap_err();
+        let ErrorKind::NotADirectory { dir: found } = e.kind() else {
+            panic!("{e}")
+        };
+        assert_eq!(found, &file, "{e}");
+        assert!(
+            e.to_string().ends_with("plain.obj is not a directory"),
+            "{e}"
+        );
+    }
 }
 
 #[test]

@@ -17,8 +17,8 @@ use std::path::{Path, PathBuf};
 ///
 /// Messages number vertices from 0 in file order, as the command line and the kernel do,
 /// whatever the format. Where the file writes another number (OBJ counts from 1), the
-/// file's own text follows in one note: `vertex 5 (0-based; `6` in the file)`,
-/// `edge 7-8 (0-based; `8`-`9` in the file)`. Lines are counted from 1, as editors count
+/// file's own text follows in one note: ``vertex 5 (0-based; `6` in the file)``,
+/// ``edge 7-8 (0-based; `8`-`9` in the file)``. Lines are counted from 1, as editors count
 /// them. A token that names no vertex (OBJ's `0`, a negative index counting back too far,
 /// a number too long to hold) is quoted as written.
 ///
@@ -216,7 +216,7 @@ impl fmt::Display for ErrorKind {
 }
 
 /// What follows 0-based vertex numbers in a message when the file writes other numbers:
-/// ` (0-based; `1`-`2` in the file)`, the file's numbers joined by `sep`; nothing for a
+/// `` (0-based; `1`-`2` in the file)``, the file's numbers joined by `sep`; nothing for a
 /// format that numbers vertices from 0.
 fn file_note(format: Format, written: &[&str], sep: &str) -> String {
     if format.vertex_number(0) == 0 {
