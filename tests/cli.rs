@@ -284,6 +284,81 @@ f 1 2 3\nf 2 1 4\nf 1 2 5\n",
     assert!(stderr(&out).contains("notes.txt"));
 }
 
+/// A directory given as input is said to be one, whatever its name.
+#[test]
+fn a_directory_as_input_is_a_directory() {
+    let dir = temp_dir("input-dir");
+    let named = dir.join("looks.obj");
+    fs::create_dir(&named).unwrap();
+    for path in [&dir, &named] {
+        for args in [vec!["stats", s(path)], vec!["check", s(path)]] {
+            let out = zipmesh(&args);
+            assert_eq!(out.status.code(), Some(2), "{args:?}");
+            let err = stderr(&out);
+            assert!(
+                err.ends_with(&format!("{}: is a directory\n", path.display())),
+                "{err}"
+            );
+        }
+    }
+    let out = zipmesh(&["iso", s(&spot_quads()), s(&named)]);
+    assert!(
+        stderr(&out).contains("looks.obj: is a directory"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// Every command that writes refuses an output into a missing directory before it reads
+/// its input (the input here is broken: the message is about the output).
+#[test]
+fn every_writing_command_checks_its_output_first() {
+    let dir = temp_dir("targets-first");
+    let bad = shared("invalid/osd_catmark_fan.obj");
+    let gone = dir.join("gone");
+    let (obj, svg) = (gone.join("o.obj"), gone.join("o.svg"));
+    let (bad, obj, svg) = (s(&bad), s(&obj), s(&svg));
+    for args in [
+        vec![
+            "zip", bad, "--from", "1", "--to", "2", "--move", "LS", "-o", obj,
+        ],
+        vec![
+            "tri-move",
+            bad,
+            "--pair",
+            "1,2",
+            "--direction",
+            "0",
+            "-o",
+            obj,
+        ],
+        vec!["tri-generate", bad, "--at", "1", "-o", obj],
+        vec!["tri-type", bad, "--split", "1", "-o", obj],
+        vec!["tri-cancel", bad, "--triple", "1,2,3", "-o", obj],
+        vec!["tri-walk", bad, "--triangle", "0", "--to", "1", "-o", obj],
+        vec!["optimize", bad, "-o", obj],
+        vec!["render", bad, "-o", svg],
+    ] {
+        let out = zipmesh(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        let expected = format!("the directory {} does not exist\n", gone.display());
+        assert!(err.starts_with("zipmesh: cannot write "), "{args:?}: {err}");
+        assert!(err.ends_with(&expected), "{args:?}: {err}");
+    }
+    assert!(!gone.exists());
+    // `check` makes its --out folder when it writes a shrunk counterexample there, so a
+    // missing one is no error, but a file or a path under one is.
+    let file = dir.join("file");
+    fs::write(&file, "").unwrap();
+    for out_dir in [file.clone(), file.join("sub")] {
+        let out = zipmesh(&["check", "--cases", "1", "--out", s(&out_dir)]);
+        assert_eq!(out.status.code(), Some(2));
+        let expected = format!("{} is not a directory", file.display());
+        assert!(stderr(&out).contains(&expected), "{}", stderr(&out));
+    }
+}
+
 /// Messages number vertices from 0, as `--from`, `--path` and `--tip` take them, with an OBJ
 /// file's own 1-based numbers quoted beside; lines stay 1-based; the help says so.
 #[test]

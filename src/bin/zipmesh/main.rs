@@ -20,7 +20,7 @@ use out::outln;
 use clap::{Parser, Subcommand};
 use serde_json::{json, Map as JsonMap, Value};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
@@ -115,7 +115,24 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage(&e),
     };
-    let result = match cli.command {
+    let result = check_outputs(&cli.command)
+        .map_err(|e| format!("cannot write {e}"))
+        .and_then(|()| dispatch(cli.command));
+    match result {
+        Ok(code) => out::finish(code),
+        // `zip` flushes before it commits its file; a closed pipe there ends quietly too.
+        Err(_) if out::closed() => ExitCode::from(out::CLOSED_PIPE),
+        Err(e) => {
+            let code = out::finish(ExitCode::from(2));
+            out::error(e);
+            code
+        }
+    }
+}
+
+/// Runs the command; its error as the message to print.
+fn dispatch(command: Command) -> Result<ExitCode, String> {
+    match command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
         Command::TriMove(args) => tri::run_move(args).map_err(|e| e.to_string()),
@@ -126,16 +143,35 @@ fn main() -> ExitCode {
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
-    };
-    match result {
-        Ok(code) => out::finish(code),
-        // `zip` flushes before it commits its file; a closed pipe there ends quietly too.
-        Err(_) if out::closed() => ExitCode::from(out::CLOSED_PIPE),
-        Err(e) => {
-            let code = out::finish(ExitCode::from(2));
-            out::error(e);
-            code
+    }
+}
+
+/// Refuses, before any file is read, an output that cannot be written (a missing
+/// directory, a directory as the output: [`io::check_target`]) and a mesh output that
+/// names no mesh format, so that a mistyped `-o` costs no run. `check` checks its `--out`
+/// folder itself.
+fn check_outputs(command: &Command) -> Result<(), MeshFileError> {
+    let mesh = |path: &Path| {
+        io::check_target(path)?;
+        match io::Format::from_path(path) {
+            Some(_) => Ok(()),
+            None => Err(MeshFileError::new(None, io::ErrorKind::UnknownFormat).with_path(path)),
         }
+    };
+    match command {
+        Command::Zip(a) => mesh(&a.output),
+        Command::TriMove(a) => mesh(&a.files.output),
+        Command::TriGenerate(a) => mesh(&a.files.output),
+        Command::TriType(a) => mesh(&a.files.output),
+        Command::TriCancel(a) => mesh(&a.files.output),
+        Command::TriWalk(a) => mesh(&a.output),
+        Command::Optimize(a) => mesh(&a.output),
+        Command::Render(a) => io::check_target(&a.output),
+        Command::Stats { .. }
+        | Command::Hash { .. }
+        | Command::Iso { .. }
+        | Command::Check(_)
+        | Command::Moves(_) => Ok(()),
     }
 }
 
