@@ -284,6 +284,129 @@ f 1 2 3\nf 2 1 4\nf 1 2 5\n",
     assert!(stderr(&out).contains("notes.txt"));
 }
 
+/// A directory given as input is said to be one, whatever its name.
+#[test]
+fn a_directory_as_input_is_a_directory() {
+    let dir = temp_dir("input-dir");
+    let named = dir.join("looks.obj");
+    fs::create_dir(&named).unwrap();
+    for path in [&dir, &named] {
+        for args in [vec!["stats", s(path)], vec!["check", s(path)]] {
+            let out = zipmesh(&args);
+            assert_eq!(out.status.code(), Some(2), "{args:?}");
+            let err = stderr(&out);
+            assert!(
+                err.ends_with(&format!("{}: is a directory\n", path.display())),
+                "{err}"
+            );
+        }
+    }
+    let out = zipmesh(&["iso", s(&spot_quads()), s(&named)]);
+    assert!(
+        stderr(&out).contains("looks.obj: is a directory"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// Every command that writes refuses an output into a missing directory before it reads
+/// its input (the input here is broken: the message is about the output).
+#[test]
+fn every_writing_command_checks_its_output_first() {
+    let dir = temp_dir("targets-first");
+    let bad = shared("invalid/osd_catmark_fan.obj");
+    let gone = dir.join("gone");
+    let (obj, svg) = (gone.join("o.obj"), gone.join("o.svg"));
+    let (bad, obj, svg) = (s(&bad), s(&obj), s(&svg));
+    for args in [
+        vec![
+            "zip", bad, "--from", "1", "--to", "2", "--move", "LS", "-o", obj,
+        ],
+        vec![
+            "tri-move",
+            bad,
+            "--pair",
+            "1,2",
+            "--direction",
+            "0",
+            "-o",
+            obj,
+        ],
+        vec!["tri-generate", bad, "--at", "1", "-o", obj],
+        vec!["tri-type", bad, "--split", "1", "-o", obj],
+        vec!["tri-cancel", bad, "--triple", "1,2,3", "-o", obj],
+        vec!["tri-walk", bad, "--triangle", "0", "--to", "1", "-o", obj],
+        vec!["optimize", bad, "-o", obj],
+        vec!["render", bad, "-o", svg],
+    ] {
+        let out = zipmesh(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        let expected = format!("the directory {} does not exist\n", gone.display());
+        assert!(err.starts_with("zipmesh: cannot write "), "{args:?}: {err}");
+        assert!(err.ends_with(&expected), "{args:?}: {err}");
+    }
+    assert!(!gone.exists());
+    // `check` makes its --out folder when it writes a shrunk counterexample there, so a
+    // missing one is no error, but a file or a path under one is.
+    let file = dir.join("file");
+    fs::write(&file, "").unwrap();
+    for out_dir in [file.clone(), file.join("sub")] {
+        let out = zipmesh(&["check", "--cases", "1", "--out", s(&out_dir)]);
+        assert_eq!(out.status.code(), Some(2));
+        let expected = format!("{} is not a directory", file.display());
+        assert!(stderr(&out).contains(&expected), "{}", stderr(&out));
+    }
+}
+
+/// Messages number vertices from 0, as `--from`, `--path` and `--tip` take them, with an OBJ
+/// file's own 1-based numbers quoted beside; lines stay 1-based; the help says so.
+#[test]
+fn messages_number_vertices_from_0_as_the_arguments_do() {
+    let expect = |args: &[&str], message: &str| {
+        let out = zipmesh(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(err.contains(message), "{args:?}: {err}");
+    };
+    // Lines 57, 60 and 64 of the fan all hold the file's `8` and `9`: vertices 7 and 8.
+    let fan = shared("invalid/osd_catmark_fan.obj");
+    expect(
+        &["stats", s(&fan)],
+        "osd_catmark_fan.obj:64: edge 7-8 (0-based; `8`-`9` in the file) is used by three \
+         or more faces (lines 57, 60 and 64): non-manifold edge",
+    );
+    // Line 131 of the pole is `f 4 3 5 5`: the file's `5` is vertex 4.
+    let pole = shared("invalid/osd_catmark_nonman_quadpole64.obj");
+    expect(
+        &["hash", s(&pole)],
+        "osd_catmark_nonman_quadpole64.obj:131: face uses vertex 4 (0-based; `5` in the \
+         file) twice: repeated corner",
+    );
+    let dir = temp_dir("numbers");
+    let (obj, off) = (dir.join("far.obj"), dir.join("far.off"));
+    fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+    fs::write(&off, "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 2\n").unwrap();
+    expect(
+        &["stats", s(&obj)],
+        "far.obj:4: vertex 8 (0-based; `9` in the file) is out of range for 3 vertices \
+         (0 to 2): index out of range",
+    );
+    // OFF numbers from 0 itself: no note.
+    expect(
+        &["stats", s(&off)],
+        "far.off:7: face uses vertex 2 twice: repeated corner\n",
+    );
+    let help = stdout(&zipmesh(&["--help"]));
+    assert!(
+        help.contains(
+            "Vertices and faces are numbered from 0 in file order, in arguments and in every \
+             message"
+        ),
+        "{help}"
+    );
+}
+
 #[test]
 fn usage_errors_exit_2() {
     for args in [

@@ -5,6 +5,7 @@
 mod common;
 
 use common::cli::{s, stderr, temp_dir, zipmesh};
+use common::shared;
 use serde_json::Value;
 use std::fs;
 use zipmesh::optimize::SingularityCounts;
@@ -175,6 +176,47 @@ fn bad_input_exits_2_without_out() {
             stderr(&o)
         );
     }
+}
+
+/// `-o` into a missing directory is refused before the input is read (a broken input is
+/// not what the message is about), naming the directory; so are a directory as OUT, a
+/// directory that is a file, and a name without a mesh format.
+#[test]
+fn an_output_that_cannot_be_written_is_refused_before_any_work() {
+    let dir = temp_dir("optimize-target");
+    let inp = input(&dir);
+    let missing = dir.join("no").join("such");
+    let target = missing.join("x.obj");
+    let broken = shared("invalid/osd_catmark_fan.obj");
+    for file in [&inp, &broken] {
+        let o = zipmesh(&["optimize", s(file), "-o", s(&target)]);
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            stderr(&o),
+            format!(
+                "zipmesh: cannot write {}: the directory {} does not exist\n",
+                target.display(),
+                missing.display()
+            )
+        );
+    }
+    assert!(!dir.join("no").exists());
+    let under_a_file = inp.join("x.obj");
+    for (target, message) in [
+        (dir.clone(), "is a directory".to_string()),
+        (
+            under_a_file,
+            format!("{} is not a directory", inp.display()),
+        ),
+        (dir.join("x.txt"), "unknown mesh format".to_string()),
+    ] {
+        let o = zipmesh(&["optimize", s(&broken), "-o", s(&target)]);
+        assert_eq!(o.status.code(), Some(2));
+        let err = stderr(&o);
+        let expected = format!("zipmesh: cannot write {}: {message}", target.display());
+        assert!(err.starts_with(&expected), "{err}");
+    }
+    assert_eq!(fs::read_dir(&dir).unwrap().count(), 1, "only the input");
 }
 
 #[test]

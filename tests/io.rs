@@ -254,6 +254,12 @@ fn index_out_of_range() {
             ..
         }
     ));
+    // The message numbers the vertex from 0, as the command line does, and quotes the file.
+    assert_eq!(
+        e.to_string(),
+        "line 8: vertex 5 (0-based; `6` in the file) is out of range for 5 vertices (0 to 4): \
+         index out of range"
+    );
     // Negative before the first vertex, and zero.
     let e = obj_err("v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n");
     assert_eq!(e.line(), Some(3));
@@ -265,31 +271,36 @@ fn index_out_of_range() {
             ..
         }
     ));
+    assert!(
+        e.to_string().contains("vertex index `-3` counts back"),
+        "{e}"
+    );
     let e = obj_err(&format!("{TRI}f 0 1 2\n"));
     assert_eq!(e.line(), Some(6));
     assert!(matches!(
         e.kind(),
         ErrorKind::IndexOutOfRange { index: 0, .. }
     ));
+    assert!(e.to_string().contains("`0` is not valid in OBJ"), "{e}");
     let e = obj_err(&format!("{TRI}f 1 2 99999999999999999999999\n"));
     assert_eq!(e.line(), Some(6));
     assert!(matches!(e.kind(), ErrorKind::IndexOutOfRange { .. }));
     // Shown as written, not clamped to 10^18; a token of any length is cut for the message.
     assert!(
         e.to_string()
-            .contains("vertex index 99999999999999999999999 "),
+            .contains("vertex index `99999999999999999999999` "),
         "{e}"
     );
     let e = off_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -99999999999999999999\n");
     assert!(
-        e.to_string().contains("index -99999999999999999999 "),
+        e.to_string().contains("index `-99999999999999999999` "),
         "{e}"
     );
     let long = "9".repeat(100_000);
     let e = obj_err(&format!("{TRI}f 1 2 {long}\n"));
     assert!(
         e.to_string()
-            .contains(&format!("index {}... ", &long[..40])),
+            .contains(&format!("index `{}...` ", &long[..40])),
         "{e}"
     );
     let e = off_err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
@@ -302,7 +313,10 @@ fn index_out_of_range() {
             ..
         }
     ));
-    assert!(e.to_string().contains("index out of range"), "{e}");
+    assert_eq!(
+        e.to_string(),
+        "line 6: vertex 3 is out of range for 3 vertices (0 to 2): index out of range"
+    );
 }
 
 #[test]
@@ -347,7 +361,8 @@ fn repeated_corner() {
     };
     assert_eq!((vertex, format.vertex_number(vertex)), (1, 2));
     assert!(
-        e.to_string().contains("vertex 2 twice: repeated corner"),
+        e.to_string()
+            .contains("vertex 1 (0-based; `2` in the file) twice: repeated corner"),
         "{e}"
     );
     // OFF numbers vertices from 0.
@@ -374,7 +389,8 @@ fn non_manifold_edge() {
     assert_eq!(lines, [6, 8, 9]);
     let msg = e.to_string();
     assert!(
-        msg.contains("edge 1-2 ") && msg.contains("lines 6, 8 and 9"),
+        msg.contains("edge 0-1 (0-based; `1`-`2` in the file) ")
+            && msg.contains("lines 6, 8 and 9"),
         "{msg}"
     );
     assert!(msg.starts_with("line 9: "), "{msg}");
@@ -393,7 +409,8 @@ fn inconsistent_orientation() {
     assert_eq!(lines, [6, 7]);
     assert_eq!(
         e.to_string(),
-        "line 7: the faces on lines 6 and 7 both run from vertex 1 to vertex 2: inconsistent orientation"
+        "line 7: the faces on lines 6 and 7 both run from vertex 0 to vertex 1 \
+         (0-based; `1` to `2` in the file): inconsistent orientation"
     );
 }
 
@@ -407,7 +424,13 @@ fn non_manifold_vertex() {
     };
     assert_eq!(format.vertex_number(vertex), 1);
     assert_eq!(e.line(), Some(7));
-    assert!(e.to_string().contains("non-manifold vertex"), "{e}");
+    assert!(
+        e.to_string().contains(
+            "around vertex 0 (0-based; `1` in the file) form more than one fan: \
+             non-manifold vertex"
+        ),
+        "{e}"
+    );
 }
 
 #[test]
@@ -650,9 +673,42 @@ fn writing_into_a_missing_directory_fails_and_creates_nothing() {
     let dir = temp_dir("missing-dir");
     let target = dir.join("no").join("such").join("mesh.obj");
     let e = io::write_mesh(&target, &gen::grid(2, 2)).unwrap_err();
-    assert!(matches!(e.kind(), ErrorKind::Io(_)));
+    let ErrorKind::MissingDirectory { dir: missing } = e.kind() else {
+        panic!("{e}")
+    };
+    assert_eq!(missing, &dir.join("no").join("such"));
+    assert!(e.to_string().ends_with("such does not exist"), "{e}");
     assert!(!dir.join("no").exists());
     assert!(dir_entries(&dir).is_empty());
+}
+
+#[test]
+fn targets_and_inputs_that_are_directories_or_under_a_file_are_refused_before_work() {
+    let dir = temp_dir("target-checks");
+    let file = dir.join("plain.obj");
+    io::write_mesh(&file, &gen::grid(1, 1)).unwrap();
+    assert!(io::check_target(dir.join("new.obj")).is_ok());
+    // The output is a directory; a mesh input is a directory (even one named like a mesh).
+    let e = io::check_target(&dir).unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::IsDirectory), "{e}");
+    let named = dir.join("dir.obj");
+    fs::create_dir(&named).unwrap();
+    for e in [io::read_mesh(&named), io::read_mesh(&dir)].map(Result::unwrap_err) {
+        assert!(matches!(e.kind(), ErrorKind::IsDirectory), "{e}");
+        assert!(e.to_string().ends_with(": is a directory"), "{e}");
+    }
+    // The output's directory is a file, or lies under one.
+    for target in [file.join("x.obj"), file.join("a").join("b").join("x.obj")] {
+        let e = io::check_target(&target).unwrap_err();
+        let ErrorKind::NotADirectory { dir: found } = e.kind() else {
+            panic!("{e}")
+        };
+        assert_eq!(found, &file, "{e}");
+        assert!(
+            e.to_string().ends_with("plain.obj is not a directory"),
+            "{e}"
+        );
+    }
 }
 
 #[test]

@@ -12,7 +12,7 @@
 //! Signal handlers call [`remove_temporaries`] so that `SIGINT` or `SIGTERM` leaves nothing
 //! even where the temporary has a name.
 
-use super::MeshFileError;
+use super::{ErrorKind, MeshFileError};
 use alloc::format;
 use alloc::vec::Vec;
 use std::ffi::OsStr;
@@ -86,6 +86,59 @@ where
     prepare_atomic(path, fill)?.commit()
 }
 
+/// Checks, before any work, that a file can be put at `path`: its directory exists and is
+/// a directory, and `path` is not itself a directory. [`prepare_atomic`] checks this first;
+/// a command calls it before it reads or computes anything, so that a mistyped output fails
+/// at once. (Permissions are not checked: only writing finds them.)
+///
+/// The error names `path` and is [`ErrorKind::IsDirectory`], [`ErrorKind::MissingDirectory`]
+/// or [`ErrorKind::NotADirectory`] (the first component of the directory that exists but is
+/// a file); any other failure to look is [`ErrorKind::Io`].
+///
+/// ```
+/// use zipmesh::io::{check_target, ErrorKind};
+/// let dir = std::env::temp_dir();
+/// assert!(check_target(dir.join("new.obj")).is_ok());
+/// let e = check_target(dir.join("zipmesh-no-such-dir").join("new.obj")).unwrap_err();
+/// assert!(matches!(e.kind(), ErrorKind::MissingDirectory { .. }));
+/// assert!(e.to_string().ends_with("zipmesh-no-such-dir does not exist"), "{e}");
+/// assert!(matches!(check_target(&dir).unwrap_err().kind(), ErrorKind::IsDirectory));
+/// ```
+pub fn check_target(path: impl AsRef<Path>) -> Result<(), MeshFileError> {
+    let path = path.as_ref();
+    let fail = |kind| Err(MeshFileError::new(None, kind).with_path(path));
+    if path.file_name().is_none() || path.is_dir() {
+        return fail(ErrorKind::IsDirectory);
+    }
+    let dir = directory(path);
+    match fs::metadata(dir) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(_) => fail(ErrorKind::NotADirectory {
+            dir: dir.to_path_buf(),
+        }),
+        Err(e) => {
+            let is_file = |a: &&Path| fs::metadata(a).is_ok_and(|m| !m.is_dir());
+            match (dir.ancestors().skip(1).find(is_file), e.kind()) {
+                (Some(file), _) => fail(ErrorKind::NotADirectory {
+                    dir: file.to_path_buf(),
+                }),
+                (None, io::ErrorKind::NotFound) => fail(ErrorKind::MissingDirectory {
+                    dir: dir.to_path_buf(),
+                }),
+                (None, _) => fail(ErrorKind::Io(e)),
+            }
+        }
+    }
+}
+
+/// The directory a file at `path` goes in (`.` for a bare file name).
+fn directory(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
 /// The first half of [`write_atomic`]: the complete, synced contents in a temporary file,
 /// not yet in place. [`PendingFile::commit`] puts it in place; dropping it leaves the
 /// target as it was. A command does what may still fail (printing its report) in between.
@@ -106,14 +159,12 @@ where
     F: FnOnce(&mut BufWriter<fs::File>) -> io::Result<()>,
 {
     let path = path.as_ref();
+    check_target(path)?;
     let err = |e| MeshFileError::io(path, e);
     let name = path
         .file_name()
         .ok_or_else(|| err(io::Error::new(io::ErrorKind::InvalidInput, "no file name")))?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
+    let dir = directory(path);
     let temp = dir.join(temp_name(name));
     let (file, named) = match unnamed::create(dir, &temp) {
         Some(file) => (file, false),

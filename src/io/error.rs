@@ -2,6 +2,7 @@
 
 use super::Format;
 use crate::map::BuildError;
+use alloc::format;
 use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 use core::fmt;
@@ -10,10 +11,16 @@ use std::path::{Path, PathBuf};
 
 /// What is wrong with a mesh file.
 ///
-/// Defects the readers find while parsing have their own variants, with numbers as the
-/// file writes them. Defects of the surface that the faces describe are the kernel's
-/// [`BuildError`], wrapped in [`ErrorKind::Topology`] with the file's format; the message
-/// gives vertex numbers as the file writes them: 1-based for OBJ, 0-based for OFF.
+/// Defects the readers find while parsing have their own variants. Defects of the surface
+/// that the faces describe are the kernel's [`BuildError`], wrapped in
+/// [`ErrorKind::Topology`] with the file's format.
+///
+/// Messages number vertices from 0 in file order, as the command line and the kernel do,
+/// whatever the format. Where the file writes another number (OBJ counts from 1), the
+/// file's own text follows in one note: ``vertex 5 (0-based; `6` in the file)``,
+/// ``edge 7-8 (0-based; `8`-`9` in the file)``. Lines are counted from 1, as editors count
+/// them. A token that names no vertex (OBJ's `0`, a negative index counting back too far,
+/// a number too long to hold) is quoted as written.
 ///
 /// ```
 /// use zipmesh::io::{obj, off, ErrorKind, Format};
@@ -24,8 +31,11 @@ use std::path::{Path, PathBuf};
 /// else {
 ///     panic!("{e}");
 /// };
-/// assert_eq!((*vertex, format.vertex_number(*vertex)), (0, 1)); // slot 0 is OBJ's vertex 1
-/// assert_eq!(e.to_string(), "line 4: face uses vertex 1 twice: repeated corner");
+/// assert_eq!((*vertex, format.vertex_number(*vertex)), (0, 1)); // slot 0 is OBJ's `1`
+/// assert_eq!(
+///     e.to_string(),
+///     "line 4: face uses vertex 0 (0-based; `1` in the file) twice: repeated corner"
+/// );
 /// let e = off::parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 0\n").unwrap_err();
 /// assert!(matches!(
 ///     e.kind(),
@@ -38,6 +48,20 @@ use std::path::{Path, PathBuf};
 pub enum ErrorKind {
     /// Reading or writing the file failed.
     Io(io::Error),
+    /// The path names a directory, where a file to read or to write was expected.
+    IsDirectory,
+    /// The directory a file is to be written in does not exist (checked before any work,
+    /// see [`check_target`](super::check_target)).
+    MissingDirectory {
+        /// The directory.
+        dir: PathBuf,
+    },
+    /// What should be the directory of a file to be written is something else, such as a
+    /// file.
+    NotADirectory {
+        /// The path that is not a directory.
+        dir: PathBuf,
+    },
     /// The file name's extension is neither `.obj` nor `.off`.
     UnknownFormat,
     /// An OFF file does not start with an `OFF` header.
@@ -89,14 +113,29 @@ pub enum ErrorKind {
     /// kernel's numbering cannot hold. OBJ's positive indices may refer forward, so their
     /// range is checked by the kernel once every vertex is read; the readers report that
     /// as this variant too, so one defect has one variant.
+    ///
+    /// The message gives the 0-based vertex the index names, with the file's text beside
+    /// it when that differs (OBJ):
+    ///
+    /// ```
+    /// let e = zipmesh::io::obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap_err();
+    /// assert_eq!(
+    ///     e.to_string(),
+    ///     "line 4: vertex 8 (0-based; `9` in the file) is out of range for 3 vertices \
+    ///      (0 to 2): index out of range"
+    /// );
+    /// ```
     IndexOutOfRange {
-        /// The index's value (beyond ±10^18 it saturates; `written` has the digits).
+        /// The index's value as the file writes it (beyond ±10^18 it saturates; `written`
+        /// has the digits).
         index: i64,
         /// The index as the file writes it (cut to 40 bytes, then `...`), for messages.
         written: String,
         /// The number of vertices it was checked against (for OBJ's negative indices, the
         /// vertices defined before the face).
         vertices: usize,
+        /// The file's format, which says how `index` numbers vertices.
+        format: Format,
     },
     /// The faces do not describe an oriented surface, as
     /// [`Map::from_flat_polygons`](crate::Map::from_flat_polygons) found: a face with fewer
@@ -120,6 +159,13 @@ impl fmt::Display for ErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ErrorKind::Io(e) => write!(f, "I/O error: {e}"),
+            ErrorKind::IsDirectory => f.write_str("is a directory"),
+            ErrorKind::MissingDirectory { dir } => {
+                write!(f, "the directory {} does not exist", Escaped(dir))
+            }
+            ErrorKind::NotADirectory { dir } => {
+                write!(f, "{} is not a directory", Escaped(dir))
+            }
             ErrorKind::UnknownFormat => {
                 f.write_str("unknown mesh format: the file name must end in .obj or .off")
             }
@@ -154,11 +200,11 @@ impl fmt::Display for ErrorKind {
                 "unexpected data after the {declared_faces} faces the header declares: counts mismatch"
             ),
             ErrorKind::IndexOutOfRange {
-                written, vertices, ..
-            } => write!(
-                f,
-                "vertex index {written} is out of range for {vertices} vertices: index out of range"
-            ),
+                index,
+                written,
+                vertices,
+                format,
+            } => fmt_out_of_range(f, *index, written, *vertices, *format),
             ErrorKind::Topology {
                 error,
                 format,
@@ -169,15 +215,73 @@ impl fmt::Display for ErrorKind {
     }
 }
 
-/// A kernel error in the file's terms: vertices numbered as the file numbers them, faces
-/// named by their lines (the kernel's face numbers mean little to someone editing the file).
+/// What follows 0-based vertex numbers in a message when the file writes other numbers:
+/// `` (0-based; `1`-`2` in the file)``, the file's numbers joined by `sep`; nothing for a
+/// format that numbers vertices from 0.
+fn file_note(format: Format, written: &[&str], sep: &str) -> String {
+    if format.vertex_number(0) == 0 {
+        return String::new();
+    }
+    let quoted: Vec<String> = written.iter().map(|w| format!("`{w}`")).collect();
+    format!(" (0-based; {} in the file)", quoted.join(sep))
+}
+
+/// An index that names no vertex: the 0-based vertex it would be (with the file's text
+/// when that differs), or the file's text alone when it names none (OBJ's `0`, a negative
+/// index, a number too long to hold).
+fn fmt_out_of_range(
+    f: &mut fmt::Formatter<'_>,
+    index: i64,
+    written: &str,
+    vertices: usize,
+    format: Format,
+) -> fmt::Result {
+    let exact = written.parse::<i64>() == Ok(index);
+    let first = format.vertex_number(0) as i64;
+    match format {
+        _ if exact && index >= first => {
+            let range = match vertices {
+                0 => String::new(),
+                n => format!(" (0 to {})", n - 1),
+            };
+            write!(
+                f,
+                "vertex {}{} is out of range for {vertices} vertices{range}",
+                index - first,
+                file_note(format, &[written], "")
+            )
+        }
+        Format::Obj if exact && index == 0 => {
+            f.write_str("vertex index `0` is not valid in OBJ, which counts vertices from 1")
+        }
+        Format::Obj if index < 0 => write!(
+            f,
+            "vertex index `{written}` counts back past the first vertex \
+             ({vertices} are defined before the face)"
+        ),
+        _ => write!(
+            f,
+            "vertex index `{written}` is out of range for {vertices} vertices"
+        ),
+    }?;
+    f.write_str(": index out of range")
+}
+
+/// A kernel error in the file's terms: vertices numbered from 0 (with the file's own
+/// numbers beside them, see [`file_note`]), faces named by their lines (what someone
+/// editing the file looks for).
 fn fmt_topology(
     f: &mut fmt::Formatter<'_>,
     error: &BuildError,
     format: Format,
     lines: &[usize],
 ) -> fmt::Result {
-    let v = |x: u32| format.vertex_number(x);
+    let file = |x: u32| format.vertex_number(x).to_string();
+    let note = |xs: &[u32], sep: &str| {
+        let written: Vec<String> = xs.iter().map(|&x| file(x)).collect();
+        let written: Vec<&str> = written.iter().map(String::as_str).collect();
+        file_note(format, &written, sep)
+    };
     // `lines` is public, so it may be shorter than the error needs; never panic in Display.
     let line = |i: usize| lines.get(i).copied().unwrap_or(0);
     match *error {
@@ -185,42 +289,43 @@ fn fmt_topology(
             f,
             "face has {corners} corners, at least 3 are needed: face too small"
         ),
-        BuildError::RepeatedCorner { vertex, .. } => {
-            write!(f, "face uses vertex {} twice: repeated corner", v(vertex))
-        }
+        BuildError::RepeatedCorner { vertex, .. } => write!(
+            f,
+            "face uses vertex {vertex}{} twice: repeated corner",
+            note(&[vertex], "")
+        ),
         // The readers report these two as the file-level variants; same messages here.
         BuildError::IndexOutOfRange {
             vertex, n_vertices, ..
-        } => fmt::Display::fmt(
-            &ErrorKind::IndexOutOfRange {
-                index: v(vertex) as i64,
-                written: v(vertex).to_string(),
-                vertices: n_vertices,
-            },
+        } => fmt_out_of_range(
             f,
+            format.vertex_number(vertex) as i64,
+            &file(vertex),
+            n_vertices,
+            format,
         ),
         BuildError::TooLarge { .. } => fmt::Display::fmt(&ErrorKind::TooLarge, f),
         BuildError::NonManifoldEdge { a, b, .. } => write!(
             f,
-            "edge {}-{} is used by three or more faces (lines {}, {} and {}): non-manifold edge",
-            v(a),
-            v(b),
+            "edge {a}-{b}{} is used by three or more faces (lines {}, {} and {}): \
+             non-manifold edge",
+            note(&[a, b], "-"),
             line(0),
             line(1),
             line(2)
         ),
         BuildError::InconsistentOrientation { a, b, .. } => write!(
             f,
-            "the faces on lines {} and {} both run from vertex {} to vertex {}: inconsistent orientation",
+            "the faces on lines {} and {} both run from vertex {a} to vertex {b}{}: \
+             inconsistent orientation",
             line(0),
             line(1),
-            v(a),
-            v(b)
+            note(&[a, b], " to ")
         ),
         BuildError::NonManifoldVertex { vertex, .. } => write!(
             f,
-            "the faces around vertex {} form more than one fan: non-manifold vertex",
-            v(vertex)
+            "the faces around vertex {vertex}{} form more than one fan: non-manifold vertex",
+            note(&[vertex], "")
         ),
     }
 }

@@ -1,6 +1,6 @@
 //! Lexing shared by the readers: lines, tokens and numbers, with errors that name the line.
 
-use super::{ErrorKind, MeshFileError};
+use super::{ErrorKind, Format, MeshFileError};
 use alloc::string::String;
 use alloc::vec::Vec;
 use glam::DVec3;
@@ -146,13 +146,20 @@ pub(super) fn written(tok: &[u8]) -> String {
 }
 
 /// A face's index `tok` (value `index`) that is not one of the file's `vertices`.
-pub(super) fn out_of_range(line: usize, index: i64, tok: &[u8], vertices: usize) -> MeshFileError {
+pub(super) fn out_of_range(
+    line: usize,
+    index: i64,
+    tok: &[u8],
+    vertices: usize,
+    format: Format,
+) -> MeshFileError {
     MeshFileError::new(
         Some(line),
         ErrorKind::IndexOutOfRange {
             index,
             written: written(tok),
             vertices,
+            format,
         },
     )
 }

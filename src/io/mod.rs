@@ -8,7 +8,8 @@
 //!   typed [`ErrorKind`]. Its `Display` reads `path:LINE: problem`. Topology defects found
 //!   by [`Map::from_polygons_with_report`](crate::Map::from_polygons_with_report) are the
 //!   kernel's error in [`ErrorKind::Topology`], traced back to the line of the offending
-//!   face, with vertices numbered as the file numbers them.
+//!   face. Messages number vertices from 0 in file order, as the kernel and the command
+//!   line do, with OBJ's own 1-based number quoted beside (see [`ErrorKind`]).
 //! * Reading returns the [`Mesh`] and the [`BuildReport`]. Vertices that no face uses are
 //!   kept as dead vertex slots (their positions stay in `mesh.positions`), so every other
 //!   vertex keeps its number from the file; the report lists them.
@@ -39,7 +40,9 @@ pub mod off;
 mod soup;
 mod write;
 
-pub use atomic::{prepare_atomic, remove_temporaries, temporary_path, write_atomic, PendingFile};
+pub use atomic::{
+    check_target, prepare_atomic, remove_temporaries, temporary_path, write_atomic, PendingFile,
+};
 pub use error::{ErrorKind, MeshFileError};
 
 use crate::map::BuildReport;
@@ -86,7 +89,8 @@ impl Format {
     }
 
     /// The number a file of this format writes for vertex slot `slot`: OBJ counts from 1,
-    /// OFF from 0. Error messages use it to show the kernel's vertex numbers.
+    /// OFF from 0. Error messages number vertices from 0 and quote this number beside
+    /// when it differs (see [`ErrorKind`]).
     ///
     /// ```
     /// use zipmesh::io::Format;
@@ -134,10 +138,14 @@ impl Format {
 /// Reads a mesh file, choosing the format by the extension (see [`Format::from_path`]).
 ///
 /// Returns the mesh and the build report (unreferenced vertices are kept as dead slots).
-/// Errors carry `path` and, for defects in the file, the line.
+/// Errors carry `path` and, for defects in the file, the line; a directory is
+/// [`ErrorKind::IsDirectory`], whatever its name.
 ///
 /// ```
 /// use zipmesh::{gen, io};
+/// let e = io::read_mesh(std::env::temp_dir()).unwrap_err();
+/// assert!(matches!(e.kind(), io::ErrorKind::IsDirectory));
+/// assert!(e.to_string().ends_with(": is a directory"));
 /// let path = std::env::temp_dir().join(format!("zipmesh-doc-read-{}.off", std::process::id()));
 /// io::write_mesh(&path, &gen::cube(2)).unwrap();
 /// let (mesh, report) = io::read_mesh(&path).unwrap();
@@ -147,6 +155,9 @@ impl Format {
 /// ```
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<(Mesh, BuildReport), MeshFileError> {
     let path = path.as_ref();
+    if fs::metadata(path).is_ok_and(|m| m.is_dir()) {
+        return Err(MeshFileError::new(None, ErrorKind::IsDirectory).with_path(path));
+    }
     let format = Format::from_path(path)
         .ok_or_else(|| MeshFileError::new(None, ErrorKind::UnknownFormat).with_path(path))?;
     let bytes = fs::read(path).map_err(|e| MeshFileError::io(path, e))?;

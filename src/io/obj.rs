@@ -86,7 +86,7 @@ pub fn parse_bytes(src: &[u8]) -> Result<(Mesh, BuildReport), MeshFileError> {
                     // negative: relative to the vertices defined so far.
                     let zero_based = if i > 0 { i - 1 } else { defined as i64 + i };
                     if i == 0 || zero_based < 0 || zero_based >= i64::from(u32::MAX) - 1 {
-                        return Err(out_of_range(no, i, idx, defined));
+                        return Err(out_of_range(no, i, idx, defined, Format::Obj));
                     }
                     soup.corners.push(zero_based as u32);
                 }

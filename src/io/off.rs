@@ -195,7 +195,7 @@ fn read_face(
         let tok = toks.next().ok_or_else(|| missing_number(no, I))?;
         let i = parse_int(tok).ok_or_else(|| bad_number(no, I, tok))?;
         if i < 0 || i as usize >= nv {
-            return Err(out_of_range(no, i, tok, nv));
+            return Err(out_of_range(no, i, tok, nv, Format::Off));
         }
         soup.corners.push(i as u32);
     }

@@ -71,6 +71,7 @@ impl Soup {
                 index: format.vertex_number(vertex) as i64,
                 written: format.vertex_number(vertex).to_string(),
                 vertices: n_vertices,
+                format,
             },
             BuildError::TooLarge { .. } => ErrorKind::TooLarge,
             error => ErrorKind::Topology {

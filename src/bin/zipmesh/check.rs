@@ -12,7 +12,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 use zipmesh::campaign::{self, Case, Config, Property, Report, Shard};
@@ -92,11 +92,29 @@ pub fn run(args: CheckArgs) -> ExitCode {
     }
 }
 
+/// Refuses, before the campaign runs, a `--out` that cannot be a directory: a file, or a
+/// path under one. A missing directory is no error: it is made when a shrunk counterexample
+/// is written (as for the shards of a campaign, each with its own new folder).
+fn check_out_dir(dir: &Path) -> Result<(), String> {
+    let is_file = |a: &&Path| std::fs::metadata(a).is_ok_and(|m| !m.is_dir());
+    match dir.ancestors().find(is_file) {
+        None => Ok(()),
+        Some(file) => Err(format!(
+            "--out {}: {} is not a directory (shrunk counterexamples are written there)",
+            dir.display(),
+            file.display()
+        )),
+    }
+}
+
 /// `--max-distance` when not given; other values are recorded in the report's settings and
 /// passed on in replay lines.
 const DEFAULT_MAX_DISTANCE: usize = 12;
 
 fn run_inner(args: CheckArgs) -> Result<ExitCode, String> {
+    if !args.list {
+        check_out_dir(&args.out)?;
+    }
     if args.merge {
         return merge_reports(&args);
     }

@@ -56,7 +56,7 @@ pub struct TriWalkArgs {
     to: Option<u32>,
     /// Where to write the edited mesh (compacted: vertices and faces renumbered).
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,

@@ -21,7 +21,7 @@ use out::outln;
 use clap::{Parser, Subcommand};
 use serde_json::{json, Map as JsonMap, Value};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
@@ -37,7 +37,9 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
     name = "zipmesh",
     version,
     about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)",
-    after_help = "Exit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
+    after_help = "Vertices and faces are numbered from 0 in file order, in arguments and in every \
+message (an OBJ file's vertex `1` is vertex 0; a message about an OBJ file quotes the file's \
+number beside); lines are counted from 1.\n\nExit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
 2 an error (bad file, bad usage, output that cannot be written); 3 `check`: every property held \
 on what ran but --time-limit cut the run; 141 standard output closed by its reader (quietly); \
 130/143 ended by SIGINT/SIGTERM (temporary files removed). A command that writes a file leaves \
@@ -117,7 +119,24 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage(&e),
     };
-    let result = match cli.command {
+    let result = check_outputs(&cli.command)
+        .map_err(|e| format!("cannot write {e}"))
+        .and_then(|()| dispatch(cli.command));
+    match result {
+        Ok(code) => out::finish(code),
+        // `zip` flushes before it commits its file; a closed pipe there ends quietly too.
+        Err(_) if out::closed() => ExitCode::from(out::CLOSED_PIPE),
+        Err(e) => {
+            let code = out::finish(ExitCode::from(2));
+            out::error(e);
+            code
+        }
+    }
+}
+
+/// Runs the command; its error as the message to print.
+fn dispatch(command: Command) -> Result<ExitCode, String> {
+    match command {
         Command::Moves(args) => qzip::run_moves(args).map_err(|e| e.to_string()),
         Command::Zip(args) => qzip::run_zip(args).map_err(|e| e.to_string()),
         Command::TriMove(args) => tri::run_move(args).map_err(|e| e.to_string()),
@@ -128,16 +147,35 @@ fn main() -> ExitCode {
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
-    };
-    match result {
-        Ok(code) => out::finish(code),
-        // `zip` flushes before it commits its file; a closed pipe there ends quietly too.
-        Err(_) if out::closed() => ExitCode::from(out::CLOSED_PIPE),
-        Err(e) => {
-            let code = out::finish(ExitCode::from(2));
-            out::error(e);
-            code
+    }
+}
+
+/// Refuses, before any file is read, an output that cannot be written (a missing
+/// directory, a directory as the output: [`io::check_target`]) and a mesh output that
+/// names no mesh format, so that a mistyped `-o` costs no run. `check` checks its `--out`
+/// folder itself.
+fn check_outputs(command: &Command) -> Result<(), MeshFileError> {
+    let mesh = |path: &Path| {
+        io::check_target(path)?;
+        match io::Format::from_path(path) {
+            Some(_) => Ok(()),
+            None => Err(MeshFileError::new(None, io::ErrorKind::UnknownFormat).with_path(path)),
         }
+    };
+    match command {
+        Command::Zip(a) => mesh(&a.output),
+        Command::TriMove(a) => mesh(&a.files.output),
+        Command::TriGenerate(a) => mesh(&a.files.output),
+        Command::TriType(a) => mesh(&a.files.output),
+        Command::TriCancel(a) => mesh(&a.files.output),
+        Command::TriWalk(a) => mesh(&a.output),
+        Command::Optimize(a) => mesh(&a.output),
+        Command::Render(a) => io::check_target(&a.output),
+        Command::Stats { .. }
+        | Command::Hash { .. }
+        | Command::Iso { .. }
+        | Command::Check(_)
+        | Command::Moves(_) => Ok(()),
     }
 }
 

@@ -24,7 +24,7 @@ pub struct OptimizeArgs {
     file: PathBuf,
     /// Where to write the result.
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// The most batches to run.
     #[arg(long, default_value_t = 100)]
     batches: usize,

@@ -54,7 +54,7 @@ pub struct ZipArgs {
     tag: Tag,
     /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
 }
 
 /// An input problem: printed as `zipmesh: <message>`, exit 2.

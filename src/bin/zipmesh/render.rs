@@ -18,7 +18,7 @@ pub struct RenderArgs {
     file: PathBuf,
     /// The picture: a name ending in .svg or .png.
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// The eye's azimuth and elevation in degrees, as AZ,EL: azimuth about +Y from +Z toward
     /// +X, elevation above the XZ plane (default: a three-quarter view chosen from the
     /// bounding box, see docs/render.md).

@@ -63,7 +63,7 @@ pub struct Files {
     file: PathBuf,
     /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// Print one JSON value instead of text.
     #[arg(long)]
     json: bool,
@@ -80,7 +80,7 @@ pub struct Files {
 #[derive(Args)]
 pub struct MoveArgs {
     #[command(flatten)]
-    files: Files,
+    pub(crate) files: Files,
     /// The pair: two 0-based vertex numbers, interior v5 or v7. An adjacent 5-7 pair (either
     /// order) moves by atomic moves; a 5-7 pair that is not adjacent, a 5-5 or a 7-7 pair by
     /// the composite moves of Sec. 7.1 (docs/tri-edit.md).
@@ -159,7 +159,7 @@ impl Generation {
 #[derive(Args)]
 pub struct GenerateArgs {
     #[command(flatten)]
-    files: Files,
+    pub(crate) files: Files,
     /// An interior vertex: regular (a 5-5-7-7 quadruple), a v5 (a 5-5-7 triple: the v5
     /// moves and generates a 5-7 pair) or a v7 (a 5-7-7 triple).
     #[arg(long)]
@@ -194,7 +194,7 @@ impl GenerateArgs {
 #[group(id = "which", required = true, multiple = false, args = ["split", "aggregate"])]
 pub struct TypeArgs {
     #[command(flatten)]
-    files: Files,
+    pub(crate) files: Files,
     /// Split an interior v3 (three v5), v4 (two v5) or vk, k > 7 (k - 6 v7).
     #[arg(long)]
     split: Option<u32>,
@@ -208,7 +208,7 @@ pub struct TypeArgs {
 #[group(id = "what", required = true, multiple = false, args = ["quadruple", "triple"])]
 pub struct CancelArgs {
     #[command(flatten)]
-    files: Files,
+    pub(crate) files: Files,
     /// A 5-5-7-7 quadruple inside two triangles: four vertex numbers.
     #[arg(long, value_delimiter = ',', num_args = 1)]
     quadruple: Option<Vec<u32>>,
