@@ -175,7 +175,8 @@ fn check_outputs(command: &Command) -> Result<(), MeshFileError> {
         | Command::Hash { .. }
         | Command::Iso { .. }
         | Command::Check(_)
-        | Command::Moves(_) => Ok(()),
+        | Command::Moves(_)
+        | Command::Singularities(_) => Ok(()),
     }
 }
 
