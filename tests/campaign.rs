@@ -380,8 +380,8 @@ fn replay_of_an_unshrunk_given_case_names_the_file_seed_and_focus() {
 /// its movements miss. Other properties report 0, and the property still passes.
 #[test]
 fn reversal_misses_are_counted_as_unchecked() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/quad/osd_catmark_toroidal_tet.obj");
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/osd_catmark_toroidal_tet.obj");
     let (mut mesh, _) = io::read_mesh(&file).unwrap();
     zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
     let cases = [Case::from_mesh(mesh, 0, 0, "toroidal tet, preprocessed")];

@@ -12,8 +12,7 @@ use zipmesh::qzip::{moves, sketch, SketchOptions, Tag};
 use zipmesh::{io, is_isomorphic, Vert};
 
 fn spot() -> String {
-    let p =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/spot_quadrangulated.obj");
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/spot_quadrangulated.obj");
     p.to_str().unwrap().to_string()
 }
 
