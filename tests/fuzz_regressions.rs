@@ -121,21 +121,11 @@ fn the_torus_loop_regression_wraps() {
     assert!(one_quad_sweeps(&c.original, &c.path).is_empty());
 }
 
-/// The input found by a 12-minute `qzip_homotopy` run: on an 8 x 10 grid with
-/// two vertex splits, `LC` along `37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46` (which ends
-/// round the quad `47 56 55 46`, shortened by the end rule) and along its sweep across the
-/// regular quad `47 48 57 56` differed: the end rule shortened the first path only. Now the
-/// sweep is straightened before the end rule, and every movement done along the path and
-/// along each of its sweeps gives the same map (labels matched by `start_turn`).
-#[test]
-fn the_sweep_before_the_end_turn_regression_gives_one_map() {
+/// Every movement done along the path of a `qzip_homotopy` regression and along each of its
+/// one-quad sweeps (labels matched by `start_turn`) gives the same map; returns how many
+/// were done on both sides.
+fn sweeps_agree(c: &qzip_case::Case<'_>) -> usize {
     use zipmesh::qzip::{one_quad_sweeps, start_turn};
-    let data = regression("qzip_homotopy", "sweep-before-the-end-turn");
-    let c = qzip_case::case(&data).unwrap();
-    assert_eq!(
-        c.path.to_string(),
-        "37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46"
-    );
     let run = |p, t| {
         let mut m = c.original.clone();
         Qzip::new()
@@ -143,9 +133,8 @@ fn the_sweep_before_the_end_turn_regression_gives_one_map() {
             .ok()
             .map(|_| CanonicalCode::of(&m))
     };
-    let sweeps = one_quad_sweeps(&c.original, &c.path);
     let mut compared = 0;
-    for (_, swept) in &sweeps {
+    for (_, swept) in &one_quad_sweeps(&c.original, &c.path) {
         let k = start_turn(&c.original, &c.path, swept).unwrap();
         for t in Tag::CCW {
             if let (Some(a), Some(b)) = (run(&c.path, t), run(swept, t.turned(k))) {
@@ -159,9 +148,64 @@ fn the_sweep_before_the_end_turn_regression_gives_one_map() {
             }
         }
     }
+    compared
+}
+
+/// The input found by a 12-minute `qzip_homotopy` run: on an 8 x 10 grid with
+/// two vertex splits, `LC` along `37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46` (which ends
+/// round the quad `47 56 55 46`, shortened by the end rule) and along its sweep across the
+/// regular quad `47 48 57 56` differed: the end rule shortened the first path only. Now the
+/// sweep is straightened before the end rule, and every movement done along the path and
+/// along each of its sweeps gives the same map (labels matched by `start_turn`). Since the
+/// compass is carried along a v3 start's reroute (`46 -> 100 -> 28`, into the v5 28), `LC`
+/// reaches the v5 end 46 with a split and returns to 46, where the reroute starts: refused
+/// on both paths alike (`PrepareError::NotSimple`).
+#[test]
+fn the_sweep_before_the_end_turn_regression_gives_one_map() {
+    use zipmesh::qzip::one_quad_sweeps;
+    let data = regression("qzip_homotopy", "sweep-before-the-end-turn");
+    let c = qzip_case::case(&data).unwrap();
+    assert_eq!(
+        c.path.to_string(),
+        "37 -> 28 -> 29 -> 38 -> 47 -> 56 -> 55 -> 46"
+    );
     // The failing pair (LC along the sweep across 47 48 57 56) is among them.
-    assert!(sweeps
+    assert!(one_quad_sweeps(&c.original, &c.path)
         .iter()
         .any(|(_, s)| s.to_string().contains("47 -> 48 -> 57 -> 56")));
-    assert!(compared >= 1, "no movement done on both sides");
+    sweeps_agree(&c);
+}
+
+/// The input found by a 20-minute run of `qzip_homotopy`: on a torus grid with
+/// vertex splits, `LC` from the v3 29 along `29 -> 22 -> 21 -> 14 -> 7 -> 13 -> 12 -> 58` and
+/// along its sweep across the regular quad `7 0 6 13` differed. The v3 start's reroute
+/// `36 -> 56 -> 22` enters the v3 22 from 56, where the path entered from 29; the compass
+/// from 22 on was carried along the planned first edge (`RC`, a right turn counted on the
+/// right), not along the reroute (`LC`, a left turn counted on the left), and the chain's
+/// transient v3 then ran along the path. Now the compass is carried along the reroute: `LC`
+/// along both paths would cancel the crowded start's singularities (the guard refuses both),
+/// and every movement done on both sides gives one map.
+#[test]
+fn the_crowded_v3_start_regression_gives_one_map() {
+    use zipmesh::qzip::{plan, prepare};
+    let data = regression("qzip_homotopy", "sweep-four-edges-after-a-crowded-start");
+    let c = qzip_case::case(&data).unwrap();
+    assert_eq!(
+        c.path.to_string(),
+        "29 -> 22 -> 21 -> 14 -> 7 -> 13 -> 12 -> 58"
+    );
+    sweeps_agree(&c);
+    let s = prepare(&c.original, &plan(&c.original, &c.path, Tag::LC).unwrap()).unwrap();
+    let first: Vec<(usize, Option<Tag>)> = s.steps()[..3]
+        .iter()
+        .map(|x| (x.vertex.index(), x.op))
+        .collect();
+    assert_eq!(
+        first,
+        [
+            (36, Some(Tag::LC)),
+            (56, Some(Tag::RC)),
+            (22, Some(Tag::LC))
+        ]
+    );
 }

@@ -8,8 +8,8 @@ use common::{ico_cc, pairs_within};
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, is_regular_interior, MeshKind};
 use zipmesh::qzip::{
-    one_quad_sweeps, plan, sketch, start_turn, validate_path, verify_edit, Path, Qzip, QzipError,
-    SketchOptions, Tag, ZipError,
+    one_quad_sweeps, plan, prepare, sketch, start_turn, validate_path, verify_edit, Path, Qzip,
+    QzipError, SketchOptions, Tag, ZipError,
 };
 use zipmesh::{gen, Map, Vert};
 
@@ -140,6 +140,39 @@ fn homotopic_paths_give_isomorphic_maps_on_subdivided_cages() {
     }
     // The meshes do exercise the clean-up split this test is about.
     assert!(v6_splits > 0);
+}
+
+/// A counterexample shrunk from a QuadriFlow mesh (`tests/data/counterexamples/`): the v3 14
+/// starts next to the v3 16, and its `LC` reroute round the quad `21 10 14 16` (every corner
+/// singular) enters 16 from 21, where the planned path entered from 14. The compass from 16
+/// on is carried along the reroute: after `RC` at 21 one quad (`21 16 15 20`) is on the
+/// counted left, a left turn, so `LC` at 16. Carried along the planned first edge instead
+/// (2 quads on the left, 1 counted on the right: `RC`), the chain's transient v3 ran along
+/// the path itself, and `LC` along the path and along its sweep across `19 26 53 27` gave
+/// different maps. Now every pair within 8 edges and each of its sweeps agree.
+#[test]
+fn a_reroute_into_a_singularity_carries_the_compass_along_the_reroute() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/counterexamples/qzip-homotopy-seed0-case0.obj");
+    let map = zipmesh::io::read_mesh(file).expect("counterexample").0.map;
+    let t = sweep(&map, 8);
+    eprintln!("{t:?}");
+    assert!(t.compared >= 1, "{t:?}");
+    assert_eq!(t.one_side_refused, 0, "{t:?}");
+    let p = through(&map, &verts(&[14, 16, 15, 19, 27, 13, 59, 54, 6]));
+    let s = prepare(&map, &plan(&map, &p, Tag::LC).unwrap()).unwrap();
+    let first: Vec<(usize, Option<Tag>)> = s.steps()[..3]
+        .iter()
+        .map(|x| (x.vertex.index(), x.op))
+        .collect();
+    assert_eq!(
+        first,
+        [
+            (10, Some(Tag::LC)),
+            (21, Some(Tag::RC)),
+            (16, Some(Tag::LC))
+        ]
+    );
 }
 
 /// How many movements between pairs within `max_len` edges split a valence-6 vertex (each

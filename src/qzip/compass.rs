@@ -525,6 +525,52 @@ fn count_side(map: &Map, out: Dart, back: Dart, side: Side) -> Result<usize, Opt
     Err(None)
 }
 
+/// The turn at the path vertex `index` (the origin of `out`), entered along the twin of
+/// `back` with the compass hand `tag`: the quads between the two edges counted on
+/// [`Tag::counting_side`] (at a regular boundary vertex whose counted side reaches the
+/// boundary, on the other side), with the side and the count.
+pub(crate) fn turn_at(
+    map: &Map,
+    tag: Tag,
+    back: Dart,
+    out: Dart,
+    index: usize,
+) -> Result<(Turn, Side, usize), PlanError> {
+    let vertex = map.origin(out);
+    let mut side = tag.counting_side();
+    let mut result = count_side(map, out, back, side);
+    if result == Err(None)
+        && map.is_boundary_vertex(vertex)
+        && map.valence(vertex) == regular_valence(MeshKind::Quad, true)
+    {
+        side = match side {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        };
+        result = count_side(map, out, back, side);
+    }
+    let n = match result {
+        Ok(n) => n,
+        Err(None) => {
+            return Err(PlanError::Boundary {
+                index,
+                vertex,
+                side: tag.counting_side(),
+            })
+        }
+        Err(Some(face)) => {
+            return Err(PlanError::NotQuad {
+                index,
+                vertex,
+                face,
+            })
+        }
+    };
+    // n == 0 would mean the path comes back along the same edge: not a simple path.
+    let turn = Turn::from_count(side, n).ok_or(PlanError::StalePath { index })?;
+    Ok((turn, side, n))
+}
+
 /// Carries the compass along `path`, starting with `initial` at its first vertex.
 ///
 /// Checks, for every path vertex: an interior (non-boundary) vertex must have valence 3, 4
@@ -575,37 +621,7 @@ pub fn plan(map: &Map, path: &Path, initial: Tag) -> Result<Plan, PlanError> {
     for index in 1..verts.len() - 1 {
         let vertex = verts[index];
         let (back, out) = (darts[index - 1].twin(), darts[index]);
-        let mut side = tag.counting_side();
-        let mut result = count_side(map, out, back, side);
-        if result == Err(None)
-            && map.is_boundary_vertex(vertex)
-            && map.valence(vertex) == regular_valence(MeshKind::Quad, true)
-        {
-            side = match side {
-                Side::Left => Side::Right,
-                Side::Right => Side::Left,
-            };
-            result = count_side(map, out, back, side);
-        }
-        let n = match result {
-            Ok(n) => n,
-            Err(None) => {
-                return Err(PlanError::Boundary {
-                    index,
-                    vertex,
-                    side: tag.counting_side(),
-                })
-            }
-            Err(Some(face)) => {
-                return Err(PlanError::NotQuad {
-                    index,
-                    vertex,
-                    face,
-                })
-            }
-        };
-        // n == 0 would mean the path comes back along the same edge: not a simple path.
-        let turn = Turn::from_count(side, n).ok_or(PlanError::StalePath { index })?;
+        let (turn, side, n) = turn_at(map, tag, back, out, index)?;
         tag = tag.after(turn);
         steps.push(PlanStep {
             vertex,

@@ -220,6 +220,14 @@ pub enum ZipError {
     /// apart from others the edit touched (crowded configurations): refused rather than
     /// reported wrongly.
     Untracked,
+    /// The edit would change a triangle of a quad-dominant map: a corner's valence, or which
+    /// vertices are corners. Q-zip treats a triangle's edges as boundary edges (Sec. 3.2), so
+    /// only the triangle moves change a triangle; refused, so that every triangle is kept by
+    /// every edit that is done.
+    TriangleChanged {
+        /// The first touched vertex whose triangle corners changed.
+        vertex: Vert,
+    },
     /// A clean-up operation (valence-2 removal or valence-6 split) was refused.
     Cleanup {
         /// The vertex.
@@ -262,6 +270,12 @@ impl fmt::Display for ZipError {
                 "the edit kept the irregular vertices but the moved pair cannot be told apart \
                  from the other singularities it touched; refused",
             ),
+            Self::TriangleChanged { vertex } => write!(
+                f,
+                "the edit would change a triangle at vertex {} (a corner's valence); a Q-zip \
+                 treats triangles as boundary and keeps them; refused",
+                vertex.index()
+            ),
             Self::Cleanup { vertex, refusal } => write!(
                 f,
                 "the clean-up at vertex {} was refused: {refusal}",
@@ -294,6 +308,20 @@ struct Seen {
     before: Option<usize>,
     boundary: bool,
     born: bool,
+    /// A corner of a triangle at the first touch (quad-dominant maps, Sec. 3.2).
+    corner: bool,
+}
+
+/// Whether `v` is a corner of a triangle: a face of three darts round it (O(valence)).
+fn triangle_corner(map: &Map, v: Vert) -> bool {
+    map.vertex_darts(v)
+        .any(|d| map.face(d).is_some() && map.next(map.next(map.next(d))) == d)
+}
+
+/// Whether `v` is a regular interior vertex of the quad grid: valence 4, not on the
+/// boundary, and no triangle round it (a triangle's edges count as boundary, Sec. 3.2).
+fn regular_quad_vertex(map: &Map, v: Vert) -> bool {
+    is_regular_interior(map, MeshKind::Quad, v) && !triangle_corner(map, v)
 }
 
 /// The distinct vertices the chain touched, in order of first touch, with a small
@@ -401,6 +429,7 @@ impl Touched {
             before: Some(map.valence(v)),
             boundary: map.is_boundary_vertex(v),
             born: false,
+            corner: triangle_corner(map, v),
         });
     }
 
@@ -410,6 +439,7 @@ impl Touched {
             before: None,
             boundary: false,
             born: true,
+            corner: false,
         })
         .born = true;
     }
@@ -453,6 +483,25 @@ impl Touched {
         } else {
             Err((n_before, n_after))
         }
+    }
+
+    /// Whether every triangle corner the surgery touched is still the same vertex with the
+    /// same valence, and no other touched vertex became one; else the first that is not.
+    /// Q-zip treats a triangle's edges as boundary edges (Sec. 3.2): only the triangle
+    /// moves (`hybrid`) change its corners.
+    fn triangles_kept(&self, map: &Map) -> Result<(), Vert> {
+        for s in &self.list {
+            let live = map.is_live_vertex(s.v);
+            let now = live && triangle_corner(map, s.v);
+            if !(s.corner || now) {
+                continue;
+            }
+            let kept = live && !s.born && s.corner && now && s.before == Some(map.valence(s.v));
+            if !kept {
+                return Err(s.v);
+            }
+        }
+        Ok(())
     }
 
     /// Vertices the surgery left at valence 2 or 6 that were not so before, in order of
@@ -506,16 +555,17 @@ fn undo_all(map: &mut Map, records: &[QuadRecord]) {
 }
 
 /// The dart of the valence-6 vertex `v` to split along (with its opposite), among the pairs
-/// of opposite edges whose far ends are both regular interior vertices (they become the two
-/// v5s): the one whose breadth-first reading of the map is smallest
-/// (the canonical code's numbering started there).
+/// of opposite edges whose far ends are both regular vertices of the quad grid (they become
+/// the two v5s; a triangle corner is not one, its edges counting as boundary, Sec. 3.2): the
+/// one whose breadth-first reading of the map is smallest (the canonical code's numbering
+/// started there).
 ///
 /// The choice must depend on the map, not on the path's history: a homotopic path swept
 /// round a quad elsewhere gives an isomorphic map before the clean-up but touches (and
 /// names) the vertices round `v` in another order. Choosing by touch order broke homotopy
 /// invariance on the Catmull-Clark-subdivided Spot and Blub cages.
 fn v6_first_dart(map: &Map, v: Vert) -> Dart {
-    let regular = |x: Vert| is_regular_interior(map, MeshKind::Quad, x);
+    let regular = |x: Vert| regular_quad_vertex(map, x);
     let opposite = |d: Dart| map.rotate_cw(map.rotate_cw(map.rotate_cw(d)));
     let good: Vec<Dart> = map
         .vertex_darts(v)
@@ -903,6 +953,10 @@ fn run(
     let mut chain = Chain::new(map, &surgery);
     chain.run(map, records)?;
     let (v2_removals, v6_splits) = chain.clean_up(map, records)?;
+    chain
+        .touched
+        .triangles_kept(map)
+        .map_err(|vertex| ZipError::TriangleChanged { vertex })?;
     let kept = chain.touched.irregulars_kept(map);
     let (moved_from, moved_to) = match (kept, guard) {
         (Err((before, after)), Guard::GridPreserving) => {

@@ -11,7 +11,7 @@
 //! | --- | --- | --- |
 //! | start v3 | split | the first operation becomes a no-op |
 //! | start v5 | collapse | none |
-//! | start v3 | LC (RC) | start at the v3's neighbour on the left (right) of the first edge, go round that quad: LC (RC) there, RC (LC) at the turn |
+//! | start v3 | LC (RC) | start at the v3's neighbour on the left (right) of the first edge, go round that quad: LC (RC) there, RC (LC) at the turn, and the compass carried along the reroute from the first path vertex on |
 //! | start v5 | LS (RS) | prepend the guide edge from the second neighbour counter-clockwise (clockwise) of the first edge; no-op there |
 //! | end v3 | any | none |
 //! | end v5 | LC (RC) | replace the last edge by the two sides of the quad on its left (right): RS (LS) at the turn, LC (RC) on the last edge |
@@ -43,7 +43,7 @@
 use alloc::vec::Vec;
 use core::fmt;
 
-use super::compass::{Plan, Tag};
+use super::compass::{turn_at, Plan, PlanError, Tag};
 use super::quad::{bounds_one_quad, quad_on_edge, side_quad, SideQuad};
 use crate::invariants::{is_regular_interior, MeshKind};
 use crate::{Dart, Map, Vert};
@@ -309,6 +309,10 @@ pub enum PrepareError {
     Empty,
     /// The plan does not fit the map (made for another map, or the map changed).
     StalePlan,
+    /// The compass cannot be carried along the adjusted path (a counted side at a vertex the
+    /// adjustment enters along a new edge reaches the boundary or meets a face that is not a
+    /// quad); the position is in the adjusted path.
+    Carry(PlanError),
 }
 
 impl fmt::Display for PrepareError {
@@ -339,6 +343,7 @@ impl fmt::Display for PrepareError {
             ),
             Self::Empty => f.write_str("no operation is left after the end-point adjustments"),
             Self::StalePlan => f.write_str("the plan does not fit this map"),
+            Self::Carry(e) => write!(f, "along the adjusted path: {e}"),
         }
     }
 }
@@ -457,6 +462,7 @@ impl Draft {
                 self.darts[0] = quad.back;
                 self.hands[0] = if left { initial.cw() } else { initial.ccw() };
                 self.prepend(quad.near_origin(map), quad.across, initial, false);
+                self.carry_from(map, 2)?;
                 StartRule::V3Collapse
             }
             (_, false) => StartRule::V5Collapse,
@@ -466,6 +472,28 @@ impl Draft {
                 StartRule::V5Split
             }
         })
+    }
+
+    /// Carries the compass along the draft from vertex `i` on (Sec. 2.5): the hand along
+    /// each edge is the hand along the edge before, turned by the turn between them (the
+    /// counting rule at an irregular vertex). Stops at a fold (`a -> b -> a`), which
+    /// [`Draft::cancel_folds`] cuts keeping the hand of the edge that leaves it.
+    ///
+    /// A v3 start's reroute enters the first path vertex `p1` along another edge than the
+    /// planned path did, with another hand; at a regular `p1` the two give the same hand on,
+    /// at an irregular one the reroute's quad is counted on one side and not on the other, so
+    /// only the compass carried along the rerouted path is consistent with it.
+    fn carry_from(&mut self, map: &Map, i: usize) -> Result<(), PrepareError> {
+        for k in i..self.hands.len() {
+            if self.vertices[k + 1] == self.vertices[k - 1] {
+                return Ok(());
+            }
+            let (back, out) = (self.darts[k - 1].twin(), self.darts[k]);
+            let (turn, ..) =
+                turn_at(map, self.hands[k - 1], back, out, k).map_err(PrepareError::Carry)?;
+            self.hands[k] = self.hands[k - 1].after(turn);
+        }
+        Ok(())
     }
 
     /// A path that reaches the terminal singularity by going round a quad touching it
