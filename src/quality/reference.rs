@@ -88,12 +88,12 @@ impl Reference {
     #[cfg(feature = "parry")]
     fn search(&self, p: DVec3) -> f64 {
         use parry3d_f64::query::PointQuery as _;
-        match &self.closest {
-            Some(t) => {
-                t.distance_to_local_point(&parry3d_f64::math::Point::new(p.x, p.y, p.z), false)
-            }
-            None => f64::INFINITY,
-        }
+        let Some(t) = &self.closest else {
+            return f64::INFINITY;
+        };
+        // Not `distance_to_local_point`: that one is negative for a point it reads as inside.
+        let q = t.project_local_point(&parry3d_f64::math::Point::new(p.x, p.y, p.z), false);
+        DVec3::new(q.point.x, q.point.y, q.point.z).distance(p)
     }
 
     #[cfg(not(feature = "parry"))]
