@@ -27,8 +27,8 @@
 //! * `parallel`: the optimizer's candidate search on every core (rayon); the same output
 //!   without it.
 //! * `parry`: [`quality::Reference`] answers closest-point queries with parry3d-f64's
-//!   `TriMesh` (2 to 4 times faster off the surface than the built-in grid; the same
-//!   distances).
+//!   `TriMesh`: the same distances, 2 to 5 times faster than the built-in grid for vertices
+//!   moved off the surface.
 //! * `render`: [`render`], pictures of meshes (SVG, and PNG through resvg).
 //! * `cli`: the `zipmesh` command-line tool (includes `campaign`, `parallel` and `render`).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
