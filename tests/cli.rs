@@ -13,6 +13,7 @@ use std::path::Path;
 use std::process::Command;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::{gen, io, Mesh};
 
 /// Compares `stats --json` output with the library's own numbers for `mesh`.
@@ -51,6 +52,112 @@ fn assert_stats_match(json: &Value, mesh: &Mesh, unreferenced: usize) {
         json["canonical_hash"],
         format!("{:032x}", canonical_hash(map))
     );
+    assert_quality_matches(&json["quality"], &Summary::of(mesh));
+}
+
+/// Whether a JSON number is `x` (serde_json's default parsing may miss by an ulp).
+fn same_number(v: &Value, x: Option<f64>) -> bool {
+    match (v.as_f64(), x) {
+        (Some(a), Some(b)) => (a - b).abs() <= 1e-12 * b.abs().max(1.0),
+        (a, b) => a.is_none() && b.is_none() && v.is_null(),
+    }
+}
+
+/// Compares the `"quality"` object of `stats --json` with the library's summary.
+fn assert_quality_matches(q: &Value, s: &Summary) {
+    assert_eq!(q["faces"], s.faces);
+    assert_eq!(q["quads"], s.quads);
+    assert_eq!(q["triangles"], s.triangles);
+    assert_eq!(q["folded_quads"], s.folded_quads);
+    assert_eq!(q["folded_by"]["diagonal"], s.folded_by.diagonal);
+    assert_eq!(q["folded_by"]["corner"], s.folded_by.corner);
+    assert_eq!(q["folded_by"]["neighbours"], s.folded_by.neighbours);
+    assert_eq!(q["negative_scaled_jacobian"], s.negative_jacobian);
+    let j = &q["scaled_jacobian"];
+    match s.jacobian {
+        Some(p) => {
+            let pairs = [
+                ("min", p.min),
+                ("p1", p.p1),
+                ("p5", p.p5),
+                ("median", p.median),
+            ];
+            for (key, x) in pairs {
+                assert!(
+                    same_number(&j[key], Some(x)),
+                    "{key}: {} against {x}",
+                    j[key]
+                );
+            }
+        }
+        None => assert!(j.is_null()),
+    }
+    assert!(same_number(&q["min_angle_degrees"], s.min_angle), "{q}");
+    assert_eq!(q["thin_triangles"], s.thin_triangles);
+    assert_eq!(q["flipped_triangles"], s.flipped_triangles);
+    assert!(same_number(&q["max_edge_ratio"], s.max_edge_ratio), "{q}");
+    assert_eq!(q["degenerate_faces"], s.degenerate_faces);
+    match s.distance {
+        Some(d) => {
+            let got = &q["distance"];
+            for (key, x) in [("mean", d.mean), ("p99", d.p99), ("max", d.max)] {
+                assert!(same_number(&got[key], Some(x)), "{key}: {got}");
+            }
+            assert_eq!(got["vertices"], d.vertices);
+        }
+        None => assert!(q["distance"].is_null()),
+    }
+}
+
+/// `--reference` adds the vertices' distances to another mesh's surface: 0 for the input
+/// itself, the library's numbers for a mesh with moved vertices; the table shows them in
+/// one row, and the quality rows name what they count.
+#[test]
+fn stats_measures_quality_and_the_distance_to_a_reference() {
+    let dir = temp_dir("reference");
+    let input = shared("quad/spot_quadrangulated.obj");
+    let (mesh, _) = io::read_mesh(&input).unwrap();
+    let mut moved = mesh.clone();
+    for (i, p) in moved.positions.iter_mut().enumerate().step_by(7) {
+        *p += DVec3::new(0.0, 0.01 * (i % 5) as f64, 0.02);
+    }
+    let moved_path = dir.join("moved.obj");
+    io::write_mesh(&moved_path, &moved).unwrap();
+    let (moved, _) = io::read_mesh(&moved_path).unwrap(); // as written, digits and all
+    let reference = Reference::new(&mesh);
+    for (path, m) in [(&input, &mesh), (&moved_path, &moved)] {
+        let out = zipmesh(&["stats", "--json", s(path), "--reference", s(&input)]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        assert_quality_matches(&json["quality"], &Summary::against(m, &reference));
+    }
+    let d = Summary::against(&moved, &reference).distance.unwrap();
+    assert!(d.max > 0.001 && d.mean > 0.0);
+
+    let out = zipmesh(&["stats", s(&moved_path), "--reference", s(&input)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let table = stdout(&out);
+    for label in [
+        "folded quads",
+        "scaled jacobian < 0",
+        "scaled jacobian 1st %",
+        "min angle",
+        "triangles < 10 deg",
+        "flipped triangles",
+        "max edge ratio",
+        "degenerate faces",
+        "distance to reference",
+    ] {
+        assert!(
+            table.lines().any(|l| l.starts_with(label)),
+            "no {label} row in {table}"
+        );
+    }
+    let row = format!("mean {:.6}, 99th % {:.6}, max {:.6}", d.mean, d.p99, d.max);
+    assert!(table.contains(&row), "{row} in {table}");
+    // A reference that cannot be read is an error (exit 2), as the mesh itself would be.
+    let out = zipmesh(&["stats", s(&input), "--reference", s(&dir.join("none.obj"))]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }
 
 #[test]

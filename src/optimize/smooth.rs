@@ -117,7 +117,11 @@ impl Surface {
     ///
     /// See [`Surface`] for an example.
     pub fn new(mesh: &Mesh) -> Self {
-        let triangles = fan_triangles(mesh);
+        Self::from_triangles(fan_triangles(mesh))
+    }
+
+    /// The surface of `triangles` (`quality::Reference` gives it the finite ones of a mesh).
+    pub(crate) fn from_triangles(triangles: Vec<[DVec3; 3]>) -> Self {
         let (mut min, mut max) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for t in &triangles {
             for p in t {

@@ -10,6 +10,7 @@ mod check;
 mod hybrid;
 mod optimize;
 mod out;
+mod quality;
 mod qzip;
 mod render;
 mod signals;
@@ -26,6 +27,7 @@ use std::process::ExitCode;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
 use zipmesh::io::{self, MeshFileError};
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::{BuildReport, Mesh};
 
 /// The mesh `zipmesh stats` reads when no file is given (Spot's control mesh, CC0).
@@ -52,13 +54,18 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Counts, Euler characteristic, genus, histograms, Gauss-Bonnet and the canonical hash.
+    /// Counts, Euler characteristic, genus, histograms, Gauss-Bonnet, the canonical hash and
+    /// the quality of the geometry (folded quads, scaled Jacobians, angles, edge ratios).
     Stats {
         /// An .obj or .off file; without it, the built-in Spot control mesh.
         file: Option<PathBuf>,
         /// Print one JSON object instead of a table.
         #[arg(long)]
         json: bool,
+        /// Also measure each vertex's distance to this mesh's surface (the input of an
+        /// edit), as a fraction of its bounding-box diagonal.
+        #[arg(long, value_name = "FILE")]
+        reference: Option<PathBuf>,
     },
     /// Every singularity (irregular vertex): its number, valence, place (interior or
     /// boundary), defect (valence minus the regular or ideal valence) and position.
@@ -204,23 +211,11 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::Optimize(_)
         | Command::Render(_) => {}
         Command::Singularities(args) => singular::run(args)?,
-        Command::Stats { file, json } => {
-            let (name, (mesh, report)) = match &file {
-                Some(path) => (path.display().to_string(), io::read_mesh(path)?),
-                None => (
-                    DEFAULT_NAME.to_string(),
-                    io::obj::parse(DEFAULT_MESH).map_err(|e| e.with_path(DEFAULT_NAME))?,
-                ),
-            };
-            let stats = stats(&mesh, &report);
-            if json {
-                let object: JsonMap<String, Value> =
-                    stats.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
-                outln!("{}", Value::Object(object));
-            } else {
-                print_table(&name, &stats);
-            }
-        }
+        Command::Stats {
+            file,
+            json,
+            reference,
+        } => run_stats(file, json, reference)?,
         Command::Hash { file } => {
             let (mesh, _) = io::read_mesh(&file)?;
             outln!("{:032x}", canonical_hash(&mesh.map));
@@ -250,8 +245,41 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Everything `stats` reports, as JSON values in the order of the table.
-fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
+/// `zipmesh stats`: the table or the JSON object of [`stats`].
+fn run_stats(
+    file: Option<PathBuf>,
+    json: bool,
+    reference: Option<PathBuf>,
+) -> Result<(), MeshFileError> {
+    let (name, (mesh, report)) = match &file {
+        Some(path) => (path.display().to_string(), io::read_mesh(path)?),
+        None => (
+            DEFAULT_NAME.to_string(),
+            io::obj::parse(DEFAULT_MESH).map_err(|e| e.with_path(DEFAULT_NAME))?,
+        ),
+    };
+    let reference = match &reference {
+        Some(path) => Some(Reference::new(&io::read_mesh(path)?.0)),
+        None => None,
+    };
+    let stats = stats(&mesh, &report, reference.as_ref());
+    if json {
+        let object: JsonMap<String, Value> =
+            stats.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+        outln!("{}", Value::Object(object));
+    } else {
+        print_table(&name, &stats);
+    }
+    Ok(())
+}
+
+/// Everything `stats` reports, as JSON values in the order of the table; the quality
+/// against `reference` if given.
+fn stats(
+    mesh: &Mesh,
+    report: &BuildReport,
+    reference: Option<&Reference>,
+) -> Vec<(&'static str, Value)> {
     let map = &mesh.map;
     let c = Counts::of(map);
     let h = Histograms::of(map);
@@ -259,6 +287,10 @@ fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
     let gb = gauss_bonnet(map, kind);
     let hist = |m: &BTreeMap<usize, usize>| -> Value {
         Value::Object(m.iter().map(|(k, v)| (k.to_string(), json!(v))).collect())
+    };
+    let summary = match reference {
+        Some(r) => Summary::against(mesh, r),
+        None => Summary::of(mesh),
     };
     let kind_name = match kind {
         MeshKind::Triangle => "triangle",
@@ -295,6 +327,7 @@ fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
             "canonical_hash",
             json!(format!("{:032x}", canonical_hash(map))),
         ),
+        ("quality", quality::to_json(&summary)),
     ]
 }
 
@@ -302,6 +335,12 @@ fn stats(mesh: &Mesh, report: &BuildReport) -> Vec<(&'static str, Value)> {
 fn print_table(name: &str, stats: &[(&str, Value)]) {
     outln!("{:<22} {name}", "file");
     for (key, value) in stats {
+        if *key == "quality" {
+            for (label, text) in quality::rows(value) {
+                outln!("{label:<22} {text}");
+            }
+            continue;
+        }
         let text = match value {
             Value::Object(o) if *key == "gauss_bonnet" => format!(
                 "{} + {} = {} ({})",
