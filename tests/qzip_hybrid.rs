@@ -400,3 +400,56 @@ fn a_movement_that_would_change_a_triangle_is_refused() {
     );
     assert_eq!(m, map);
 }
+
+/// Without `avoid_triangles` the paths run through and next to triangles, and every movement
+/// that is done keeps each triangle exactly: the same face, the same corner vertices (no
+/// corner handed to a vertex the edit made, none lost) with the same valences; the others
+/// are refused with the map unchanged. Some are refused for a triangle (asserted).
+#[test]
+fn movements_near_triangles_keep_every_corner_or_are_refused() {
+    use zipmesh::qzip::{QzipError, ZipError};
+    let corners = |map: &Map| -> Vec<(Face, Vec<(Vert, usize)>)> {
+        triangles(map)
+            .into_iter()
+            .map(|(f, mut c)| {
+                c.sort();
+                (f, c)
+            })
+            .collect()
+    };
+    let (mut done, mut refused_for_a_triangle) = (0, 0);
+    let mut maps = fixtures();
+    maps.push(grid_counterexample_with_triangles());
+    for map in &maps {
+        let before = corners(map);
+        let sing = irregular_vertices(map, MeshKind::Quad);
+        for &a in &sing {
+            for &b in &sing {
+                let Ok(path) = sketch(map, a, b, &SketchOptions::default()) else {
+                    continue;
+                };
+                if a == b || path.len() > 4 {
+                    continue;
+                }
+                for tag in [Tag::LS, Tag::RS, Tag::LC, Tag::RC] {
+                    let mut m = map.clone();
+                    match Qzip::new().zip_along(&mut m, &path, tag) {
+                        Ok(_) => {
+                            done += 1;
+                            assert_eq!(corners(&m), before, "{tag} along {path}");
+                        }
+                        Err(e) => {
+                            assert_eq!(&m, map, "{e}");
+                            refused_for_a_triangle += usize::from(matches!(
+                                e,
+                                QzipError::Execute(ZipError::TriangleChanged { .. })
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{done} done, {refused_for_a_triangle} refused for a triangle");
+    assert!(done > 100 && refused_for_a_triangle > 0);
+}
