@@ -473,3 +473,34 @@ fn failure(
 #[cfg(doctest)]
 #[doc = include_str!("../../docs/campaign.md")]
 struct CampaignDocDoctests;
+
+/// The vertices within `radius` edges of `s` (breadth-first, `s` left out) that `keep`
+/// accepts, nearest first: where the campaigns draw a partner for `s`.
+fn near(
+    map: &crate::Map,
+    s: crate::Vert,
+    radius: usize,
+    keep: impl Fn(crate::Vert) -> bool,
+) -> Vec<crate::Vert> {
+    let mut seen = std::collections::BTreeSet::from([s]);
+    let (mut ring, mut found) = (std::vec![s], Vec::new());
+    for _ in 0..radius {
+        let mut next = Vec::new();
+        for &v in &ring {
+            for d in map.vertex_darts(v) {
+                let w = map.dest(d);
+                if seen.insert(w) {
+                    next.push(w);
+                    if keep(w) {
+                        found.push(w);
+                    }
+                }
+            }
+        }
+        if next.is_empty() {
+            break;
+        }
+        ring = next;
+    }
+    found
+}

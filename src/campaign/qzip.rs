@@ -136,27 +136,7 @@ fn pairs(case: &Case, s: &Subject<'_>, choice: PairChoice, salt: u64) -> Option<
 /// sample's pairs within reach on a large mesh, where two random singularities are rarely
 /// `radius` edges apart. `sing` is in vertex order.
 fn within(map: &Map, sing: &[Vert], a: Vert, radius: usize) -> Vec<Vert> {
-    let mut seen = std::collections::BTreeSet::from([a]);
-    let mut ring = std::vec![a];
-    let mut out = Vec::new();
-    for _ in 0..radius {
-        let mut next = Vec::new();
-        for &v in &ring {
-            for d in map.vertex_darts(v) {
-                let w = map.dest(d);
-                if seen.insert(w) {
-                    next.push(w);
-                    if sing.binary_search(&w).is_ok() {
-                        out.push(w);
-                    }
-                }
-            }
-        }
-        if next.is_empty() {
-            break;
-        }
-        ring = next;
-    }
+    let mut out = super::near(map, a, radius, |w| sing.binary_search(&w).is_ok());
     out.sort_unstable();
     out
 }

@@ -336,24 +336,7 @@ const FAR_STEPS: usize = 12;
 /// The interior v5 and v7 nearest `s` (breadth-first, at most `radius` edges away, `s`
 /// itself left out), nearest first.
 fn odd_near(map: &Map, s: Vert, radius: usize) -> Vec<Vert> {
-    let mut seen = alloc::collections::BTreeSet::from([s]);
-    let (mut ring, mut found) = (alloc::vec![s], Vec::new());
-    for _ in 0..radius {
-        let mut next = Vec::new();
-        for &v in &ring {
-            for d in map.vertex_darts(v) {
-                let w = map.dest(d);
-                if seen.insert(w) {
-                    next.push(w);
-                    if matches!(interior(map, w), Some(5 | 7)) {
-                        found.push(w);
-                    }
-                }
-            }
-        }
-        ring = next;
-    }
-    found
+    super::near(map, s, radius, |w| matches!(interior(map, w), Some(5 | 7)))
 }
 
 fn far_pair_move(case: &Case) -> Outcome {

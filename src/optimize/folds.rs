@@ -40,8 +40,7 @@ pub fn is_folded(mesh: &Mesh, f: Face) -> bool {
     for (x, d) in c.iter_mut().zip(map.face_darts(f)) {
         *x = p(map.origin(d));
     }
-    let n = |a: usize, b: usize, d: usize| (c[b] - c[a]).cross(c[d] - c[a]);
-    n(0, 1, 2).dot(n(0, 2, 3)) < 0.0 || n(1, 2, 3).dot(n(1, 3, 0)) < 0.0
+    crate::quality::diagonal_fold(&c)
 }
 
 /// The folded quads of `mesh` ([`is_folded`]).

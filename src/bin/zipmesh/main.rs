@@ -273,6 +273,15 @@ fn run_stats(
     Ok(())
 }
 
+/// The name of a mesh kind in every report: `triangle`, `quad` or `mixed`.
+pub(crate) fn kind_name(kind: MeshKind) -> &'static str {
+    match kind {
+        MeshKind::Triangle => "triangle",
+        MeshKind::Quad => "quad",
+        MeshKind::Mixed => "mixed",
+    }
+}
+
 /// Everything `stats` reports, as JSON values in the order of the table; the quality
 /// against `reference` if given.
 fn stats(
@@ -292,13 +301,8 @@ fn stats(
         Some(r) => Summary::against(mesh, r),
         None => Summary::of(mesh),
     };
-    let kind_name = match kind {
-        MeshKind::Triangle => "triangle",
-        MeshKind::Quad => "quad",
-        MeshKind::Mixed => "mixed",
-    };
     vec![
-        ("kind", json!(kind_name)),
+        ("kind", json!(kind_name(kind))),
         ("vertices", json!(c.vertices)),
         ("edges", json!(c.edges)),
         ("faces", json!(c.faces)),

@@ -1,6 +1,7 @@
 //! `zipmesh singularities`: every irregular vertex with its number, valence, place, defect and
 //! position, as a table or JSON.
 
+use crate::kind_name;
 use crate::out::outln;
 use clap::Args;
 use serde_json::{json, Value};
@@ -59,14 +60,6 @@ fn rows(mesh: &Mesh, kind: MeshKind) -> Vec<Row> {
             position: at(v),
         })
         .collect()
-}
-
-fn kind_name(kind: MeshKind) -> &'static str {
-    match kind {
-        MeshKind::Triangle => "triangle",
-        MeshKind::Quad => "quad",
-        MeshKind::Mixed => "quad-dominant",
-    }
 }
 
 pub fn run(args: SingularitiesArgs) -> Result<(), MeshFileError> {
