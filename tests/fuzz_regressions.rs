@@ -209,3 +209,43 @@ fn the_crowded_v3_start_regression_gives_one_map() {
         ]
     );
 }
+
+/// The input found by a 30-minute `qzip_homotopy` run: on a grid with vertex splits, the
+/// path `47 -> 40 -> 48 -> 56 -> 0 -> 1 -> 57 -> 58 -> ..` goes round three sides of the
+/// quad `56 0 1 57` (the v3 0 and the v5 1 among its corners). Along its sweep across
+/// `40 41 49 48`, `LC` at 49 collapses `48 49 57 56` and merges 48 with the later path vertex
+/// 57, closing the loop `48 -> 56 -> 0 -> 1 -> 48` round that quad; the chain cut the loop
+/// and so skipped the two singularities, and `LS` gave another map than along the path.
+/// Now a loop is cut only when its corners were regular before the edit, as in the
+/// preparation; this one is refused (`Lost`), and every movement done on both sides gives
+/// one map.
+#[test]
+fn the_loop_round_two_singularities_is_not_cut() {
+    use zipmesh::qzip::{one_quad_sweeps, ZipError};
+    let data = regression("qzip_homotopy", "loop-round-two-singularities");
+    let c = qzip_case::case(&data).unwrap();
+    assert_eq!(
+        c.path.to_string(),
+        "47 -> 40 -> 48 -> 56 -> 0 -> 1 -> 57 -> 58 -> 2 -> 10 -> 9 -> 66"
+    );
+    let sweeps = one_quad_sweeps(&c.original, &c.path);
+    let swept = &sweeps
+        .iter()
+        .find(|(_, s)| {
+            s.to_string()
+                .starts_with("47 -> 40 -> 41 -> 49 -> 48 -> 56")
+        })
+        .expect("the sweep across 40 41 49 48")
+        .1;
+    let mut m = c.original.clone();
+    let e = Qzip::new().zip_along(&mut m, swept, Tag::LS).unwrap_err();
+    assert!(m == c.original);
+    assert!(
+        matches!(e, zipmesh::qzip::QzipError::Execute(ZipError::Lost { .. })),
+        "{e}"
+    );
+    // Along the path itself the same movement is done.
+    let mut m = c.original.clone();
+    Qzip::new().zip_along(&mut m, &c.path, Tag::LS).unwrap();
+    assert!(sweeps_agree(&c) >= 1);
+}

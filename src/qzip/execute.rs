@@ -524,6 +524,18 @@ impl Touched {
 
     /// Whether the edit left `v` with valence `k` and it carries `k` because of the edit:
     /// born here, or changed to `k`.
+    /// Whether `v` was a regular vertex of the quad grid before the surgery, or the surgery
+    /// made it (its valence mid-chain is transient).
+    fn was_regular(&self, map: &Map, v: Vert) -> bool {
+        match self.find(v) {
+            Some(s) if s.born => true,
+            Some(s) => {
+                s.before == Some(regular_valence(MeshKind::Quad, false)) && !s.boundary && !s.corner
+            }
+            None => regular_quad_vertex(map, v),
+        }
+    }
+
     fn changed_to(&self, map: &Map, v: Vert, k: usize) -> bool {
         map.is_live_vertex(v)
             && map.valence(v) == k
@@ -854,8 +866,14 @@ impl<'s> Chain<'s> {
                 self.vertex_at(j - 2),
                 self.vertex_at(j - 1),
             ];
-            // Valences mid-chain are transient: only the quad is required.
-            if !bounds_one_quad(map, ring, [self.surgery.from(), self.surgery.to()], false) {
+            // Valences mid-chain are transient, so the quad is read with `regular` off; but
+            // cutting the loop is a homotopy across that quad only if its other corners were
+            // regular before the edit (as in the preparation's cut): a singularity on the loop
+            // would be skipped instead of passed by the counting rule.
+            let ends = [self.surgery.from(), self.surgery.to()];
+            if !bounds_one_quad(map, ring, ends, false)
+                || !ring[1..].iter().all(|&w| self.touched.was_regular(map, w))
+            {
                 return Err(lost);
             }
         }
