@@ -249,3 +249,30 @@ fn the_loop_round_two_singularities_is_not_cut() {
     Qzip::new().zip_along(&mut m, &c.path, Tag::LS).unwrap();
     assert!(sweeps_agree(&c) >= 1);
 }
+
+/// The input found by a `qzip_homotopy` run on the fixed loop cut (793 thousand runs): the
+/// path `.. 12 -> 68 -> 196 -> 96 -> 11` ends round the quad `68 196 96 11` (a U-turn into
+/// the v5 11, which the preparation shortens to `68 -> 11`); its sweep across the quad
+/// `96 203 113 11` ends `.. 96 -> 203 -> 113 -> 11`, a U-turn shortened to `96 -> 11`, which
+/// is the first U-turn again. It was shortened once only, so `RS` gave another map along the
+/// sweep. Now the preparation shortens (and straightens) until neither applies, and every
+/// movement done on both sides gives one map.
+#[test]
+fn a_u_turn_left_by_shortening_is_shortened_again() {
+    use zipmesh::qzip::{plan, prepare};
+    let data = regression("qzip_homotopy", "sweep-at-a-u-turn-end");
+    let c = qzip_case::case(&data).unwrap();
+    assert!(
+        c.path.to_string().ends_with("12 -> 68 -> 196 -> 96 -> 11"),
+        "{}",
+        c.path
+    );
+    assert!(sweeps_agree(&c) >= 1);
+    // Along the path, RS ends round the quad at the end as the end rule gives it.
+    let s = prepare(&c.original, &plan(&c.original, &c.path, Tag::RS).unwrap()).unwrap();
+    let tail: Vec<usize> = s.steps()[s.steps().len() - 3..]
+        .iter()
+        .map(|x| x.vertex.index())
+        .collect();
+    assert_eq!(tail, [68, 196, 96]);
+}

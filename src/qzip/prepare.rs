@@ -22,7 +22,8 @@
 //! shortened to `a -> end` (a homotopy across that quad; the hand along `a -> end` is the
 //! hand along the parallel side `b -> c`); a path swept round a regular quad just before that
 //! U-turn (`p -> x -> y -> b -> c -> end`, `p x y b` a quad) is first straightened to
-//! `p -> b`, so that it is shortened the same way. After the adjustments, edges crossed twice in
+//! `p -> b`, so that it is shortened the same way; both are repeated until neither applies.
+//! After the adjustments, edges crossed twice in
 //! opposite directions (`a -> b -> a`) cancel in pairs, keeping the compass unchanged: the
 //! surviving vertex takes the hand of the edge that leaves the fold; loops that go round one
 //! quad with regular corners (`a -> x -> y -> z -> a`) are cut the same way. If a v3 start's
@@ -500,19 +501,21 @@ impl Draft {
     /// (a -> b -> c -> end, with a and end joined by that quad's fourth side) is shortened to
     /// a -> end, a homotopy across that quad inside the one-ring: the compass along a -> end
     /// is the hand along b -> c, the parallel side. Adjusting the end of the U-turn instead
-    /// would reroute back over it.
-    fn shorten_round_quad_end(&mut self, map: &Map) {
+    /// would reroute back over it. Returns whether it shortened the path.
+    fn shorten_round_quad_end(&mut self, map: &Map) -> bool {
         let v = &self.vertices;
         if v.len() < 4 {
-            return;
+            return false;
         }
         let m = v.len() - 1;
         if self.noops[m - 3] {
-            return;
+            return false;
         }
-        if let Some(side) = round_regular_quad(map, [v[m - 3], v[m - 2], v[m - 1], v[m]]) {
+        let side = round_regular_quad(map, [v[m - 3], v[m - 2], v[m - 1], v[m]]);
+        if let Some(side) = side {
             self.cut_round_quad(m - 3, side);
         }
+        side.is_some()
     }
 
     /// A path swept round a regular quad just before the U-turn that
@@ -705,8 +708,14 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     let initial = plan.initial();
     let (from, to) = (steps[0].vertex, steps[steps.len() - 1].vertex);
     let start = draft.adjust_start(map, initial)?;
-    draft.straighten_before_end_quad(map);
-    draft.shorten_round_quad_end(map);
+    // Until neither applies: a shortened end can be a U-turn again (a path swept round the
+    // quad at the end turns round the next one), and its sweep must end as the path does.
+    loop {
+        draft.straighten_before_end_quad(map);
+        if !draft.shorten_round_quad_end(map) {
+            break;
+        }
+    }
     let arriving = draft.hands[draft.hands.len() - 1];
     let end = draft.adjust_end(map, steps.len() - 1, arriving)?;
     let mut folds = draft.cancel_folds();
