@@ -48,6 +48,7 @@ struct Budget {
     counter: CheckCounter,
     cut: bool,
     unchecked: u64,
+    searched: u64,
 }
 
 /// What the runner learns of one property on one case besides its outcome.
@@ -57,6 +58,8 @@ pub(crate) struct Notes {
     pub cut: bool,
     /// The sum of its [`Case::note_unchecked`] calls.
     pub unchecked: u64,
+    /// The sum of its [`Case::note_searched`] calls.
+    pub searched: u64,
 }
 
 std::thread_local! {
@@ -75,6 +78,7 @@ pub(crate) fn within<R>(
         counter: counter.clone(),
         cut: false,
         unchecked: 0,
+        searched: 0,
     };
     let previous = CURRENT.with(|c| c.replace(Some(budget)));
     let result = f();
@@ -83,6 +87,7 @@ pub(crate) fn within<R>(
         .map_or(Notes::default(), |b| Notes {
             cut: b.cut,
             unchecked: b.unchecked,
+            searched: b.searched,
         });
     (result, notes)
 }
@@ -142,6 +147,31 @@ impl Case {
         CURRENT.with(|c| {
             if let Some(b) = c.borrow_mut().as_mut() {
                 b.unchecked = b.unchecked.saturating_add(n);
+            }
+        });
+    }
+
+    /// Records that `n` of the property's checks needed a fallback search: for the reversal
+    /// properties, reverse runs that [`qzip::derive_reverse`](crate::qzip::derive_reverse)
+    /// did not give and [`qzip::find_reverse`](crate::qzip::find_reverse)'s search found.
+    /// They are checks like the others; the report sums them per property
+    /// ([`Row::searched`](super::Row::searched)). Outside a campaign it does nothing.
+    ///
+    /// ```
+    /// use zipmesh::campaign::{self, Case, Config, Outcome, Property};
+    /// let p = Property::new("found-late", "", |case: &Case| {
+    ///     case.note_searched(1);
+    ///     Outcome::Pass { checks: 2 }
+    /// });
+    /// let c = Config { cases: 3, max_faces: 100, ..Config::default() };
+    /// let r = campaign::run(&c, &[p]);
+    /// assert_eq!((r.rows[0].checks, r.rows[0].searched), (6, 3));
+    /// assert!(r.to_json(false).contains("\"searched\":3"));
+    /// ```
+    pub fn note_searched(&self, n: u64) {
+        CURRENT.with(|c| {
+            if let Some(b) = c.borrow_mut().as_mut() {
+                b.searched = b.searched.saturating_add(n);
             }
         });
     }

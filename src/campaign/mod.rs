@@ -305,6 +305,7 @@ impl Tally {
             row.time += time;
             row.cut += u64::from(notes.cut);
             row.unchecked = row.unchecked.saturating_add(notes.unchecked);
+            row.searched = row.searched.saturating_add(notes.searched);
             match outcome {
                 Outcome::Pass { checks } => {
                     row.cases += 1;

@@ -10,7 +10,8 @@ use super::{Case, Outcome, Property};
 use crate::invariants::canonical::CanonicalCode;
 use crate::invariants::{is_regular_interior, MeshKind};
 use crate::qzip::{
-    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
+    find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, ReverseWay,
+    SketchOptions, Tag,
 };
 use crate::{Map, Vert};
 
@@ -225,6 +226,9 @@ pub(super) fn reversal_on(case: &Case, s: &Subject<'_>, choice: PairChoice) -> O
                     format!("the reverse run {} of {tag} does not restore", back.tag),
                     Some(path.start()),
                 );
+            }
+            if back.way == ReverseWay::Searched {
+                case.note_searched(1);
             }
             checks += 1;
         }

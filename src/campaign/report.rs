@@ -41,6 +41,10 @@ pub struct Row {
     /// properties, the movements with no reverse run found; for the homotopy ones, the swept
     /// paths next to a triangle, not compared. Not in `checks`, and not failures.
     pub unchecked: u64,
+    /// Checks that needed a fallback search, among `checks`
+    /// ([`Case::note_searched`](super::Case::note_searched)): for the reversal properties,
+    /// the reverse runs found by the search, not derived.
+    pub searched: u64,
     /// Time spent in the property, summed over the cases and workers (so it can exceed the
     /// wall time with several jobs). Not deterministic, unlike every other field.
     pub time: Duration,
@@ -58,6 +62,7 @@ impl Row {
             checks: 0,
             cut: 0,
             unchecked: 0,
+            searched: 0,
             time: Duration::ZERO,
         }
     }
@@ -71,6 +76,7 @@ impl Row {
         self.checks += other.checks;
         self.cut += other.cut;
         self.unchecked = self.unchecked.saturating_add(other.unchecked);
+        self.searched = self.searched.saturating_add(other.searched);
         self.time += other.time;
     }
 }
@@ -342,7 +348,7 @@ impl Report {
 fn row_json(s: &mut String, r: &Row, times: bool) {
     let _ = write!(
         s,
-        "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{},\"unchecked\":{}",
+        "{{\"name\":{},\"cases\":{},\"passed\":{},\"failed\":{},\"skipped\":{},\"checks\":{},\"cut\":{},\"unchecked\":{},\"searched\":{}",
         quote(&r.property),
         r.cases,
         r.passed,
@@ -350,7 +356,8 @@ fn row_json(s: &mut String, r: &Row, times: bool) {
         r.skipped,
         r.checks,
         r.cut,
-        r.unchecked
+        r.unchecked,
+        r.searched
     );
     if times {
         let _ = write!(s, ",\"seconds\":{}", r.time.as_secs_f64());

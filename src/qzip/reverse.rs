@@ -2,16 +2,17 @@
 
 use alloc::vec::Vec;
 
-use super::compass::Tag;
+use super::compass::{plan, Tag};
 use super::execute::ZipReport;
+use super::prepare::SurgeryStep;
 use super::sketch::{sketch, validate_path, Path, SketchOptions};
 use super::zip::zip_along;
 use crate::invariants::canonical::{same_from, CanonicalCode};
-use crate::invariants::{is_irregular, MeshKind};
+use crate::invariants::{is_irregular, is_regular_interior, MeshKind};
 use crate::{Dart, Edge, Map, Vert};
 
 /// A Q-zip run that undoes another: a path from the moved terminal singularity to the moved
-/// initial one, and the initial operation to run along it.
+/// initial one, the initial operation to run along it, and how it was found.
 ///
 /// See [`find_reverse`] for an example.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -20,13 +21,96 @@ pub struct ReverseRun {
     pub path: Path,
     /// The initial operation of the reverse run.
     pub tag: Tag,
+    /// Derived from the report, or found by the search.
+    pub way: ReverseWay,
+}
+
+/// How a reverse run was found.
+///
+/// ```
+/// use zipmesh::qzip::ReverseWay;
+/// assert_eq!(ReverseWay::Derived.to_string(), "derived");
+/// assert_eq!(ReverseWay::Searched.to_string(), "searched");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ReverseWay {
+    /// By [`derive_reverse`], from the report alone.
+    Derived,
+    /// By the search of [`find_reverse`], after the derived run did not restore.
+    Searched,
+}
+
+impl core::fmt::Display for ReverseWay {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            ReverseWay::Derived => "derived",
+            ReverseWay::Searched => "searched",
+        })
+    }
+}
+
+/// Derives the run that reverses an edit from its report alone, as the paper's reading gives
+/// it (Sec. 2.8): start at the moved terminal singularity, go along the image of the surgery
+/// path, with the compass turned by pi. `None` if the image cannot be drawn.
+///
+/// The path is the surgery's surviving vertices read backwards, gaps bridged inside the scar,
+/// loops cut. The compass is read where the image runs back along an edge the surgery ran
+/// along, between two regular interior vertices: there it is the surgery's hand turned by pi,
+/// and the initial tag is the one the plan carries to that hand. Without such an edge, it is
+/// the surgery's last hand turned by pi. Nothing is run or compared: [`find_reverse`] checks
+/// the derived run first and searches only when it does not restore (`docs/qzip.md` gives how
+/// often, per mesh).
+///
+/// ```
+/// use zipmesh::{gen, is_isomorphic};
+/// use zipmesh::qzip::{derive_reverse, sketch, Qzip, ReverseWay, SketchOptions, Tag};
+/// let original = gen::cube(4).map;
+/// let (a, b) = (zipmesh::Vert::new(0), zipmesh::Vert::new(4));
+/// let path = sketch(&original, a, b, &SketchOptions::default()).unwrap();
+/// let mut edited = original.clone();
+/// let r = Qzip::new().zip_along(&mut edited, &path, Tag::LS).unwrap();
+/// let back = derive_reverse(&edited, &r).unwrap();
+/// assert_eq!(back.way, ReverseWay::Derived);
+/// Qzip::new().zip_along(&mut edited, &back.path, back.tag).unwrap();
+/// assert!(is_isomorphic(&edited, &original));
+/// ```
+pub fn derive_reverse(edited: &Map, report: &ZipReport) -> Option<ReverseRun> {
+    let steps = report.surgery().steps();
+    let (from, to) = (report.moved_to(), report.moved_from());
+    let path = literal_image(edited, report, &image_options(edited, report, from, to))?;
+    let last = steps.last().map_or(Tag::LS, |s| s.hand.rotate_pi());
+    let tag = read_back(edited, report, &path).unwrap_or(last);
+    Some(ReverseRun {
+        path,
+        tag,
+        way: ReverseWay::Derived,
+    })
+}
+
+/// The initial tag of a reverse run along `path` read where it first runs back along a
+/// surgery edge between two regular interior vertices (the surgery's hand there turned by
+/// pi, carried back to the start by the plan); `None` if it never does.
+fn read_back(edited: &Map, report: &ZipReport, path: &Path) -> Option<Tag> {
+    let steps = report.surgery().steps();
+    let r = path.vertices();
+    let regular = |v: Vert| is_regular_interior(edited, MeshKind::Quad, v);
+    let (k, hand) = (0..r.len() - 1).find_map(|k| {
+        let back = |w: &[SurgeryStep]| w[0].vertex == r[k + 1] && w[1].vertex == r[k];
+        let i = steps.windows(2).position(back)?;
+        (regular(r[k]) && regular(r[k + 1])).then(|| (k, steps[i].hand.rotate_pi()))
+    })?;
+    Tag::CCW
+        .into_iter()
+        .find(|&t| plan(edited, path, t).is_ok_and(|p| p.steps()[k].tag == hand))
 }
 
 /// Finds the Q-zip that reverses an edit (Sec. 2.8): along a path from the moved terminal
 /// singularity back to the moved initial one, the initial operation whose result is
 /// isomorphic to `original`; `None` if no candidate restores it.
 ///
-/// The candidate paths are images of the surgery path, in order: the shortest path keeping
+/// The run [`derive_reverse`] gives is checked first ([`ReverseWay::Derived`]). Only when it
+/// does not restore does the search run ([`ReverseWay::Searched`]). Its candidate paths are
+/// images of the surgery path, in order: the shortest path keeping
 /// to the edit's scar and surviving path vertices; the same with the other singularities
 /// blocked; the surviving path vertices read backwards; shortest paths with and without the
 /// blocking; then those with the singularities they run through passed on either side; last
@@ -51,6 +135,13 @@ pub struct ReverseRun {
 /// ```
 pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<ReverseRun> {
     let mut target = Restores::new(edited, report, original);
+    let derived = derive_reverse(edited, report);
+    if let Some(d) = derived.clone() {
+        let mut m = edited.clone();
+        if zip_along(&mut m, &d.path, d.tag).is_ok() && target.by(&m) {
+            return Some(d);
+        }
+    }
     let first = report
         .surgery()
         .steps()
@@ -69,6 +160,7 @@ pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<
             target.by(&m).then(|| ReverseRun {
                 path: path.clone(),
                 tag,
+                way: ReverseWay::Searched,
             })
         });
         tried.push(path);

@@ -350,6 +350,15 @@ fn print_text(report: &Report) {
             unchecked_meaning(&r.property)
         );
     }
+    for r in report.rows.iter().filter(|r| r.searched > 0) {
+        outln!(
+            "{}: {} of its {} checks found by the fallback search ({})",
+            r.property,
+            r.searched,
+            r.checks,
+            searched_meaning(&r.property)
+        );
+    }
     for f in &report.failures {
         outln!();
         outln!(
@@ -376,6 +385,15 @@ fn print_text(report: &Report) {
         (true, false) => outln!("all properties hold"),
         (true, true) => outln!("all properties hold on what ran (cut by the time limit)"),
         (false, _) => {}
+    }
+}
+
+/// What a property's `searched` count means (docs/qzip.md).
+fn searched_meaning(property: &str) -> &'static str {
+    if property.ends_with("reversal") {
+        "reverse runs not derived from the report"
+    } else {
+        "checks that needed a search"
     }
 }
 

@@ -259,6 +259,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
             "to": moved_from,
             "move": rev.tag.to_string(),
             "path": p,
+            "found": rev.way.to_string(),
         })
     });
     let report = json!({

@@ -74,6 +74,8 @@ fn row(v: &Value) -> Result<Row, String> {
         checks: number(v, "checks")?,
         cut: number(v, "cut")?,
         unchecked: number(v, "unchecked")?,
+        // Absent in reports written before the field existed.
+        searched: v.get("searched").and_then(Value::as_u64).unwrap_or(0),
         time: seconds(v),
     })
 }
