@@ -407,7 +407,18 @@ fn reversal_misses_are_counted_as_unchecked() {
         r.table(false)
     );
     assert_eq!((grid.unchecked, validity.unchecked), (0, 0));
+    // Some reverse runs are derived, some searched: the searched ones are counted apart.
+    assert!(
+        rev.searched > 0 && rev.searched < rev.checks,
+        "{}",
+        r.table(false)
+    );
+    assert_eq!(grid.searched, 0);
     let json = r.to_json(false);
+    assert!(
+        json.contains(&format!("\"searched\":{}", rev.searched)),
+        "{json}"
+    );
     assert!(
         json.contains(&format!("\"unchecked\":{}", rev.unchecked)),
         "{json}"
