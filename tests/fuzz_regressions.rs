@@ -76,6 +76,42 @@ fn qzip_regressions_keep_the_qzip_targets_oracle() {
     assert!(replayed >= 1);
 }
 
+/// The seeds cut from the real meshes (`fuzz/corpus/TARGET/patch-*`, written by
+/// `cargo run --example fuzz_patches`) decode to a patch and a path between two interior
+/// singularities, and keep the `qzip` target's oracle for every tag.
+#[test]
+fn real_mesh_patch_seeds_decode_and_keep_the_oracle() {
+    use zipmesh::invariants::{is_irregular, MeshKind};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/qzip");
+    let (mut seeds, mut done) = (0, 0);
+    for entry in fs::read_dir(dir).unwrap().flatten() {
+        if !entry.file_name().to_string_lossy().starts_with("patch-") {
+            continue;
+        }
+        let data = fs::read(entry.path()).unwrap();
+        assert_eq!(data[0], qzip_case::PATCH);
+        let c = qzip_case::case(&data).expect("a patch seed decodes");
+        let m = &c.original;
+        for v in [c.path.start(), c.path.end()] {
+            assert!(is_irregular(m, MeshKind::Quad, v) && !m.is_boundary_vertex(v));
+        }
+        for tag in Tag::CCW {
+            let mut map = c.original.clone();
+            match Qzip::new().zip_along(&mut map, &c.path, tag) {
+                Ok(report) => {
+                    let edit = verify_edit(&c.original, &map, &c.path, &report);
+                    assert!(edit.is_ok(), "{}: {:?}", entry.path().display(), edit);
+                    done += 1;
+                }
+                Err(_) => assert!(map == c.original),
+            }
+        }
+        seeds += 1;
+    }
+    assert!(seeds >= 20, "{seeds} patch seeds");
+    assert!(done >= seeds, "{done} movements done on {seeds} seeds");
+}
+
 /// The input found with the shortest-path condition removed: along its bent path two of
 /// the four movements are isomorphic, and a shorter path joins the ends, so the target
 /// (which requires a shortest path) skips it.

@@ -1,5 +1,7 @@
 //! The input shared by the Q-zip fuzz targets: a small generated quad mesh with isolated or
-//! clustered singularities, closed or with boundary, two fuzzer-chosen vertices, an initial
+//! clustered singularities, closed or with boundary, or a patch given face by face (the seeds
+//! `fuzz/corpus/TARGET/patch-*` are patches of the real meshes round singularity pairs,
+//! written by `cargo run --example fuzz_patches`), two fuzzer-chosen vertices, an initial
 //! tag, and a shortest or fuzzer-bent path between the vertices.
 #![allow(dead_code)]
 
@@ -40,9 +42,57 @@ fn with_splits(mut map: Map, k: u8, bytes: &mut Bytes) -> Map {
     map
 }
 
-/// The mesh the bytes ask for: small, with isolated or clustered singularities, closed or
-/// with boundary.
-fn mesh(bytes: &mut Bytes) -> Map {
+/// The first byte that asks for a patch given face by face ([`patch`]).
+pub const PATCH: u8 = 0xff;
+
+/// The most vertices and faces a patch may have (a few rings round a pair).
+pub const PATCH_LIMIT: u16 = 2048;
+
+/// A patch given face by face: vertex and face counts (`u16`, at most [`PATCH_LIMIT`]), then
+/// per face its degree (`3 + byte % 2`) and its corners (`u16`, taken modulo the vertex
+/// count). `None` if the faces do not make a valid map.
+fn patch(bytes: &mut Bytes) -> Option<Map> {
+    let nv = bytes.u16().min(PATCH_LIMIT);
+    let nf = bytes.u16().min(PATCH_LIMIT);
+    if nv == 0 {
+        return None;
+    }
+    let faces: Vec<Vec<u32>> = (0..nf)
+        .map(|_| {
+            let degree = 3 + usize::from(bytes.u8() % 2);
+            (0..degree).map(|_| u32::from(bytes.u16() % nv)).collect()
+        })
+        .collect();
+    Map::from_polygons(usize::from(nv), &faces).ok()
+}
+
+/// The bytes of a patch for [`case`]: [`PATCH`], the counts, the faces (triangles and quads
+/// only, corners below `nv`). What `cargo run --example fuzz_patches` writes.
+pub fn encode_patch(nv: u16, faces: &[Vec<u16>]) -> Vec<u8> {
+    let mut out = vec![PATCH];
+    out.extend(nv.to_le_bytes());
+    out.extend((faces.len() as u16).to_le_bytes());
+    for f in faces {
+        out.push(u8::from(f.len() == 4));
+        for &v in f {
+            out.extend(v.to_le_bytes());
+        }
+    }
+    out
+}
+
+/// The mesh the bytes ask for: a patch given face by face, or small and generated, with
+/// isolated or clustered singularities, closed or with boundary.
+fn mesh(bytes: &mut Bytes) -> Option<Map> {
+    if bytes.0.first() == Some(&PATCH) {
+        bytes.u8();
+        return patch(bytes);
+    }
+    Some(generated(bytes))
+}
+
+/// A small generated mesh, with isolated or clustered singularities, closed or with boundary.
+fn generated(bytes: &mut Bytes) -> Map {
     let (pick, a, b) = (bytes.u8(), bytes.u8(), bytes.u8());
     let (na, nb) = (3 + usize::from(a % 8), 3 + usize::from(b % 8));
     match pick % 6 {
@@ -123,7 +173,7 @@ pub struct Case<'a> {
 /// The case the bytes ask for, or `None` when they name no usable mesh, vertex or path.
 pub fn case(data: &[u8]) -> Option<Case<'_>> {
     let mut bytes = Bytes(data);
-    let original = mesh(&mut bytes);
+    let original = mesh(&mut bytes)?;
     if original.check().is_err() || original.num_vertices() == 0 {
         return None;
     }
