@@ -67,6 +67,13 @@ fn sweep(map: &Map, max_len: usize) -> Tally {
     t
 }
 
+/// The way a reverse run was found prints as the `zip --json` report's `undo.found` gives it.
+#[test]
+fn reverse_ways_print_their_names() {
+    assert_eq!(ReverseWay::Derived.to_string(), "derived");
+    assert_eq!(ReverseWay::Searched.to_string(), "searched");
+}
+
 /// Adjacent corners of the subdivided cube (6 edges apart): every movement is reversed.
 #[test]
 fn cube_moves_reverse() {

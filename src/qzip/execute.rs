@@ -756,6 +756,10 @@ impl<'s> Chain<'s> {
             } else {
                 self.collapse_step(map, tag, edge, records)?;
             }
+            // Every step moves on; one that did not would loop for ever.
+            if self.index <= index {
+                return Err(ZipError::StalePlan { index });
+            }
         }
         if matches!(
             self.surgery.end_rule(),
@@ -1085,6 +1089,53 @@ mod tests {
         cap.reverse();
         faces.push(cap);
         Map::from_polygons((1 + 2 * k) as usize, &faces).unwrap()
+    }
+
+    /// `was_regular` reads a touched vertex as it was at its first touch (valence 4, interior,
+    /// no triangle corner), an untouched one as it is now, and one the chain made as regular.
+    #[test]
+    fn was_regular_reads_a_vertex_as_it_was_at_its_first_touch() {
+        let v = Vert::new;
+        let grid = crate::gen::grid(4, 4).map;
+        let (inner, five) = (v(6), fan(5));
+        assert!(regular_quad_vertex(&grid, inner));
+        // A 4 x 4 grid with the quad 6 7 12 11 cut into two triangles: 7 and 11 are interior
+        // triangle corners of valence 4.
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        for j in 0..4u32 {
+            for i in 0..4u32 {
+                let a = 5 * j + i;
+                if a == 6 {
+                    faces.extend([alloc::vec![6, 7, 12], alloc::vec![6, 12, 11]]);
+                } else {
+                    faces.push(alloc::vec![a, a + 1, a + 6, a + 5]);
+                }
+            }
+        }
+        let tri = Map::from_polygons(25, &faces).unwrap();
+        assert!(triangle_corner(&tri, v(7)) && tri.valence(v(7)) == 4);
+        // Three quads round vertex 0 on the boundary: valence 4 there.
+        let rim = Map::from_polygons(8, &[[0u32, 1, 2, 3], [0, 3, 4, 5], [0, 5, 6, 7]]).unwrap();
+        assert!(rim.is_boundary_vertex(v(0)) && rim.valence(v(0)) == 4);
+        let t = Touched::with_capacity(0);
+        assert!(t.was_regular(&grid, inner));
+        assert!(!t.was_regular(&five, v(0)));
+        let mut t = Touched::with_capacity(0);
+        t.touch(&grid, inner);
+        t.touch(&five, v(0));
+        t.touch(&tri, v(7));
+        t.touch(&rim, v(0));
+        // Read against another map: the first touch decides, not the valence now.
+        assert!(t.was_regular(&five, inner));
+        assert!(!t.was_regular(&grid, v(7)));
+        let mut t = Touched::with_capacity(0);
+        t.touch(&five, v(0));
+        assert!(!t.was_regular(&grid, v(0)));
+        let mut t = Touched::with_capacity(0);
+        t.touch(&rim, v(0));
+        assert!(!t.was_regular(&grid, v(0)));
+        t.born(v(3));
+        assert!(t.was_regular(&five, v(3)));
     }
 
     /// The guard's count compares valences of 32 and more too (kept outside the table).

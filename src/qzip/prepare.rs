@@ -710,7 +710,8 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
     let start = draft.adjust_start(map, initial)?;
     // Until neither applies: a shortened end can be a U-turn again (a path swept round the
     // quad at the end turns round the next one), and its sweep must end as the path does.
-    loop {
+    // Each round drops two vertices, so the path's length bounds the rounds.
+    for _ in 0..steps.len() {
         draft.straighten_before_end_quad(map);
         if !draft.shorten_round_quad_end(map) {
             break;
