@@ -4,8 +4,11 @@
 mod common;
 
 use zipmesh::invariants::{irregular_vertices, MeshKind};
+use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
-use zipmesh::qzip::{Path, Qzip, SketchOptions, Tag};
+use zipmesh::qzip::{
+    edited_vertices, relax_footprint, Path, Qzip, RelaxOptions, SketchOptions, Tag,
+};
 use zipmesh::{hybrid, io, Mesh};
 
 /// The pairs tried per mesh: the first singularities, each with the closest others.
@@ -97,6 +100,22 @@ fn raw(m: &mut Mesh, p: &Path, t: Tag) -> bool {
     Qzip::new().zip_mesh_along(m, p, t).is_ok()
 }
 
+/// A zip, then its footprint relaxed on the input surface (what `zipmesh zip` does).
+fn relaxed(
+    surface: &Surface,
+    options: RelaxOptions,
+) -> impl Fn(&mut Mesh, &Path, Tag) -> bool + '_ {
+    move |m, p, t| {
+        let before = m.clone();
+        if Qzip::new().zip_mesh_along(m, p, t).is_err() {
+            return false;
+        }
+        let seeds = edited_vertices(&before, m);
+        relax_footprint(m, surface, &seeds, options);
+        true
+    }
+}
+
 /// The numbers of docs/quality.md ("Q-zip placement"): run with `--ignored --nocapture`.
 #[test]
 #[ignore]
@@ -106,6 +125,12 @@ fn measure_real_meshes() {
         let paths = pairs(&mesh, PAIRS);
         let d = measure(&mesh, &paths, raw);
         eprintln!("{name}: pairs {} raw {d:?}", paths.len());
+        let surface = Surface::new(&mesh);
+        for (rings, sweeps) in [(0, 0), (1, 10), (2, 10), (2, 30), (4, 30)] {
+            let o = RelaxOptions { rings, sweeps };
+            let d = measure(&mesh, &paths, relaxed(&surface, o));
+            eprintln!("    relaxed rings {rings} sweeps {sweeps}: {d:?}");
+        }
     }
 }
 
