@@ -10,7 +10,7 @@ use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
 use zipmesh::qzip::{
     edited_vertices, find_reverse, mesh_preprocess, moves, relax_footprint, sketch, validate_path,
-    Path, Qzip, RelaxOptions, SketchOptions, Tag, ZipReport,
+    Path, Qzip, RelaxOptions, Relaxation, SketchOptions, Tag, ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
@@ -251,18 +251,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     let r = z.record();
     // The reverse run is found on the edited map before compaction renumbers it.
     let reverse = find_reverse(&mesh.map, r, &original.map);
-    // Measured against the file as read: the preprocessing's vertices are the edit's too.
-    let reference = Reference::new(&input);
-    let relaxed = (!args.no_relax).then(|| {
-        let seeds = edited_vertices(&input, &mesh);
-        relax_footprint(
-            &mut mesh,
-            &Surface::new(&input),
-            &seeds,
-            RelaxOptions::default(),
-        )
-    });
-    let quality = [&input, &mesh].map(|m| Summary::against(m, &reference));
+    let (relaxed, quality) = relax(&input, &mut mesh, !args.no_relax);
     let c = mesh.compact();
     // Written now, in place only after the report is printed: no OUT with a failing status.
     let pending = io::prepare_mesh(&args.output, &mesh)?;
@@ -339,6 +328,20 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     out::flush()?;
     pending.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Relaxes the edit's footprint (unless `!relax`) and measures the input and the output,
+/// both against the file as read: the preprocessing's vertices are the edit's too.
+fn relax(input: &Mesh, mesh: &mut Mesh, relax: bool) -> (Option<Relaxation>, [Summary; 2]) {
+    let relaxed = relax.then(|| {
+        let seeds = edited_vertices(input, mesh);
+        relax_footprint(mesh, &Surface::new(input), &seeds, RelaxOptions::default())
+    });
+    let reference = Reference::new(input);
+    (
+        relaxed,
+        [input, &*mesh].map(|m| Summary::against(m, &reference)),
+    )
 }
 
 /// The text line of `zip`'s quality: folded quads and negative scaled Jacobians, input then
