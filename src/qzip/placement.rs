@@ -1,7 +1,23 @@
 //! Per-vertex data through a Q-zip or the preprocessing, on the crate's one attribute layer
-//! ([`crate::mesh`]): each vertex a split creates is placed at the mean of its neighbours,
-//! in the order created (so a copy next to an earlier copy uses its new place); merged
-//! vertices keep the value of the vertex that keeps the handle.
+//! ([`crate::mesh`]).
+//!
+//! The rule, in two passes over the splits in the order applied:
+//!
+//! 1. each created vertex first takes the value of the vertex it was split from (the split's
+//!    kept vertex), read when the split is reached. Splits are read in order and only
+//!    splits write values, so that read gives the kept vertex's value at the time of the
+//!    split, even when its slot is reused later;
+//! 2. each created vertex that is still live is then placed at the mean of its neighbours
+//!    on the edited map, in the order created (a copy next to an earlier copy uses its new
+//!    place).
+//!
+//! Why the first pass: the edited map's neighbours of a created vertex include vertices
+//! created later in the chain, whose slots held the default value (the origin) or the
+//! value of a vertex a collapse removed (anywhere on the mesh). Their mean pulled the
+//! vertex off the surface (measured on the shipped meshes: up to 56 % of the diagonal on
+//! fandisk; docs/quality.md, "Q-zip placement"). After it, every neighbour holds a value
+//! from the edit's own neighbourhood. Merged vertices keep the value of the vertex that
+//! keeps the handle; every other vertex keeps its value.
 
 use super::execute::ZipReport;
 use super::preprocess::Preprocessed;
@@ -10,16 +26,27 @@ use crate::mesh::{Journal, Rule, VertexAttributes};
 use crate::ops::quad::QuadRecord;
 use crate::ops::{Refusal, Undo};
 
-/// Places the vertices the splits among `records` created, then covers every vertex slot
-/// of `map` (new slots nobody placed take the default value).
+/// Places the vertices the splits among `records` created (see the module's rule), then
+/// covers every vertex slot of `map`.
 pub(super) fn place_created<A: VertexAttributes>(
     map: &Map,
     attrs: &mut A,
     journal: &mut Journal<A>,
     records: &[QuadRecord],
 ) {
-    for r in records {
-        if let QuadRecord::Split(s) = r {
+    let splits = || {
+        records.iter().filter_map(|r| match r {
+            QuadRecord::Split(s) => Some(s),
+            _ => None,
+        })
+    };
+    // Pass 1 reads no neighbour, so the map's later state plays no part in it.
+    for s in splits() {
+        let from = Rule::Midpoint(s.kept(), s.kept());
+        journal.place(map, attrs, s.created(), from);
+    }
+    for s in splits() {
+        if map.is_live_vertex(s.created()) {
             journal.place(map, attrs, s.created(), Rule::NeighbourMean(s.created()));
         }
     }

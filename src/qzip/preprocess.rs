@@ -10,8 +10,9 @@ use crate::ops::quad::{remove_valence2, split_high_valence, QuadRecord};
 use crate::ops::Refusal;
 use crate::{Dart, Map, Mesh, Vert};
 
-/// [`preprocess`] on a mesh: the vertices its splits create are placed at the mean of their
-/// neighbours, and the undo restores the positions too.
+/// [`preprocess`] on a mesh: the vertices its splits create are placed as a Q-zip places
+/// them (the value of the vertex split, then the mean of their neighbours; see
+/// [`super::Qzip::zip_along_with`]), and the undo restores the positions too.
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart};
@@ -29,7 +30,8 @@ pub fn mesh_preprocess(mesh: &mut Mesh) -> Result<Edited<Preprocessed>, Refusal>
 }
 
 /// [`preprocess`] keeping any per-vertex data in step, as [`super::Qzip::zip_along_with`]
-/// does: created vertices take the mean of their neighbours' values.
+/// does: created vertices take the value of the vertex split, then the mean of their
+/// neighbours' values.
 ///
 /// ```
 /// use zipmesh::{gen, ops::quad, Dart};

@@ -242,8 +242,9 @@ impl<'a> Qzip<'a> {
         zip_along_guarded(map, path, initial, self.guard())
     }
 
-    /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed at
-    /// the mean of its neighbours (see [`Qzip::zip_along_with`]). A [`super::Guide`] in the
+    /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed
+    /// near its neighbours (see [`Qzip::zip_along_with`]); [`super::relax_footprint`] then
+    /// puts the edit on the input surface, as `zipmesh zip` does. A [`super::Guide`] in the
     /// options cannot borrow this mesh's positions (they are edited): guide with
     /// [`Qzip::zip`] on `mesh.map` instead, or with a copy of the points.
     ///
@@ -290,9 +291,13 @@ impl<'a> Qzip<'a> {
     }
 
     /// [`Qzip::zip_along`] keeping any per-vertex data in step (positions, marks, or a pair
-    /// of layers): each vertex a split creates takes the mean of its neighbours' values, in
-    /// the order created; merged vertices keep the value of the vertex that keeps the
-    /// handle; every other vertex keeps its value. The undo restores map and data `==`.
+    /// of layers): each vertex a split creates first takes the value of the vertex it was
+    /// split from (read in the order the splits ran, so at the time of its split), then the
+    /// mean of its neighbours' values on the edited map, in the order created. The first
+    /// pass is why no neighbour read holds the default value or the value of a vertex a
+    /// collapse removed (whose mean put vertices far off the surface: issue 42). Merged
+    /// vertices keep the value of the vertex that keeps the handle; every other vertex
+    /// keeps its value. The undo restores map and data `==`.
     ///
     /// ```
     /// use zipmesh::{gen, Vert};

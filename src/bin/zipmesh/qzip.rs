@@ -6,13 +6,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::hybrid;
 use zipmesh::io::{self, MeshFileError};
+use zipmesh::optimize::Surface;
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::qzip::{
-    find_reverse, mesh_preprocess, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag,
-    ZipReport,
+    edited_vertices, find_reverse, mesh_preprocess, moves, relax_footprint, sketch, validate_path,
+    Path, Qzip, RelaxOptions, Relaxation, SketchOptions, Tag, ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
+use crate::quality;
 
 /// Arguments shared by `moves` and `zip`.
 #[derive(Args)]
@@ -55,6 +58,10 @@ pub struct ZipArgs {
     /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
     #[arg(short, long)]
     pub(crate) output: PathBuf,
+    /// Keep the raw placement (each created vertex at the mean of its neighbours) instead of
+    /// relaxing the edit's footprint on the input surface.
+    #[arg(long)]
+    no_relax: bool,
 }
 
 /// An input problem: printed as `zipmesh: <message>`, exit 2.
@@ -78,9 +85,11 @@ impl From<MeshFileError> for InputError {
     }
 }
 
-/// Reads the mesh and checks the pair and the path.
-fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
-    let (mut mesh, _) = io::read_mesh(&a.file)?;
+/// Reads the mesh and checks the pair and the path: the mesh as read, the mesh to edit (the
+/// same, or preprocessed) and the path.
+fn load(a: &PairArgs) -> Result<(Mesh, Mesh, Path), InputError> {
+    let (input, _) = io::read_mesh(&a.file)?;
+    let mut mesh = input.clone();
     let name = a.file.display();
     if a.preprocess {
         mesh_preprocess(&mut mesh)
@@ -133,7 +142,7 @@ fn load(a: &PairArgs) -> Result<(Mesh, Path), InputError> {
         None => sketch(map, from, to, &opts),
     }
     .map_err(|e| InputError(format!("{name}: no surgery path: {e}")))?;
-    Ok((mesh, path))
+    Ok((input, mesh, path))
 }
 
 fn numbers(vs: &[Vert]) -> Vec<u32> {
@@ -159,7 +168,7 @@ fn surgery_path(r: &ZipReport) -> Vec<u32> {
 
 /// Runs `zipmesh moves`: the four movements of the pair and their outcome.
 pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
-    let (mesh, path) = load(&args.pair)?;
+    let (_, mesh, path) = load(&args.pair)?;
     let mut rows = Vec::new();
     for m in moves(&mesh.map, &path) {
         let row = match &m.outcome {
@@ -228,7 +237,7 @@ fn join(v: &[u32]) -> String {
 
 /// Runs `zipmesh zip`: one movement, the edited mesh written compacted to OUT.
 pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
-    let (original, path) = load(&args.pair)?;
+    let (input, original, path) = load(&args.pair)?;
     let mut mesh = original.clone();
     let z = Qzip::new()
         .zip_mesh_along(&mut mesh, &path, args.tag)
@@ -242,6 +251,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     let r = z.record();
     // The reverse run is found on the edited map before compaction renumbers it.
     let reverse = find_reverse(&mesh.map, r, &original.map);
+    let (relaxed, quality) = relax(&input, &mut mesh, !args.no_relax);
     let c = mesh.compact();
     // Written now, in place only after the report is printed: no OUT with a failing status.
     let pending = io::prepare_mesh(&args.output, &mesh)?;
@@ -274,6 +284,13 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
         "footprint": {"faces": r.footprint_faces().len(), "edges": r.footprint_edges().len()},
         "scar": {"faces": r.scar_faces().len(), "edges": r.scar_edges().len()},
         "undo": undo,
+        "relax": relaxed.map(|x| json!({
+            "projected": x.projected, "region": x.region, "moves": x.moves, "refused": x.refused,
+        })),
+        "quality": {
+            "input": quality::to_json(&quality[0]),
+            "output": quality::to_json(&quality[1]),
+        },
     });
     if args.pair.json {
         outln!("{report}");
@@ -288,6 +305,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
             report["moved"]["from"],
             report["moved"]["to"]
         );
+        outln!("{}", quality_line(&quality, relaxed.is_some()));
         match &reverse {
             Some(rev) => outln!(
                 "undo: zipmesh zip {} --from {} --to {} --move {} --path {} -o UNDONE",
@@ -310,4 +328,33 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     out::flush()?;
     pending.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Relaxes the edit's footprint (unless `!relax`) and measures the input and the output,
+/// both against the file as read: the preprocessing's vertices are the edit's too.
+fn relax(input: &Mesh, mesh: &mut Mesh, relax: bool) -> (Option<Relaxation>, [Summary; 2]) {
+    let relaxed = relax.then(|| {
+        let seeds = edited_vertices(input, mesh);
+        relax_footprint(mesh, &Surface::new(input), &seeds, RelaxOptions::default())
+    });
+    let reference = Reference::new(input);
+    (
+        relaxed,
+        [input, &*mesh].map(|m| Summary::against(m, &reference)),
+    )
+}
+
+/// The text line of `zip`'s quality: folded quads and negative scaled Jacobians, input then
+/// output, and the output's largest distance to the input surface.
+fn quality_line(q: &[Summary; 2], relaxed: bool) -> String {
+    let far = q[1].distance.map_or(0.0, |d| d.max);
+    format!(
+        "quality ({}): folded quads {} -> {}, scaled jacobian < 0 {} -> {}, max distance to \
+         the input {far:.2e} of its diagonal",
+        if relaxed { "relaxed" } else { "raw placement" },
+        q[0].folded_quads,
+        q[1].folded_quads,
+        q[0].negative_jacobian,
+        q[1].negative_jacobian,
+    )
 }

@@ -1,0 +1,243 @@
+//! Relaxing an edit's footprint on the input surface: the vertices a Q-zip (or the
+//! preprocessing) created or moved, and a ring or two around them, each moved towards the
+//! mean of its neighbours and put back on the surface, never into an inverted element.
+//!
+//! Placement ([`super::Qzip::zip_mesh_along`]) puts a created vertex at the mean of its
+//! neighbours: near them, but off a curved surface and, where the chain turned, often
+//! inside a neighbouring quad. Relaxation is tangential smoothing with projection (as in
+//! pmp-library's remeshing, QuadWild's and Instant Meshes' final smoothing): each sweep
+//! moves each vertex of the region to the closest point of the input surface to its
+//! neighbours' mean, and keeps the move only where its faces get no worse ("smart"
+//! Laplacian: the fan's worst corner, read in the plane of the fan's normal before the
+//! move, does not fall below its value before or below 0, and no corner or diagonal fold
+//! appears). Boundary vertices keep their place after the projection.
+
+use alloc::vec::Vec;
+
+use glam::DVec3;
+
+use crate::optimize::Surface;
+use crate::quality::{corner_fold, diagonal_fold, normal};
+use crate::tri_edit::relax_region;
+use crate::{Mesh, Vert};
+
+/// How far and how long [`relax_footprint`] works.
+///
+/// ```
+/// use zipmesh::qzip::RelaxOptions;
+/// let o = RelaxOptions::default();
+/// assert_eq!((o.rings, o.sweeps), (2, 10));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RelaxOptions {
+    /// Rings of vertices around the seeds that move too (0: the seeds alone).
+    pub rings: usize,
+    /// Sweeps over the region (0: projection only).
+    pub sweeps: usize,
+}
+
+impl Default for RelaxOptions {
+    /// Two rings and ten sweeps: on the shipped meshes more of either changes the worst
+    /// quads of a zip by little (docs/quality.md, "Q-zip placement").
+    fn default() -> Self {
+        RelaxOptions {
+            rings: 2,
+            sweeps: 10,
+        }
+    }
+}
+
+/// What [`relax_footprint`] did.
+///
+/// See [`relax_footprint`] for an example.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Relaxation {
+    /// The vertices put on the surface: the live seeds and the region.
+    pub projected: usize,
+    /// The interior vertices within the rings of a seed, which the sweeps move.
+    pub region: usize,
+    /// Moves kept, over all sweeps.
+    pub moves: usize,
+    /// Moves refused (each vertex tries a full, a half and a quarter step per sweep).
+    pub refused: usize,
+}
+
+/// The worst of a vertex's faces: how many are inverted, and the smallest corner term
+/// `(c_i . n) / (|e1| |e2|)` with `n` fixed (the fan's normal before the move).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Fan {
+    bad: usize,
+    worst: f64,
+}
+
+impl Fan {
+    /// Whether `self` (after a move) is no worse than `before`: no new inverted face, and
+    /// the worst corner above 0 or no lower than before.
+    fn accepts(&self, before: &Fan) -> bool {
+        self.bad <= before.bad && (self.worst > 0.0 || self.worst >= before.worst)
+    }
+}
+
+/// Relaxes the footprint of an edit of `mesh` on `surface` (the input surface, say
+/// `Surface::new(&input)`): the live `seeds` (the vertices the edit created or moved:
+/// [`edited_vertices`] of the meshes before and after) are projected onto
+/// the surface, then the interior vertices within `options.rings` of them are smoothed
+/// tangentially for `options.sweeps` sweeps, never into a worse fan ([`mod@self`]).
+/// Deterministic: vertices go in slot order, and only their positions change.
+///
+/// ```
+/// use zipmesh::optimize::Surface;
+/// use zipmesh::qzip::{edited_vertices, relax_footprint, Qzip, RelaxOptions, Tag};
+/// use zipmesh::quality::{Reference, Summary};
+/// use zipmesh::{gen, Vert};
+/// let input = gen::subdivided_icosahedron(2);
+/// let mut mesh = input.clone();
+/// Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+/// let seeds = edited_vertices(&input, &mesh);
+/// let r = relax_footprint(&mut mesh, &Surface::new(&input), &seeds, RelaxOptions::default());
+/// assert!(r.projected >= seeds.len() && r.region > 0);
+/// let s = Summary::against(&mesh, &Reference::new(&input));
+/// assert!(s.distance.unwrap().max < 1e-9);
+/// assert_eq!(s.folded_quads, Summary::of(&input).folded_quads);
+/// ```
+pub fn relax_footprint(
+    mesh: &mut Mesh,
+    surface: &Surface,
+    seeds: &[Vert],
+    options: RelaxOptions,
+) -> Relaxation {
+    let n = mesh.map.vertex_slots();
+    if mesh.positions.len() < n {
+        mesh.positions.resize(n, DVec3::ZERO);
+    }
+    let region = relax_region(&mesh.map, seeds, options.rings);
+    let mut r = Relaxation {
+        region: region.len(),
+        ..Relaxation::default()
+    };
+    let mut on: Vec<Vert> = seeds
+        .iter()
+        .copied()
+        .filter(|&v| mesh.map.is_live_vertex(v))
+        .chain(region.iter().copied())
+        .collect();
+    on.sort_unstable();
+    on.dedup();
+    // Placement is near the surface, not on it: every vertex of the footprint goes onto it.
+    for &v in &on {
+        let p = mesh.positions[v.index()];
+        mesh.positions[v.index()] = surface.closest(p);
+    }
+    r.projected = on.len();
+    for _ in 0..options.sweeps {
+        let moved = r.moves;
+        for &v in &region {
+            relax_vertex(mesh, surface, v, &mut r);
+        }
+        if r.moves == moved {
+            break;
+        }
+    }
+    r
+}
+
+/// One vertex's move of a sweep: the full step to its neighbours' mean (on the surface),
+/// else a half or a quarter step, whichever the fan accepts first.
+fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation) {
+    let map = &mesh.map;
+    let here = mesh.positions[v.index()];
+    let (mut sum, mut len, mut k) = (DVec3::ZERO, 0.0, 0usize);
+    for d in map.vertex_darts(v) {
+        let p = mesh.positions[map.dest(d).index()];
+        sum += p;
+        len += p.distance(here);
+        k += 1;
+    }
+    if k == 0 || !sum.is_finite() || !here.is_finite() {
+        return;
+    }
+    let Some(n) = fan_normal(mesh, v) else {
+        return;
+    };
+    let before = fan(mesh, v, n);
+    let target = sum / k as f64;
+    for step in [1.0, 0.5, 0.25] {
+        let p = surface.closest(here + (target - here) * step);
+        // A move of less than a part in 1e6 of an edge is no move: it ends the sweeps.
+        if p.distance(here) <= 1e-6 * len / k as f64 {
+            return;
+        }
+        mesh.positions[v.index()] = p;
+        if fan(mesh, v, n).accepts(&before) {
+            r.moves += 1;
+            return;
+        }
+        r.refused += 1;
+    }
+    mesh.positions[v.index()] = here;
+}
+
+/// The corners of each face round `v` (boundary darts have none).
+fn faces_of(mesh: &Mesh, v: Vert) -> impl Iterator<Item = Vec<DVec3>> + '_ {
+    mesh.map
+        .vertex_darts(v)
+        .filter_map(|d| mesh.map.face(d))
+        .map(|f| crate::quality::corners(mesh, f))
+}
+
+/// The unit sum of the normals of `v`'s faces: the plane its moves are judged in.
+fn fan_normal(mesh: &Mesh, v: Vert) -> Option<DVec3> {
+    faces_of(mesh, v)
+        .filter_map(|c| normal(&c))
+        .sum::<DVec3>()
+        .try_normalize()
+}
+
+/// The [`Fan`] of `v` read against the fixed normal `n`: a face is inverted when a corner
+/// term is at most 0 or, for a quad, a fold test flags it.
+fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
+    let mut f = Fan {
+        bad: 0,
+        worst: f64::INFINITY,
+    };
+    for c in faces_of(mesh, v) {
+        let k = c.len();
+        let mut worst = f64::INFINITY;
+        for i in 0..k {
+            let (e1, e2) = (c[(i + 1) % k] - c[i], c[(i + k - 1) % k] - c[i]);
+            let s = e1.cross(e2).dot(n) / (e1.length() * e2.length());
+            worst = worst.min(if s.is_finite() { s } else { 0.0 });
+        }
+        let folded = match <[DVec3; 4]>::try_from(c.as_slice()) {
+            Ok(q) => diagonal_fold(&q) || corner_fold(&q),
+            Err(_) => false,
+        };
+        f.bad += usize::from(worst <= 0.0 || folded);
+        f.worst = f.worst.min(worst);
+    }
+    f
+}
+
+/// The vertices of `after` an edit of `before` created or moved: live in `after` and dead
+/// in `before`, or with other neighbours ([`crate::tri_edit::touched_vertices`]), or at
+/// another position. The last catches a vertex a collapse removed and a later split made
+/// again in the same slot, with the same neighbours but a new place. The seeds of
+/// [`relax_footprint`].
+///
+/// ```
+/// use zipmesh::qzip::{edited_vertices, Qzip, Tag};
+/// use zipmesh::{gen, Vert};
+/// let input = gen::subdivided_icosahedron(2);
+/// let mut mesh = input.clone();
+/// assert!(edited_vertices(&input, &mesh).is_empty());
+/// Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+/// assert!(!edited_vertices(&input, &mesh).is_empty());
+/// ```
+pub fn edited_vertices(before: &Mesh, after: &Mesh) -> Vec<Vert> {
+    let mut out = crate::tri_edit::touched_vertices(&before.map, &after.map);
+    let moved = |v: Vert| before.positions.get(v.index()) != after.positions.get(v.index());
+    out.extend(after.map.vertices().filter(|&v| moved(v)));
+    out.sort_unstable();
+    out.dedup();
+    out
+}
