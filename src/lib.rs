@@ -45,6 +45,7 @@ pub mod arbitrary;
 #[cfg(feature = "campaign")]
 pub mod campaign;
 pub mod gen;
+pub mod geometry;
 pub mod hybrid;
 pub mod invariants;
 #[cfg(feature = "std")]

@@ -272,11 +272,11 @@ fn endgame_chains_cancel_pairs_the_batches_cannot() {
 /// A chain stage that keeps nothing leaves the mesh exactly as it was (every chain it
 /// tried is undone step by step and the positions restored): the run stopped at that batch
 /// ends with the same mesh, positions bit for bit, as the run stopped one batch before. The
-/// input is one whose run has such a stage (at batch 27; the run on `subdivided(120, 2, 1,
-/// 5)` has none since a v3 start's reroute carries the compass: its batches remove every v3).
+/// input is one whose run has such a stage (at batch 22; found by scanning seeds, as the
+/// stages a run has change with the placement of new vertices).
 #[test]
 fn a_chain_stage_that_keeps_nothing_changes_nothing() {
-    let input = subdivided(120, 1, 0, 4);
+    let input = subdivided(80, 1, 0, 1);
     let run_to = |n: usize| {
         let mut mesh = input.clone();
         let o = OptimizeOptions::default().batches(n);

@@ -4,12 +4,11 @@
 mod common;
 
 use glam::DVec3;
+use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions};
 use zipmesh::invariants::{irregular_vertices, MeshKind};
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
-use zipmesh::qzip::{
-    edited_vertices, relax_footprint, Path, Qzip, RelaxOptions, SketchOptions, Tag,
-};
+use zipmesh::qzip::{Path, Qzip, SketchOptions, Tag};
 use zipmesh::{hybrid, io, Mesh};
 
 /// The pairs tried per mesh: the first singularities, each with the closest others.

@@ -33,7 +33,6 @@ mod placement;
 pub mod prepare;
 mod preprocess;
 mod quad;
-mod relax;
 mod reverse;
 pub mod sketch;
 mod verify;
@@ -44,7 +43,6 @@ pub use execute::{execute, ZipError, ZipReport};
 pub use homotopy::{one_quad_sweeps, start_turn, wraps};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
-pub use relax::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};
 pub use reverse::{derive_reverse, find_reverse, ReverseRun, ReverseWay};
 pub use sketch::{
     max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,

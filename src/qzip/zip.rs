@@ -243,7 +243,7 @@ impl<'a> Qzip<'a> {
     }
 
     /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed
-    /// near its neighbours (see [`Qzip::zip_along_with`]); [`super::relax_footprint`] then
+    /// near its neighbours (see [`Qzip::zip_along_with`]); [`crate::geometry::relax_footprint`] then
     /// puts the edit on the input surface, as `zipmesh zip` does. A [`super::Guide`] in the
     /// options cannot borrow this mesh's positions (they are edited): guide with
     /// [`Qzip::zip`] on `mesh.map` instead, or with a copy of the points.
@@ -295,7 +295,7 @@ impl<'a> Qzip<'a> {
     /// split from (read in the order the splits ran, so at the time of its split), then the
     /// mean of its neighbours' values on the edited map, in the order created. The first
     /// pass is why no neighbour read holds the default value or the value of a vertex a
-    /// collapse removed (whose mean put vertices far off the surface: issue 42). Merged
+    /// collapse removed (a mean of those puts vertices far off the surface). Merged
     /// vertices keep the value of the vertex that keeps the handle; every other vertex
     /// keeps its value. The undo restores map and data `==`.
     ///

@@ -4,13 +4,14 @@ use clap::Args;
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};
 use zipmesh::hybrid;
 use zipmesh::io::{self, MeshFileError};
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
 use zipmesh::qzip::{
-    edited_vertices, find_reverse, mesh_preprocess, moves, relax_footprint, sketch, validate_path,
-    Path, Qzip, RelaxOptions, Relaxation, SketchOptions, Tag, ZipReport,
+    find_reverse, mesh_preprocess, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag,
+    ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 

@@ -2,7 +2,7 @@
 //! preprocessing) created or moved, and a ring or two around them, each moved towards the
 //! mean of its neighbours and put back on the surface, never into an inverted element.
 //!
-//! Placement ([`super::Qzip::zip_mesh_along`]) puts a created vertex at the mean of its
+//! Placement ([`crate::qzip::Qzip::zip_mesh_along`]) puts a created vertex at the mean of its
 //! neighbours: near them, but off a curved surface and, where the chain turned, often
 //! inside a neighbouring quad. Relaxation is tangential smoothing with projection (as in
 //! pmp-library's remeshing, QuadWild's and Instant Meshes' final smoothing): each sweep
@@ -24,7 +24,7 @@ use crate::{Mesh, Vert};
 /// How far and how long [`relax_footprint`] works.
 ///
 /// ```
-/// use zipmesh::qzip::RelaxOptions;
+/// use zipmesh::geometry::RelaxOptions;
 /// let o = RelaxOptions::default();
 /// assert_eq!((o.rings, o.sweeps), (2, 10));
 /// ```
@@ -87,7 +87,8 @@ impl Fan {
 ///
 /// ```
 /// use zipmesh::optimize::Surface;
-/// use zipmesh::qzip::{edited_vertices, relax_footprint, Qzip, RelaxOptions, Tag};
+/// use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions};
+/// use zipmesh::qzip::{Qzip, Tag};
 /// use zipmesh::quality::{Reference, Summary};
 /// use zipmesh::{gen, Vert};
 /// let input = gen::subdivided_icosahedron(2);
@@ -225,7 +226,8 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
 /// [`relax_footprint`].
 ///
 /// ```
-/// use zipmesh::qzip::{edited_vertices, Qzip, Tag};
+/// use zipmesh::geometry::edited_vertices;
+/// use zipmesh::qzip::{Qzip, Tag};
 /// use zipmesh::{gen, Vert};
 /// let input = gen::subdivided_icosahedron(2);
 /// let mut mesh = input.clone();
