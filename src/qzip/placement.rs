@@ -64,3 +64,51 @@ impl Undo for Preprocessed {
         Preprocessed::undo(self, map)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::qzip::{Qzip, Tag};
+    use crate::{gen, Vert};
+    use glam::DVec3;
+
+    /// Every vertex a zip creates lands inside the input's bounding box (the mesh is moved
+    /// away from the origin, where an unplaced vertex would sit), and the last one created
+    /// at the mean of its neighbours.
+    #[test]
+    fn created_vertices_land_among_their_neighbours() {
+        let mut mesh = gen::subdivided_icosahedron(2);
+        for p in &mut mesh.positions {
+            *p += DVec3::splat(100.0);
+        }
+        let (lo, hi) = mesh
+            .positions
+            .iter()
+            .fold((DVec3::MAX, DVec3::MIN), |(a, b), &p| (a.min(p), b.max(p)));
+        let z = Qzip::new()
+            .zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS)
+            .unwrap();
+        let created: alloc::vec::Vec<Vert> = z
+            .record()
+            .records()
+            .iter()
+            .filter_map(|r| match r {
+                crate::ops::quad::QuadRecord::Split(s) => Some(s.created()),
+                _ => None,
+            })
+            .filter(|&v| mesh.map.is_live_vertex(v))
+            .collect();
+        assert!(!created.is_empty());
+        for &v in &created {
+            let p = mesh.positions[v.index()];
+            assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{v:?} at {p}");
+        }
+        let last = *created.last().unwrap();
+        let ring: alloc::vec::Vec<DVec3> = mesh
+            .map
+            .vertex_darts(last)
+            .map(|d| mesh.positions[mesh.map.dest(d).index()])
+            .collect();
+        let mean = ring.iter().copied().sum::<DVec3>() / ring.len() as f64;
+        assert!(mesh.positions[last.index()].distance(mean) < 1e-9);
+    }
+}
