@@ -747,7 +747,7 @@ pub fn prepare(map: &Map, plan: &Plan) -> Result<Surgery, PrepareError> {
 mod tests {
     use super::*;
     use crate::gen;
-    use crate::qzip::{plan, sketch, SketchOptions, Tag};
+    use crate::qzip::{plan, sketch, validate_path, SketchOptions, Tag};
     use alloc::string::ToString;
 
     /// The simplicity test finds a repeat in short lists (scanned) and long ones (sorted).
@@ -941,5 +941,68 @@ mod tests {
         dr.shorten_round_quad_end(&torus);
         assert_eq!(dr.vertices, row);
         assert_eq!(dr.hands.len(), 3);
+    }
+
+    /// The preparation's errors say what went wrong, each in its own words.
+    #[test]
+    fn prepare_errors_read_as_documented() {
+        assert_eq!(
+            PrepareError::Empty.to_string(),
+            "no operation is left after the end-point adjustments"
+        );
+        assert_eq!(
+            PrepareError::StalePlan.to_string(),
+            "the plan does not fit this map"
+        );
+        assert_eq!(
+            PrepareError::NotSimple {
+                vertex: Vert::new(7)
+            }
+            .to_string(),
+            "the adjusted path visits vertex 7 twice"
+        );
+    }
+
+    /// A v3 start with a collapse whose path turns into the reroute's quad at once
+    /// (`v3 -> p1 -> x`, `x` the quad's corner next to `p1`): the reroute comes back along
+    /// `x -> p1` and the path goes `p1 -> x`, a fold at `p1`. The compass is carried up to
+    /// the fold only (carried through it, the U-turn reads as a stale path and fails); the
+    /// fold is cancelled and `p1` leaves the surgery.
+    #[test]
+    fn a_reroute_folding_into_the_path_is_carried_up_to_the_fold() {
+        let map = gen::cube(3).map;
+        let opts = SketchOptions::default();
+        let corners: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 3).collect();
+        let mut found = 0;
+        for &a in &corners {
+            for d in map.vertex_darts(a) {
+                for (tag, left) in [(Tag::LC, true), (Tag::RC, false)] {
+                    let Some(q) = side_quad(&map, d, left) else {
+                        continue;
+                    };
+                    let (p1, x) = (map.dest(d), q.near_dest(&map));
+                    for &b in corners.iter().filter(|&&b| b != a) {
+                        let Ok(tail) = sketch(&map, x, b, &opts) else {
+                            continue;
+                        };
+                        let mut v = alloc::vec![a, p1];
+                        v.extend_from_slice(tail.vertices());
+                        let Ok(path) = validate_path(&map, a, b, &v, &opts) else {
+                            continue;
+                        };
+                        let s = prepare(&map, &plan(&map, &path, tag).unwrap()).unwrap();
+                        assert_eq!(s.start_rule(), StartRule::V3Collapse);
+                        assert!(s.folds() >= 1, "{path} {tag}");
+                        // The fold is gone: p1 is not in the surgery.
+                        assert!(
+                            s.steps().iter().all(|x| x.vertex != p1),
+                            "{path} {tag}\n{s}"
+                        );
+                        found += 1;
+                    }
+                }
+            }
+        }
+        assert!(found >= 8, "{found}");
     }
 }
