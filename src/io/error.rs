@@ -153,6 +153,25 @@ pub enum ErrorKind {
     /// More vertices or corners than 32-bit handles can address (whether the reader or the
     /// kernel found it).
     TooLarge,
+    /// A PLY header that does not describe a mesh the reader can read: no `ply` start, an
+    /// unknown format, type or keyword, no `vertex` element with `x`, `y`, `z`, a `face`
+    /// element without its corner list, no `end_header`.
+    BadHeader {
+        /// What is wrong.
+        problem: String,
+    },
+    /// A PLY file ends inside the instance `index` (0-based) of the element `element`,
+    /// which the header declares `count` of.
+    Truncated {
+        /// The element's name.
+        element: String,
+        /// The instance the data ends in.
+        index: usize,
+        /// The instances the header declares.
+        count: usize,
+    },
+    /// A PLY file has more than white space after the last element the header declares.
+    TrailingData,
 }
 
 impl fmt::Display for ErrorKind {
@@ -166,9 +185,9 @@ impl fmt::Display for ErrorKind {
             ErrorKind::NotADirectory { dir } => {
                 write!(f, "{} is not a directory", Escaped(dir))
             }
-            ErrorKind::UnknownFormat => {
-                f.write_str("unknown mesh format: the file name must end in .obj or .off")
-            }
+            ErrorKind::UnknownFormat => f.write_str(
+                "unknown mesh format: the file name must end in .obj, .off or .ply",
+            ),
             ErrorKind::MissingHeader => f.write_str("missing `OFF` header"),
             ErrorKind::NotText { byte: None } => f.write_str(
                 "the file is UTF-16 or UTF-32 (it starts with a byte-order mark); \
@@ -182,6 +201,7 @@ impl fmt::Display for ErrorKind {
                 let name = match format {
                     Format::Obj => "OBJ",
                     Format::Off => "OFF",
+                    Format::Ply => "PLY",
                 };
                 write!(f, "no {name} vertex or face found: not a mesh file")
             }
@@ -211,6 +231,18 @@ impl fmt::Display for ErrorKind {
                 lines,
             } => fmt_topology(f, error, *format, lines),
             ErrorKind::TooLarge => f.write_str("the mesh is too large for 32-bit handles"),
+            ErrorKind::BadHeader { problem } => write!(f, "{problem}: bad PLY header"),
+            ErrorKind::Truncated {
+                element,
+                index,
+                count,
+            } => write!(
+                f,
+                "the data ends inside {element} {index} of {count}: truncated"
+            ),
+            ErrorKind::TrailingData => {
+                f.write_str("data after the last element the header declares: trailing data")
+            }
         }
     }
 }
@@ -283,7 +315,28 @@ fn fmt_topology(
         file_note(format, &written, sep)
     };
     // `lines` is public, so it may be shorter than the error needs; never panic in Display.
-    let line = |i: usize| lines.get(i).copied().unwrap_or(0);
+    // Without lines (a binary file) the faces are named by their 0-based numbers.
+    let faces = named_faces(error);
+    let named = |n: usize| {
+        let (word, xs): (&str, Vec<usize>) = if lines.is_empty() {
+            (
+                "faces",
+                (0..n).map(|i| faces.get(i).copied().unwrap_or(0)).collect(),
+            )
+        } else {
+            (
+                "lines",
+                (0..n).map(|i| lines.get(i).copied().unwrap_or(0)).collect(),
+            )
+        };
+        let xs: Vec<String> = xs.iter().map(ToString::to_string).collect();
+        match xs.split_last() {
+            Some((last, rest)) if !rest.is_empty() => {
+                alloc::format!("{word} {} and {last}", rest.join(", "))
+            }
+            _ => alloc::format!("{word} {}", xs.join("")),
+        }
+    };
     match *error {
         BuildError::FaceTooSmall { corners, .. } => write!(
             f,
@@ -307,19 +360,15 @@ fn fmt_topology(
         BuildError::TooLarge { .. } => fmt::Display::fmt(&ErrorKind::TooLarge, f),
         BuildError::NonManifoldEdge { a, b, .. } => write!(
             f,
-            "edge {a}-{b}{} is used by three or more faces (lines {}, {} and {}): \
-             non-manifold edge",
+            "edge {a}-{b}{} is used by three or more faces ({}): non-manifold edge",
             note(&[a, b], "-"),
-            line(0),
-            line(1),
-            line(2)
+            named(3)
         ),
         BuildError::InconsistentOrientation { a, b, .. } => write!(
             f,
-            "the faces on lines {} and {} both run from vertex {a} to vertex {b}{}: \
+            "the faces on {} both run from vertex {a} to vertex {b}{}: \
              inconsistent orientation",
-            line(0),
-            line(1),
+            named(2),
             note(&[a, b], " to ")
         ),
         BuildError::NonManifoldVertex { vertex, .. } => write!(
@@ -327,6 +376,19 @@ fn fmt_topology(
             "the faces around vertex {vertex}{} form more than one fan: non-manifold vertex",
             note(&[vertex], "")
         ),
+    }
+}
+
+/// The faces a kernel error names, in its order.
+pub(super) fn named_faces(e: &BuildError) -> &[usize] {
+    match e {
+        BuildError::FaceTooSmall { face, .. }
+        | BuildError::RepeatedCorner { face, .. }
+        | BuildError::IndexOutOfRange { face, .. }
+        | BuildError::NonManifoldVertex { face, .. } => core::slice::from_ref(face),
+        BuildError::NonManifoldEdge { faces, .. } => faces,
+        BuildError::InconsistentOrientation { faces, .. } => faces,
+        BuildError::TooLarge { .. } => &[],
     }
 }
 
@@ -345,8 +407,17 @@ fn fmt_topology(
 #[derive(Debug)]
 pub struct MeshFileError {
     path: Option<PathBuf>,
-    line: Option<usize>,
+    place: Place,
     kind: ErrorKind,
+}
+
+/// Where in the file an error is: one of a line or a byte (binary data), so the error
+/// stays small.
+#[derive(Clone, Copy, Debug)]
+enum Place {
+    Nowhere,
+    Line(usize),
+    Byte(u64),
 }
 
 impl MeshFileError {
@@ -360,8 +431,35 @@ impl MeshFileError {
     pub fn new(line: Option<usize>, kind: ErrorKind) -> Self {
         MeshFileError {
             path: None,
-            line,
+            place: line.map_or(Place::Nowhere, Place::Line),
             kind,
+        }
+    }
+
+    /// The same error, at byte `offset` of the file (in binary data, where no line is).
+    ///
+    /// ```
+    /// use zipmesh::io::{ErrorKind, MeshFileError};
+    /// let e = MeshFileError::new(None, ErrorKind::TrailingData).with_byte(212).with_path("a.ply");
+    /// assert_eq!(e.to_string(), "a.ply: byte 212: data after the last element the header declares: trailing data");
+    /// assert_eq!(e.byte(), Some(212));
+    /// ```
+    pub fn with_byte(mut self, offset: u64) -> Self {
+        self.place = Place::Byte(offset);
+        self
+    }
+
+    /// The byte offset of the defect in binary data (PLY), when the error is about one
+    /// element instance there.
+    ///
+    /// ```
+    /// let e = zipmesh::io::off::parse("OFF\n1 0 0\n0 0 x\n").unwrap_err();
+    /// assert_eq!(e.byte(), None);
+    /// ```
+    pub fn byte(&self) -> Option<u64> {
+        match self.place {
+            Place::Byte(b) => Some(b),
+            _ => None,
         }
     }
 
@@ -397,7 +495,10 @@ impl MeshFileError {
     /// assert_eq!(e.line(), Some(3));
     /// ```
     pub fn line(&self) -> Option<usize> {
-        self.line
+        match self.place {
+            Place::Line(l) => Some(l),
+            _ => None,
+        }
     }
 
     /// What is wrong.
@@ -418,11 +519,13 @@ impl MeshFileError {
 
 impl fmt::Display for MeshFileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match (&self.path, self.line) {
-            (Some(p), Some(l)) => write!(f, "{}:{l}: {}", Escaped(p), self.kind),
-            (Some(p), None) => write!(f, "{}: {}", Escaped(p), self.kind),
-            (None, Some(l)) => write!(f, "line {l}: {}", self.kind),
-            (None, None) => write!(f, "{}", self.kind),
+        match (&self.path, self.place) {
+            (Some(p), Place::Line(l)) => write!(f, "{}:{l}: {}", Escaped(p), self.kind),
+            (Some(p), Place::Byte(b)) => write!(f, "{}: byte {b}: {}", Escaped(p), self.kind),
+            (Some(p), Place::Nowhere) => write!(f, "{}: {}", Escaped(p), self.kind),
+            (None, Place::Line(l)) => write!(f, "line {l}: {}", self.kind),
+            (None, Place::Byte(b)) => write!(f, "byte {b}: {}", self.kind),
+            (None, Place::Nowhere) => write!(f, "{}", self.kind),
         }
     }
 }

@@ -1,7 +1,8 @@
-//! Mesh files (OBJ and OFF): reading with errors that name the line, atomic writing.
+//! Mesh files (OBJ, OFF and PLY): reading with errors that name the line (or, in binary
+//! PLY data, the byte), atomic writing.
 //!
 //! * [`read_mesh`] and [`write_mesh`] choose the format by the file name's extension
-//!   (`.obj` or `.off`, any case).
+//!   (`.obj`, `.off` or `.ply`, any case).
 //! * [`obj::parse`], [`off::parse`] (and their `parse_bytes` forms) read from memory and never
 //!   panic, whatever the input; [`obj::write`] and [`off::write`] write to any `std::io::Write`.
 //! * Every error is a [`MeshFileError`]: the file's path when known, the 1-based line, and a
@@ -37,6 +38,7 @@ mod error;
 mod lex;
 pub mod obj;
 pub mod off;
+pub mod ply;
 mod soup;
 mod write;
 
@@ -66,15 +68,18 @@ pub enum Format {
     Obj,
     /// Object File Format (see [`off`]).
     Off,
+    /// Stanford PLY, ASCII or binary (see [`ply`]); written binary little-endian.
+    Ply,
 }
 
 impl Format {
-    /// The format named by the extension of `path` (`.obj` or `.off`, any case).
+    /// The format named by the extension of `path` (`.obj`, `.off` or `.ply`, any case).
     ///
     /// ```
     /// use zipmesh::io::Format;
     /// assert_eq!(Format::from_path("bunny.OBJ"), Some(Format::Obj));
     /// assert_eq!(Format::from_path("cube.off"), Some(Format::Off));
+    /// assert_eq!(Format::from_path("scan.ply"), Some(Format::Ply));
     /// assert_eq!(Format::from_path("notes.txt"), None);
     /// ```
     pub fn from_path(path: impl AsRef<Path>) -> Option<Format> {
@@ -83,6 +88,8 @@ impl Format {
             Some(Format::Obj)
         } else if ext.eq_ignore_ascii_case("off") {
             Some(Format::Off)
+        } else if ext.eq_ignore_ascii_case("ply") {
+            Some(Format::Ply)
         } else {
             None
         }
@@ -100,7 +107,7 @@ impl Format {
     pub fn vertex_number(self, slot: u32) -> u64 {
         let first = match self {
             Format::Obj => 1,
-            Format::Off => 0,
+            Format::Off | Format::Ply => 0,
         };
         u64::from(slot) + first
     }
@@ -116,6 +123,7 @@ impl Format {
         match self {
             Format::Obj => obj::parse_bytes(src),
             Format::Off => off::parse_bytes(src),
+            Format::Ply => ply::parse_bytes(src),
         }
     }
 
@@ -131,6 +139,7 @@ impl Format {
         match self {
             Format::Obj => obj::write(mesh, w),
             Format::Off => off::write(mesh, w),
+            Format::Ply => ply::write(mesh, w),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The polygons a reader collects, and building the map from them with errors traced back
 //! to the lines of the faces.
 
+use super::error::named_faces;
 use super::{ErrorKind, Format, MeshFileError};
 use crate::map::{BuildError, BuildReport};
 use crate::mesh::Mesh;
@@ -14,7 +15,10 @@ pub(super) struct Soup {
     pub(super) positions: Vec<DVec3>,
     pub(super) corners: Vec<u32>,
     pub(super) offsets: Vec<u32>,
-    pub(super) face_lines: Vec<u32>,
+    /// Where each face is: its line, or in a binary file its byte offset.
+    pub(super) face_lines: Vec<u64>,
+    /// Whether `face_lines` holds byte offsets (a binary file) rather than lines.
+    pub(super) binary: bool,
 }
 
 /// The builder needs fewer than 2^31 corners; checked while parsing so offsets fit in u32.
@@ -30,13 +34,27 @@ impl Soup {
 
     /// Closes the face whose corners were pushed since the last call.
     pub(super) fn end_face(&mut self, line: usize) -> Result<(), MeshFileError> {
+        self.end_face_at(line as u64)
+    }
+
+    /// Closes the face whose corners were pushed since the last call, at `at`: its line,
+    /// or in a binary file its byte offset.
+    pub(super) fn end_face_at(&mut self, at: u64) -> Result<(), MeshFileError> {
         if self.corners.len() > MAX_CORNERS {
-            return Err(MeshFileError::new(Some(line), ErrorKind::TooLarge));
+            return Err(self.error_at(at, ErrorKind::TooLarge));
         }
         self.offsets.push(self.corners.len() as u32);
-        self.face_lines
-            .push(u32::try_from(line).unwrap_or(u32::MAX));
+        self.face_lines.push(at);
         Ok(())
+    }
+
+    /// An error of `kind` at `at`: a line, or in a binary file a byte offset.
+    pub(super) fn error_at(&self, at: u64, kind: ErrorKind) -> MeshFileError {
+        if self.binary {
+            MeshFileError::new(None, kind).with_byte(at)
+        } else {
+            MeshFileError::new(Some(at as usize), kind)
+        }
     }
 
     /// Builds the map; errors name the lines of their faces and `format` numbers vertices.
@@ -59,10 +77,18 @@ impl Soup {
         self.face_lines.get(face).map_or(0, |&l| l as usize)
     }
 
-    /// Turns a build error into a file error at the line of its face.
+    /// Turns a build error into a file error at the line of its face (in a binary file, at
+    /// the byte where the face starts, its message naming the faces).
     fn locate(&self, e: BuildError, format: Format) -> MeshFileError {
-        let line = e.face().map(|f| self.line_of(f));
-        let kind = match e {
+        match e.face().and_then(|f| self.face_lines.get(f).copied()) {
+            Some(at) => self.error_at(at, self.kind_of(e, format)),
+            None => MeshFileError::new(None, self.kind_of(e, format)),
+        }
+    }
+
+    /// The file error a build error is, in `format`'s terms.
+    fn kind_of(&self, e: BuildError, format: Format) -> ErrorKind {
+        match e {
             // Defects the parsers also find get the parsers' variants (see
             // `ErrorKind::IndexOutOfRange`): one defect, one variant, whoever finds it.
             BuildError::IndexOutOfRange {
@@ -75,27 +101,17 @@ impl Soup {
             },
             BuildError::TooLarge { .. } => ErrorKind::TooLarge,
             error => ErrorKind::Topology {
-                lines: named_faces(&error)
-                    .iter()
-                    .map(|&f| self.line_of(f))
-                    .collect(),
+                lines: if self.binary {
+                    Vec::new()
+                } else {
+                    named_faces(&error)
+                        .iter()
+                        .map(|&f| self.line_of(f))
+                        .collect()
+                },
                 error,
                 format,
             },
-        };
-        MeshFileError::new(line, kind)
-    }
-}
-
-/// The faces `e` names, in its order.
-fn named_faces(e: &BuildError) -> &[usize] {
-    match e {
-        BuildError::FaceTooSmall { face, .. }
-        | BuildError::RepeatedCorner { face, .. }
-        | BuildError::IndexOutOfRange { face, .. }
-        | BuildError::NonManifoldVertex { face, .. } => core::slice::from_ref(face),
-        BuildError::NonManifoldEdge { faces, .. } => faces,
-        BuildError::InconsistentOrientation { faces, .. } => faces,
-        BuildError::TooLarge { .. } => &[],
+        }
     }
 }

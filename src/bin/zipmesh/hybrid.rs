@@ -35,7 +35,7 @@ impl From<io::MeshFileError> for InputError {
 #[derive(Args)]
 #[command(group(ArgGroup::new("how").required(true).args(["moves", "to"])))]
 pub struct TriWalkArgs {
-    /// A quad-dominant mesh (.obj or .off).
+    /// A quad-dominant mesh (.obj, .off or .ply).
     file: PathBuf,
     /// The triangle: a 0-based face number of the file.
     #[arg(long)]

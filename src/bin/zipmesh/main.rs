@@ -57,7 +57,7 @@ enum Command {
     /// Counts, Euler characteristic, genus, histograms, Gauss-Bonnet, the canonical hash and
     /// the quality of the geometry (folded quads, scaled Jacobians, angles, edge ratios).
     Stats {
-        /// An .obj or .off file; without it, the built-in Spot control mesh.
+        /// An .obj, .off or .ply file; without it, the built-in Spot control mesh.
         file: Option<PathBuf>,
         /// Print one JSON object instead of a table.
         #[arg(long)]
@@ -72,7 +72,7 @@ enum Command {
     Singularities(singular::SingularitiesArgs),
     /// The 128-bit canonical hash of the mesh's connectivity, in 32 hex digits.
     Hash {
-        /// An .obj or .off file.
+        /// An .obj, .off or .ply file.
         file: PathBuf,
     },
     /// Whether two meshes have isomorphic connectivity: exit 0 if so, 1 if not.

@@ -20,7 +20,7 @@ use crate::qzip::InputError;
 
 #[derive(Args)]
 pub struct OptimizeArgs {
-    /// The input mesh (.obj or .off): quad, quad-dominant (triangles and quads) or all triangles.
+    /// The input mesh (.obj, .off or .ply): quad, quad-dominant (triangles and quads) or all triangles.
     file: PathBuf,
     /// Where to write the result.
     #[arg(short, long)]

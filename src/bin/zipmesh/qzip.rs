@@ -21,7 +21,7 @@ use crate::quality;
 /// Arguments shared by `moves` and `zip`.
 #[derive(Args)]
 pub struct PairArgs {
-    /// A quad mesh (.obj or .off).
+    /// A quad mesh (.obj, .off or .ply).
     file: PathBuf,
     /// The initial singularity: a 0-based vertex number of the file.
     #[arg(long)]

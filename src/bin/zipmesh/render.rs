@@ -14,7 +14,7 @@ use crate::out::{self, outln};
 /// `zipmesh render`.
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A mesh (.obj or .off).
+    /// A mesh (.obj, .off or .ply).
     file: PathBuf,
     /// The picture: a name ending in .svg or .png.
     #[arg(short, long)]

@@ -12,7 +12,7 @@ use zipmesh::{optimize, Mesh, Vert};
 
 #[derive(Args)]
 pub struct SingularitiesArgs {
-    /// An .obj or .off file.
+    /// An .obj, .off or .ply file.
     file: PathBuf,
     /// Print one JSON object instead of a table.
     #[arg(long)]

@@ -59,7 +59,7 @@ impl Relax {
 /// Input and output shared by every triangle edit.
 #[derive(Args)]
 pub struct Files {
-    /// A triangle mesh (.obj or .off).
+    /// A triangle mesh (.obj, .off or .ply).
     file: PathBuf,
     /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
     #[arg(short, long)]
