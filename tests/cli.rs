@@ -1059,3 +1059,44 @@ fn check_samples_pairs_of_a_given_file() {
         stderr(&out)
     );
 }
+
+/// Every command reads and writes PLY as OBJ: `hash` of a PLY copy equals the OBJ's, `zip`
+/// writes `.ply`, and a truncated binary file is refused naming the byte, exit 2.
+#[test]
+fn ply_files_are_read_and_written_by_the_commands() {
+    let dir = temp_dir("ply");
+    let obj = shared("quad/spot_quadrangulated.obj");
+    let (mesh, _) = io::read_mesh(&obj).unwrap();
+    let ply = dir.join("spot.ply");
+    io::write_mesh(&ply, &mesh).unwrap();
+    let (a, b) = (zipmesh(&["hash", s(&obj)]), zipmesh(&["hash", s(&ply)]));
+    assert!(a.status.success() && b.status.success(), "{}", stderr(&b));
+    assert_eq!(stdout(&a), stdout(&b).replace(s(&ply), s(&obj)));
+    let out = dir.join("moved.ply");
+    let z = zipmesh(&[
+        "zip",
+        s(&ply),
+        "--from",
+        "15",
+        "--to",
+        "2",
+        "--move",
+        "LC",
+        "-o",
+        s(&out),
+    ]);
+    assert!(z.status.success(), "{}", stderr(&z));
+    assert!(fs::read(&out)
+        .unwrap()
+        .starts_with(b"ply\nformat binary_little_endian 1.0\n"));
+    let bytes = fs::read(&ply).unwrap();
+    let cut = dir.join("cut.ply");
+    fs::write(&cut, &bytes[..bytes.len() - 3]).unwrap();
+    let e = zipmesh(&["stats", s(&cut)]);
+    assert_eq!(e.status.code(), Some(2));
+    assert!(
+        stderr(&e).contains(": byte ") && stderr(&e).contains(": truncated"),
+        "{}",
+        stderr(&e)
+    );
+}
