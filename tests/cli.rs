@@ -1100,3 +1100,36 @@ fn ply_files_are_read_and_written_by_the_commands() {
         stderr(&e)
     );
 }
+
+/// The help says what the tool is for (editing, not only counting), what the four Q-zip
+/// movements are, and every way a command can be used.
+#[test]
+fn help_explains_editing_the_movements_and_both_cancellations() {
+    let top = stdout(&zipmesh(&["--help"]));
+    assert!(
+        top.lines()
+            .next()
+            .unwrap()
+            .starts_with("Edit the singularities"),
+        "{top}"
+    );
+    assert!(top.lines().next().unwrap().contains("PLY"), "{top}");
+    let zip = stdout(&zipmesh(&["zip", "--help"]));
+    for word in [
+        "LS or RS split it",
+        "LC or RC collapse",
+        "derived from the edit",
+    ] {
+        assert!(zip.contains(word), "{word}: {zip}");
+    }
+    let cancel = stdout(&zipmesh(&["tri-cancel", "--help"]));
+    assert!(
+        cancel.lines().next().unwrap().contains("--triple"),
+        "{cancel}"
+    );
+    let optimize = stdout(&zipmesh(&["optimize", "--help"]));
+    assert!(
+        optimize.contains("quad, quad-dominant or triangle mesh"),
+        "{optimize}"
+    );
+}

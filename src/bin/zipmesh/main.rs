@@ -38,7 +38,7 @@ const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
 #[command(
     name = "zipmesh",
     version,
-    about = "Counts, invariants, canonical hashes and property campaigns for quad, triangle and polygon meshes (OBJ, OFF)",
+    about = "Edit the singularities of quad, triangle and quad-dominant meshes (move, cancel, optimize), measure and draw them, and check the edits' properties (OBJ, OFF, PLY)",
     after_help = "Vertices and faces are numbered from 0 in file order, in arguments and in every \
 message (an OBJ file's vertex `1` is vertex 0; a message about an OBJ file quotes the file's \
 number beside); lines are counted from 1.\n\nExit status: 0 success; 1 `iso`: not isomorphic, `check`: a property failed; \
@@ -94,10 +94,12 @@ enum Command {
     /// Move a pair of singularities of a quad mesh (Q-zip) and write the result; prints the
     /// report and the command that undoes it.
     ///
-    /// The undo is a Q-zip back along the moved pair, found by search; when none restores
-    /// the input (a third singularity on or next to the path can prevent it) the text says
-    /// so and `--json` gives `"undo": null`, with exit 0: the edit was done, and only the
-    /// input file undoes it. With `--preprocess` the undo restores the preprocessed mesh.
+    /// The undo is a Q-zip back along the moved pair, derived from the edit (the path read
+    /// backwards, the compass turned by pi) and checked, else searched for; when none
+    /// restores the input (a third singularity on or next to the path can prevent it) the
+    /// text says so and `--json` gives `"undo": null`, with exit 0: the edit was done, and
+    /// only the input file undoes it. With `--preprocess` the undo restores the
+    /// preprocessed mesh.
     Zip(qzip::ZipArgs),
     /// Move an adjacent 5-7 pair of a triangle mesh K steps in one of six directions
     /// (docs/tri-edit.md) and write the result; prints the command that undoes it.
@@ -107,12 +109,14 @@ enum Command {
     /// Split the type of an irregular vertex of a triangle mesh (v3, v4, vk with k > 7) or
     /// aggregate two or three v5 into a v4 or a v3.
     TriType(tri::TypeArgs),
-    /// Cancel a 5-5-7-7 quadruple inside two triangles of a triangle mesh.
+    /// Cancel a 5-5-7-7 quadruple inside two triangles (`--quadruple`), or reduce a 5-5-7 or
+    /// 5-7-7 triple to its one left-over singularity (`--triple`), in a triangle mesh.
     TriCancel(tri::CancelArgs),
     /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
     /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
     TriWalk(hybrid::TriWalkArgs),
-    /// Reduce the singularities of a quad mesh by batches of Q-zips (Q-zip paper, Sec. 4.1)
+    /// Reduce the singularities of a quad, quad-dominant or triangle mesh by batches of
+    /// Q-zips (Q-zip paper, Sec. 4.1; triangle meshes by the triangle paper's moves)
     /// and write the result; `--json` prints the counts before, after each batch and at the end.
     Optimize(optimize::OptimizeArgs),
     /// Draw the mesh (SVG or PNG): shaded faces and edges, hidden surfaces removed, the seen

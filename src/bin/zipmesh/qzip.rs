@@ -53,7 +53,10 @@ pub struct MovesArgs {
 pub struct ZipArgs {
     #[command(flatten)]
     pair: PairArgs,
-    /// The initial operation: LS, RS, LC or RC.
+    /// The initial operation at the initial singularity, read along the path's first edge
+    /// (the paper's compass, docs/qzip.md): LS or RS split it, the left (LS) or right (RS)
+    /// copy going on along the path; LC or RC collapse the quad along the first edge on its
+    /// right (LC) or left (RC). `moves` shows what each of the four does.
     #[arg(long = "move")]
     tag: Tag,
     /// Where to write the edited mesh (compacted: vertices renumbered 0..V).
