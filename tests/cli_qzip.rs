@@ -267,3 +267,51 @@ fn zip_help_documents_a_null_undo() {
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("\"undo\": null"), "{text}");
 }
+
+/// `moves --partners` lists the nearest interior singularities, fewest edges first, each
+/// with the movements the library realizes along a shortest path to it.
+#[test]
+fn moves_lists_the_nearest_partners_with_their_movements() {
+    use zipmesh::qzip::{moves, sketch, SketchOptions};
+    let file = common::shared("quad/spot_quadrangulated.obj");
+    let o = common::cli::zipmesh(&[
+        "moves",
+        file.to_str().unwrap(),
+        "--from",
+        "15",
+        "--partners",
+        "4",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", common::cli::stderr(&o));
+    let rows: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 4);
+    let (mesh, _) = zipmesh::io::read_mesh(&file).unwrap();
+    let map = &mesh.map;
+    let from = zipmesh::Vert::new(15);
+    let mut last = 0;
+    for r in rows {
+        let v = zipmesh::Vert::new(r["to"].as_u64().unwrap() as u32);
+        assert!(map.valence(v) != 4 && !map.is_boundary_vertex(v));
+        let path = sketch(map, from, v, &SketchOptions::default()).unwrap();
+        let d = r["distance"].as_u64().unwrap() as usize;
+        assert!(d >= last && d <= path.len(), "{r}");
+        last = d;
+        let want: Vec<String> = moves(map, &path)
+            .iter()
+            .filter(|m| m.outcome.is_ok())
+            .map(|m| m.tag.to_string())
+            .collect();
+        let got: Vec<String> = r["realizable"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t.as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(got, want, "{r}");
+    }
+    // Without --to and --partners nothing is moved.
+    let o = common::cli::zipmesh(&["moves", file.to_str().unwrap(), "--from", "15"]);
+    assert_eq!(o.status.code(), Some(2));
+}

@@ -44,8 +44,29 @@ pub struct PairArgs {
 /// `zipmesh moves`.
 #[derive(Args)]
 pub struct MovesArgs {
-    #[command(flatten)]
-    pair: PairArgs,
+    /// A quad mesh (.obj, .off or .ply).
+    file: PathBuf,
+    /// The initial singularity: a 0-based vertex number of the file.
+    #[arg(long)]
+    from: u32,
+    /// The terminal singularity: a 0-based vertex number of the file.
+    #[arg(long, required_unless_present = "partners")]
+    to: Option<u32>,
+    /// The surgery path as comma-separated vertex numbers (default: a shortest path).
+    #[arg(long, value_delimiter = ',')]
+    path: Option<Vec<u32>>,
+    /// Print one JSON value instead of text.
+    #[arg(long)]
+    json: bool,
+    /// First split every interior vertex of valence 6 or more and remove every interior
+    /// valence-2 vertex (Sec. 2.6 covers v3 and v5 only); new vertices get new numbers.
+    #[arg(long)]
+    preprocess: bool,
+    /// Instead of one pair: the N interior singularities nearest to --from (fewest edges
+    /// first; default 5), each with its distance and the movements realizable towards it.
+    #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "5",
+          conflicts_with_all = ["to", "path"])]
+    partners: Option<usize>,
 }
 
 /// `zipmesh zip`.
@@ -92,10 +113,34 @@ impl From<MeshFileError> for InputError {
 /// Reads the mesh and checks the pair and the path: the mesh as read, the mesh to edit (the
 /// same, or preprocessed) and the path.
 fn load(a: &PairArgs) -> Result<(Mesh, Mesh, Path), InputError> {
-    let (input, _) = io::read_mesh(&a.file)?;
-    let mut mesh = input.clone();
+    let vertices = [("--from", a.from), ("--to", a.to)];
+    let (input, mesh) = load_mesh(&a.file, a.preprocess, &vertices)?;
+    let map = &mesh.map;
     let name = a.file.display();
-    if a.preprocess {
+    let (from, to) = (Vert::new(a.from), Vert::new(a.to));
+    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
+    let path = match &a.path {
+        Some(vs) => {
+            let vs: Vec<Vert> = vs.iter().map(|&v| Vert::new(v)).collect();
+            validate_path(map, from, to, &vs, &opts)
+        }
+        None => sketch(map, from, to, &opts),
+    }
+    .map_err(|e| InputError(format!("{name}: no surgery path: {e}")))?;
+    Ok((input, mesh, path))
+}
+
+/// Reads `file` (preprocessed if asked), checks it is a quad or quad-dominant mesh and each
+/// of `vertices` (a flag and a number) an irregular vertex; the input and the mesh to edit.
+fn load_mesh(
+    file: &std::path::Path,
+    preprocess: bool,
+    vertices: &[(&str, u32)],
+) -> Result<(Mesh, Mesh), InputError> {
+    let (input, _) = io::read_mesh(file)?;
+    let mut mesh = input.clone();
+    let name = file.display();
+    if preprocess {
         mesh_preprocess(&mut mesh)
             .map_err(|e| InputError(format!("{name}: the preprocessing was refused: {e}")))?;
     }
@@ -114,7 +159,7 @@ fn load(a: &PairArgs) -> Result<(Mesh, Mesh, Path), InputError> {
             "{name}: not a quad or quad-dominant mesh (no quad); Q-zip edits quads"
         )));
     }
-    for (flag, v) in [("--from", a.from), ("--to", a.to)] {
+    for &(flag, v) in vertices {
         let vert = Vert::new(v);
         if !map.is_live_vertex(vert) {
             return Err(InputError(format!(
@@ -136,17 +181,7 @@ fn load(a: &PairArgs) -> Result<(Mesh, Mesh, Path), InputError> {
             )));
         }
     }
-    let (from, to) = (Vert::new(a.from), Vert::new(a.to));
-    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
-    let path = match &a.path {
-        Some(vs) => {
-            let vs: Vec<Vert> = vs.iter().map(|&v| Vert::new(v)).collect();
-            validate_path(map, from, to, &vs, &opts)
-        }
-        None => sketch(map, from, to, &opts),
-    }
-    .map_err(|e| InputError(format!("{name}: no surgery path: {e}")))?;
-    Ok((input, mesh, path))
+    Ok((input, mesh))
 }
 
 fn numbers(vs: &[Vert]) -> Vec<u32> {
@@ -172,7 +207,106 @@ fn surgery_path(r: &ZipReport) -> Vec<u32> {
 
 /// Runs `zipmesh moves`: the four movements of the pair and their outcome.
 pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
-    let (_, mesh, path) = load(&args.pair)?;
+    let Some(to) = args.to else {
+        return run_partners(&args, args.partners.unwrap_or(5));
+    };
+    let pair = PairArgs {
+        file: args.file,
+        from: args.from,
+        to,
+        path: args.path,
+        json: args.json,
+        preprocess: args.preprocess,
+    };
+    run_pair(pair)
+}
+
+/// `moves --partners N`: the N interior singularities nearest to `--from`, in breadth-first
+/// order (fewest edges first, then vertex number), each with the movements realizable along
+/// a shortest path to it.
+fn run_partners(args: &MovesArgs, n: usize) -> Result<ExitCode, InputError> {
+    let (_, mesh) = load_mesh(&args.file, args.preprocess, &[("--from", args.from)])?;
+    let map = &mesh.map;
+    let from = Vert::new(args.from);
+    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
+    let mut rows = Vec::new();
+    for (v, distance) in nearest_singularities(map, from, n) {
+        let Ok(path) = sketch(map, from, v, &opts) else {
+            continue;
+        };
+        let realizable: Vec<String> = moves(map, &path)
+            .iter()
+            .filter(|m| m.outcome.is_ok())
+            .map(|m| m.tag.to_string())
+            .collect();
+        rows.push(json!({
+            "to": v.index(),
+            "valence": map.valence(v),
+            "distance": distance,
+            "realizable": realizable,
+        }));
+    }
+    if args.json {
+        outln!("{}", Value::Array(rows));
+    } else {
+        let name = args.file.display();
+        outln!(
+            "{name}: the {} singularities nearest to {}",
+            rows.len(),
+            args.from
+        );
+        for r in &rows {
+            let tags: Vec<&str> = r["realizable"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(Value::as_str)
+                .collect();
+            outln!(
+                "  {} (valence {}, {} edges): {} realizable; zipmesh moves {name} --from {} --to {}",
+                r["to"],
+                r["valence"],
+                r["distance"],
+                if tags.is_empty() { "none".to_string() } else { tags.join(" ") },
+                args.from,
+                r["to"]
+            );
+        }
+    }
+    out::flush()?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The first `n` interior irregular vertices other than `from`, breadth first from it, with
+/// their distances in edges.
+fn nearest_singularities(map: &Map, from: Vert, n: usize) -> Vec<(Vert, usize)> {
+    let mut dist = vec![usize::MAX; map.vertex_slots()];
+    let mut queue = std::collections::VecDeque::from([from]);
+    dist[from.index()] = 0;
+    let mut found = Vec::new();
+    while let Some(v) = queue.pop_front() {
+        if found.len() == n {
+            break;
+        }
+        let irregular = !map.is_boundary_vertex(v) && map.valence(v) != 4;
+        if v != from && irregular {
+            found.push((v, dist[v.index()]));
+        }
+        let mut next: Vec<Vert> = map.vertex_darts(v).map(|d| map.dest(d)).collect();
+        next.sort_unstable();
+        for w in next {
+            if dist[w.index()] == usize::MAX {
+                dist[w.index()] = dist[v.index()] + 1;
+                queue.push_back(w);
+            }
+        }
+    }
+    found
+}
+
+/// `moves` for one pair: the four movements along the pair's path.
+fn run_pair(pair: PairArgs) -> Result<ExitCode, InputError> {
+    let (_, mesh, path) = load(&pair)?;
     let mut rows = Vec::new();
     for m in moves(&mesh.map, &path) {
         let row = match &m.outcome {
@@ -199,14 +333,14 @@ pub fn run_moves(args: MovesArgs) -> Result<ExitCode, InputError> {
         };
         rows.push(row);
     }
-    if args.pair.json {
+    if pair.json {
         outln!("{}", Value::Array(rows));
     } else {
         outln!(
             "{}: moving {} -> {} along {}",
-            args.pair.file.display(),
-            args.pair.from,
-            args.pair.to,
+            pair.file.display(),
+            pair.from,
+            pair.to,
             join(&numbers(path.vertices()))
         );
         for r in &rows {
