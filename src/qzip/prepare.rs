@@ -23,12 +23,12 @@
 //! hand along the parallel side `b -> c`); a path swept round a regular quad just before that
 //! U-turn (`p -> x -> y -> b -> c -> end`, `p x y b` a quad) is first straightened to
 //! `p -> b`, so that it is shortened the same way; both are repeated until neither applies.
-//! After the adjustments, edges crossed twice in
-//! opposite directions (`a -> b -> a`) cancel in pairs, keeping the compass unchanged: the
-//! surviving vertex takes the hand of the edge that leaves the fold; loops that go round one
-//! quad with regular corners (`a -> x -> y -> z -> a`) are cut the same way. If a v3 start's
-//! reroute folds back so that the first operation is a split, the v3 is put back in front as
-//! its guide with a no-op (as in a v3 start with a split).
+//! After the adjustments, edges crossed twice in opposite directions (`a -> b -> a`) cancel
+//! in pairs, keeping the compass unchanged: the surviving vertex takes the hand of the edge
+//! that leaves the fold; loops that go round one quad with regular corners
+//! (`a -> x -> y -> z -> a`) are cut the same way. If a v3 start's reroute folds back so
+//! that the first operation is a split, the v3 is put back in front as its guide with a
+//! no-op (as in a v3 start with a split).
 //!
 //! ```
 //! use zipmesh::{gen, Vert};

@@ -94,7 +94,7 @@ fn read_back(edited: &Map, report: &ZipReport, path: &Path) -> Option<Tag> {
     let steps = report.surgery().steps();
     let r = path.vertices();
     let regular = |v: Vert| is_regular_interior(edited, MeshKind::Quad, v);
-    let (k, hand) = (0..r.len() - 1).find_map(|k| {
+    let (k, hand) = (0..r.len().saturating_sub(1)).find_map(|k| {
         let back = |w: &[SurgeryStep]| w[0].vertex == r[k + 1] && w[1].vertex == r[k];
         let i = steps.windows(2).position(back)?;
         (regular(r[k]) && regular(r[k + 1])).then(|| (k, steps[i].hand.rotate_pi()))
@@ -135,8 +135,7 @@ fn read_back(edited: &Map, report: &ZipReport, path: &Path) -> Option<Tag> {
 /// ```
 pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<ReverseRun> {
     let mut target = Restores::new(edited, report, original);
-    let derived = derive_reverse(edited, report);
-    if let Some(d) = derived.clone() {
+    if let Some(d) = derive_reverse(edited, report) {
         let mut m = edited.clone();
         if zip_along(&mut m, &d.path, d.tag).is_ok() && target.by(&m) {
             return Some(d);
