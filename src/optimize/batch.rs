@@ -12,6 +12,7 @@ use super::defect::{singularities, Singularity};
 use super::folds::folded_near;
 use super::marks::Marks;
 use super::score::{Bfs, Scorer};
+use super::smooth::Surface;
 use super::BatchStats;
 use crate::qzip::{Path, Qzip, Tag, ZipReport};
 use crate::rng::Rng;
@@ -35,8 +36,14 @@ const PARTS: usize = 16;
 /// At least this many singularities per part, so that a small sample is not cut for nothing.
 const MIN_PART: usize = 8;
 
-/// Laplacian steps on a candidate's scar before it is scored.
+/// Laplacian steps on a candidate's scar before it is scored, without a surface.
 pub(super) const RELAX_STEPS: usize = 2;
+
+/// The relaxation of a candidate's scar on the input surface.
+pub(super) const RELAX: crate::geometry::RelaxOptions = crate::geometry::RelaxOptions {
+    rings: 2,
+    sweeps: 10,
+};
 
 /// How far (edges) round a Q-zip's path the fold guard counts folded quads: the scar's
 /// corners are at most one edge from the path, so every quad a Q-zip changes has a corner
@@ -81,6 +88,9 @@ pub(crate) struct Batcher<'q> {
     pub(crate) search_radius: u32,
     pub(crate) eps: f64,
     pub(crate) fold_guard: bool,
+    /// The input surface: with it, a Q-zip's scar is relaxed on it
+    /// ([`crate::geometry::relax_footprint`]) rather than by free Laplacian steps.
+    pub(crate) surface: Option<&'q Surface>,
     /// The copies [`Batcher::try_path`] makes a small mesh's movements on.
     pub(crate) copies: Vec<Mesh>,
     /// The window [`Batcher::try_path`] builds.
@@ -122,10 +132,12 @@ impl<'q> Batcher<'q> {
         }
     }
 
-    /// Relaxes the scar's vertices (two Laplacian steps, no projection), so that the new
-    /// quads are scored with the shape smoothing will give them rather than the degenerate
-    /// one of a fresh split. Returns the previous positions.
-    fn relax(&self, mesh: &mut Mesh, r: &ZipReport) -> Vec<(Vert, DVec3)> {
+    /// Relaxes the scar's vertices, so that the new quads are scored with the shape
+    /// smoothing will give them rather than the degenerate one of a fresh split: on the
+    /// input surface, the scar projected and its footprint smoothed tangentially, never into
+    /// a worse fan ([`crate::geometry::relax_footprint`]); without a surface, two
+    /// Laplacian steps. Returns the previous positions.
+    fn relax(&self, mesh: &mut Mesh, r: &ZipReport, on_surface: bool) -> Vec<(Vert, DVec3)> {
         let map = &mesh.map;
         let mut vs: Vec<Vert> = r
             .scar_faces()
@@ -139,7 +151,21 @@ impl<'q> Batcher<'q> {
             .collect();
         vs.sort_unstable();
         vs.dedup();
-        super::smooth::laplacian(mesh, None, &vs, &self.locked, RELAX_STEPS)
+        match self.surface.filter(|_| on_surface) {
+            Some(surface) => {
+                let mut saved = Vec::new();
+                crate::geometry::relax_footprint_fixed(
+                    mesh,
+                    surface,
+                    &vs,
+                    RELAX,
+                    &self.locked,
+                    &mut saved,
+                );
+                saved
+            }
+            None => super::smooth::laplacian(mesh, None, &vs, &self.locked, RELAX_STEPS),
+        }
     }
 
     /// Adds the vertices within [`WINDOW`] edges of `seeds` to the window being built:
@@ -236,7 +262,7 @@ impl<'q> Batcher<'q> {
         folds: Option<&(Vec<Vert>, usize)>,
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
-        let saved = self.relax(mesh, z.record());
+        let saved = self.relax(mesh, z.record(), false);
         let folded = folds.is_some_and(|f| {
             folds_rise(
                 mesh,
@@ -322,7 +348,7 @@ impl<'q> Batcher<'q> {
             let window = self.window.take_sorted();
             for ((copy, made), out) in copies.iter_mut().zip(&made).zip(&mut out) {
                 if let Some(z) = made {
-                    self.relax(copy, z.record());
+                    self.relax(copy, z.record(), false);
                     // What the fold guard would refuse at execution is not ranked.
                     let folded = folds.as_ref().is_some_and(|f| {
                         let region = touched_region(copy, path, z.record());
@@ -458,6 +484,7 @@ impl<'q> Batcher<'q> {
             search_radius: self.search_radius,
             eps: self.eps,
             fold_guard: self.fold_guard,
+            surface: self.surface,
             copies: Vec::new(),
             window: Window::default(),
             marks: Marks::default(),
@@ -542,7 +569,7 @@ impl<'q> Batcher<'q> {
         let Some(z) = self.apply(mesh, &path, c.tag) else {
             return;
         };
-        let saved = self.relax(mesh, z.record());
+        let saved = self.relax(mesh, z.record(), true);
         let after = self.scorer.score(mesh).0;
         let region = touched_region(mesh, &path, z.record());
         let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &region, &mut self.marks));
@@ -683,6 +710,7 @@ mod tests {
             search_radius: 64,
             eps: 1e-9,
             fold_guard: false,
+            surface: None,
             copies: Vec::new(),
             window: Window::default(),
             marks: Marks::default(),
@@ -868,7 +896,7 @@ mod tests {
                         continue;
                     };
                     let z = b.apply(&mut mesh, &path, tag).unwrap();
-                    let saved = b.relax(&mut mesh, z.record());
+                    let saved = b.relax(&mut mesh, z.record(), false);
                     let exact_after = b.scorer.score(&mesh).0;
                     for (v, p) in saved.into_iter().rev() {
                         mesh.positions[v.index()] = p;

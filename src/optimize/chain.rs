@@ -347,7 +347,21 @@ impl Batcher<'_> {
         region.retain(|&v| mesh.map.is_live_vertex(v));
         region.sort_unstable();
         region.dedup();
-        let saved = super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS);
+        let saved = match self.surface {
+            Some(surface) => {
+                let mut saved = Vec::new();
+                crate::geometry::relax_footprint_fixed(
+                    mesh,
+                    surface,
+                    &region,
+                    super::batch::RELAX,
+                    &self.locked,
+                    &mut saved,
+                );
+                saved
+            }
+            None => super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS),
+        };
         let after = self.scorer.score(mesh).0;
         let folded = folds.is_some_and(|n| super::folds::folded_quads(mesh) > n);
         if after < *total - self.eps && self.constraints.holds(mesh) && !folded {

@@ -507,10 +507,28 @@ pub fn optimize(
     let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
     let minimal = quad && at_defect_minimum(mesh);
     if options.preprocess && quad && !minimal {
+        let before = mesh.clone();
         if let Ok(p) = mesh_preprocess(mesh) {
             preprocessed = constraints.holds(mesh);
             if !preprocessed {
                 let _ = p.undo(mesh);
+            } else {
+                // The splits' new vertices go onto the surface, as a Q-zip's scar does.
+                let mut fixed = alloc::vec![false; mesh.map.vertex_slots()];
+                for v in constraints.locked_vertices() {
+                    if let Some(x) = fixed.get_mut(v.index()) {
+                        *x = true;
+                    }
+                }
+                let seeds = crate::geometry::edited_vertices(&before, mesh);
+                crate::geometry::relax_footprint_fixed(
+                    mesh,
+                    &surface,
+                    &seeds,
+                    batch::RELAX,
+                    &fixed,
+                    &mut Vec::new(),
+                );
             }
         }
     }
@@ -532,6 +550,7 @@ pub fn optimize(
         search_radius: options.search_radius,
         eps: 1e-9,
         fold_guard: options.fold_guard,
+        surface: Some(&surface),
         copies: Vec::new(),
         window: Default::default(),
         marks: Default::default(),
@@ -548,6 +567,8 @@ pub fn optimize(
         debug_assert_eq!(Counts::of(&mesh.map).euler_characteristic, chi);
         batches
     };
+    b.refresh_constraints(mesh);
+    settle(mesh, &surface, &b.locked);
     Ok(Outcome {
         input,
         triangles,
@@ -557,6 +578,61 @@ pub fn optimize(
         batches,
         final_counts: SingularityCounts::of(mesh),
     })
+}
+
+/// Puts every vertex that is off the input `surface` (by more than a part in 1e9 of the
+/// mesh's size) back on it, and relaxes a ring round them tangentially, never into a worse
+/// fan ([`crate::geometry::relax_footprint`]); vertices marked in `fixed` stay. What the
+/// preprocessing, the chains and the refused smoothings left off the surface ends on it.
+fn settle(mesh: &mut Mesh, surface: &Surface, fixed: &[bool]) {
+    let (lo, hi) = mesh.map.vertices().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), v| {
+            let p = mesh.positions[v.index()];
+            (lo.min(p), hi.max(p))
+        },
+    );
+    let tol = 1e-9 * (hi - lo).length();
+    let off: Vec<Vert> = mesh
+        .map
+        .vertices()
+        .filter(|&v| {
+            let p = mesh.positions[v.index()];
+            p.is_finite() && surface.closest(p).distance(p) > tol
+        })
+        .collect();
+    if off.is_empty() {
+        return;
+    }
+    // Each goes on the surface unless that folds one of its quads more: then it stays.
+    let mut stay = fixed.to_vec();
+    stay.resize(mesh.map.vertex_slots(), false);
+    let folded_round = |mesh: &Mesh, v: Vert| {
+        mesh.map
+            .vertex_darts(v)
+            .filter_map(|d| mesh.map.face(d))
+            .filter(|&f| is_folded(mesh, f))
+            .count()
+    };
+    let mut on = Vec::new();
+    for v in off {
+        if stay[v.index()] {
+            continue;
+        }
+        let (p, before) = (mesh.positions[v.index()], folded_round(mesh, v));
+        mesh.positions[v.index()] = surface.closest(p);
+        if folded_round(mesh, v) > before {
+            mesh.positions[v.index()] = p;
+            stay[v.index()] = true;
+        } else {
+            on.push(v);
+        }
+    }
+    let o = crate::geometry::RelaxOptions {
+        rings: 1,
+        sweeps: 10,
+    };
+    crate::geometry::relax_footprint_fixed(mesh, surface, &on, o, &stay, &mut Vec::new());
 }
 
 /// Why `mesh` cannot be optimized with `constraints`, if it cannot.
