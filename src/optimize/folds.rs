@@ -53,15 +53,31 @@ pub fn folded_quads(mesh: &Mesh) -> usize {
     mesh.map.faces().filter(|&f| is_folded(mesh, f)).count()
 }
 
-/// The folded quads with a corner among `verts` (each counted once, by `marks`: the guard
-/// counts round every candidate, so without listing and sorting the faces).
+/// Whether face `f` is a quad that any fold test of [`crate::quality`] flags (the
+/// diagonal test of [`is_folded`], a corner normal against the quad's, or the quad's normal
+/// against its neighbours'): what `zipmesh stats` counts as folded, and the fold guard's
+/// test.
+pub(super) fn is_unsound(mesh: &Mesh, f: Face) -> bool {
+    mesh.map.is_live_face(f)
+        && mesh.map.degree(f) == 4
+        && crate::quality::FaceQuality::of(mesh, f).is_some_and(|q| q.folds.any())
+}
+
+/// The quads of `mesh` that [`is_unsound`] flags.
+pub(super) fn unsound_quads(mesh: &Mesh) -> usize {
+    mesh.map.faces().filter(|&f| is_unsound(mesh, f)).count()
+}
+
+/// The quads with a corner among `verts` that [`is_unsound`] flags (each counted once, by
+/// `marks`: the guard counts round every candidate, so without listing and sorting the
+/// faces).
 pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut Marks) -> usize {
     let map = &mesh.map;
     marks.begin(map.face_slots());
     let mut n = 0;
     for &v in verts.iter().filter(|&&v| map.is_live_vertex(v)) {
         for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
-            if marks.first(f.index()) && is_folded(mesh, f) {
+            if marks.first(f.index()) && is_unsound(mesh, f) {
                 n += 1;
             }
         }

@@ -611,7 +611,7 @@ fn settle(mesh: &mut Mesh, surface: &Surface, fixed: &[bool]) {
         mesh.map
             .vertex_darts(v)
             .filter_map(|d| mesh.map.face(d))
-            .filter(|&f| is_folded(mesh, f))
+            .filter(|&f| folds::is_unsound(mesh, f))
             .count()
     };
     let mut on = Vec::new();
