@@ -209,6 +209,33 @@ fn blub_loses_more_than_half_of_its_singularities() {
     assert_meets_the_goal(&mut mesh);
 }
 
+/// The default run (fold guard on, footprints relaxed on the input surface) on Spot adds no
+/// folded quad to the input's and leaves every vertex on the input surface.
+#[test]
+fn the_default_run_on_spot_adds_no_folded_quad() {
+    let path = common::shared("quad/spot_quadrangulated.obj");
+    let mut mesh = zipmesh::io::read_mesh(&path).unwrap().0;
+    let input = mesh.clone();
+    let folds = folded_quads(&mesh);
+    let before = SingularityCounts::of(&mesh);
+    let out = optimize(
+        &mut mesh,
+        Constraints::default(),
+        OptimizeOptions::default(),
+        |_| {},
+    )
+    .unwrap();
+    assert!(
+        folded_quads(&mesh) <= folds,
+        "{folds} -> {}",
+        folded_quads(&mesh)
+    );
+    assert!(out.final_counts.singularities() < before.singularities());
+    let reference = zipmesh::quality::Reference::new(&input);
+    let s = zipmesh::quality::Summary::against(&mesh, &reference);
+    assert!(s.distance.unwrap().max < 1e-6, "{:?}", s.distance);
+}
+
 /// Each batch's stats add up: every candidate is counted once by the sign of its face
 /// change, the executed Q-zips are the batch's, and their face change plus the kept
 /// chains' is the batch's change of the face count (the smoothing changes no face).

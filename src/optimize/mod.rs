@@ -84,11 +84,10 @@ pub struct OptimizeOptions {
     /// After a batch that executed nothing, walk v3/v5 pairs together by chains of Q-zips,
     /// then singularities onto opposite ones ([`ChainStats`]).
     pub chains: bool,
-    /// Keep no Q-zip, chain or smoothing that leaves more folded quads ([`is_folded`])
-    /// than there were: from the first batch on, the number of folded quads never rises.
-    /// Off by default: it trades singularities for geometry (Spot, 40 batches: 36
-    /// singularities and 112 folded quads without it, 56 and none with it;
-    /// docs/results.md).
+    /// Keep no Q-zip, chain or smoothing that leaves more folded quads (any fold test of
+    /// [`crate::quality`]: what `zipmesh stats` counts, negative scaled Jacobians included)
+    /// than there were round it. On by default: with the footprints relaxed on the input
+    /// surface it costs few singularities (docs/quality.md, "After the optimizer").
     pub fold_guard: bool,
     terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
 }
@@ -104,7 +103,7 @@ impl Default for OptimizeOptions {
             preprocess: true,
             search_radius: 64,
             chains: true,
-            fold_guard: false,
+            fold_guard: true,
             terms: alloc::vec![
                 (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
                 (0.1, Box::new(Electric::default())),
@@ -158,8 +157,8 @@ impl OptimizeOptions {
     ///
     /// ```
     /// use zipmesh::optimize::OptimizeOptions;
-    /// assert!(!OptimizeOptions::default().fold_guard);
-    /// assert!(OptimizeOptions::default().fold_guard(true).fold_guard);
+    /// assert!(OptimizeOptions::default().fold_guard);
+    /// assert!(!OptimizeOptions::default().fold_guard(false).fold_guard);
     /// ```
     pub fn fold_guard(mut self, on: bool) -> Self {
         self.fold_guard = on;
