@@ -9,7 +9,7 @@ use glam::DVec3;
 
 use super::constraints::Constraints;
 use super::defect::{singularities, Singularity};
-use super::folds::folded_near;
+use super::folds::{folded_near, FoldCount};
 use super::marks::Marks;
 use super::score::{Bfs, Scorer};
 use super::smooth::Surface;
@@ -46,7 +46,7 @@ pub(super) const RELAX_STEPS: usize = 2;
 /// 18 of 38 singularities and Spot 14 of 100; off, 12 and 12, no folded quad either way.
 const SCORE_GUARD: bool = false;
 
-/// The relaxation of a candidate's scar on the input surface.
+/// The relaxation of an executed Q-zip's scar on the input surface.
 pub(super) const RELAX: crate::geometry::RelaxOptions = crate::geometry::RelaxOptions {
     rings: 2,
     sweeps: 10,
@@ -56,6 +56,11 @@ pub(super) const RELAX: crate::geometry::RelaxOptions = crate::geometry::RelaxOp
 /// corners are at most one edge from the path, so every quad a Q-zip changes has a corner
 /// within this ball or among the vertices it made.
 const FOLD_REACH: u32 = 2;
+
+/// How far the fold guard counts at execution, where the scar's relaxation moves vertices
+/// up to [`RELAX`]'s rings beyond the scar: every quad they are corners of has a corner
+/// within this ball of the path (scar 1, rings 2, the quad 1).
+const EXEC_REACH: u32 = 4;
 
 /// At most this many dart slots, a candidate's four movements are each made on a copy of
 /// the mesh, kept until it is scored: copying a mesh this small costs less than the second
@@ -202,7 +207,7 @@ impl<'q> Batcher<'q> {
 
     /// With the fold guard on, the folded quads round `path` before a Q-zip along it: the
     /// ball they are counted on, and the count.
-    fn folds_before(&mut self, mesh: &Mesh, path: &Path) -> Option<(Vec<Vert>, usize)> {
+    fn folds_before(&mut self, mesh: &Mesh, path: &Path) -> Option<(Vec<Vert>, FoldCount)> {
         let ball = self.fold_ball(mesh, path.vertices())?;
         let n = folded_near(mesh, &ball, &mut self.marks);
         Some((ball, n))
@@ -266,7 +271,7 @@ impl<'q> Batcher<'q> {
         path: &Path,
         tag: Tag,
         window: &[Vert],
-        folds: Option<&(Vec<Vert>, usize)>,
+        folds: Option<&(Vec<Vert>, FoldCount)>,
     ) -> Option<(f64, isize)> {
         let z = self.apply(mesh, path, tag)?;
         let saved = self.relax(mesh, z.record(), false);
@@ -572,14 +577,27 @@ impl<'q> Batcher<'q> {
                     .unwrap_or(DVec3::ZERO)
             })
             .collect();
-        let folds = self.folds_before(mesh, &path);
+        let folds = self.fold_guard.then(|| {
+            let mut ball = Vec::new();
+            self.bfs
+                .run_from(mesh, path.vertices().iter().copied(), EXEC_REACH, |v, _| {
+                    ball.push(v);
+                    true
+                });
+            let n = folded_near(mesh, &ball, &mut self.marks);
+            (ball, n)
+        });
         let Some(z) = self.apply(mesh, &path, c.tag) else {
             return;
         };
         let saved = self.relax(mesh, z.record(), true);
         let after = self.scorer.score(mesh).0;
         let region = touched_region(mesh, &path, z.record());
-        let folded = folds.is_some_and(|f| folds_rise(mesh, &f, &region, &mut self.marks));
+        let folded = folds.is_some_and(|f| {
+            let mut counted = region.clone();
+            counted.extend(saved.iter().map(|&(v, _)| v));
+            folds_rise(mesh, &f, &counted, &mut self.marks)
+        });
         if after >= *total - self.eps || !self.constraints.holds(mesh) || folded {
             for (v, p) in saved.into_iter().rev() {
                 mesh.positions[v.index()] = p;
@@ -639,7 +657,7 @@ impl Window {
 /// so every quad whose corners changed is counted both times.
 fn folds_rise(
     mesh: &Mesh,
-    before: &(Vec<Vert>, usize),
+    before: &(Vec<Vert>, FoldCount),
     region: &[Vert],
     marks: &mut Marks,
 ) -> bool {
@@ -650,7 +668,7 @@ fn folds_rise(
         .filter(|&v| mesh.map.is_live_vertex(v))
         .collect();
     b.extend(region);
-    folded_near(mesh, &b, marks) > *n
+    folded_near(mesh, &b, marks).rises_from(*n)
 }
 
 /// The vertices a Q-zip operated on, in the mesh it left: the live path vertices, the moved

@@ -337,7 +337,7 @@ impl Batcher<'_> {
         mesh: &mut Mesh,
         steps: Vec<Step>,
         total: &mut f64,
-        folds: Option<usize>,
+        folds: Option<super::folds::FoldCount>,
         out: &mut ChainRun,
     ) {
         let mut region: Vec<Vert> = steps
@@ -363,7 +363,7 @@ impl Batcher<'_> {
             None => super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS),
         };
         let after = self.scorer.score(mesh).0;
-        let folded = folds.is_some_and(|n| super::folds::unsound_quads(mesh) > n);
+        let folded = folds.is_some_and(|n| super::folds::unsound_quads(mesh).rises_from(n));
         if after < *total - self.eps && self.constraints.holds(mesh) && !folded {
             *total = after;
             out.kept += 1;

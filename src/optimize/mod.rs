@@ -606,21 +606,14 @@ fn settle(mesh: &mut Mesh, surface: &Surface, fixed: &[bool]) {
     // Each goes on the surface unless that folds one of its quads more: then it stays.
     let mut stay = fixed.to_vec();
     stay.resize(mesh.map.vertex_slots(), false);
-    let folded_round = |mesh: &Mesh, v: Vert| {
-        mesh.map
-            .vertex_darts(v)
-            .filter_map(|d| mesh.map.face(d))
-            .filter(|&f| folds::is_unsound(mesh, f))
-            .count()
-    };
     let mut on = Vec::new();
     for v in off {
         if stay[v.index()] {
             continue;
         }
-        let (p, before) = (mesh.positions[v.index()], folded_round(mesh, v));
+        let (p, before) = (mesh.positions[v.index()], folds::folds_round(mesh, v));
         mesh.positions[v.index()] = surface.closest(p);
-        if folded_round(mesh, v) > before {
+        if folds::folds_round(mesh, v).rises_from(before) {
             mesh.positions[v.index()] = p;
             stay[v.index()] = true;
         } else {
@@ -631,7 +624,15 @@ fn settle(mesh: &mut Mesh, surface: &Surface, fixed: &[bool]) {
         rings: 1,
         sweeps: 10,
     };
-    crate::geometry::relax_footprint_fixed(mesh, surface, &on, o, &stay, &mut Vec::new());
+    let before = folds::unsound_quads(mesh);
+    let mut saved = Vec::new();
+    crate::geometry::relax_footprint_fixed(mesh, surface, &on, o, &stay, &mut saved);
+    // The sweeps keep each fan's count of bad faces, not which test flags them.
+    if folds::unsound_quads(mesh).rises_from(before) {
+        for (v, p) in saved.into_iter().rev() {
+            mesh.positions[v.index()] = p;
+        }
+    }
 }
 
 /// Why `mesh` cannot be optimized with `constraints`, if it cannot.
@@ -763,7 +764,8 @@ fn smooth_scars(
         .then(|| folds::folded_near(mesh, &region, &mut b.marks));
     smooth(mesh, surface, &region, &b.locked, iterations);
     let after = b.scorer.score(mesh).0;
-    let folded = folds.is_some_and(|n| folds::folded_near(mesh, &region, &mut b.marks) > n);
+    let folded =
+        folds.is_some_and(|n| folds::folded_near(mesh, &region, &mut b.marks).rises_from(n));
     if after <= *total && b.constraints.holds(mesh) && !folded {
         *total = after;
         true
