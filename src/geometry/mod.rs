@@ -22,4 +22,5 @@
 
 mod relax;
 
+pub(crate) use relax::relax_footprint_fixed;
 pub use relax::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};

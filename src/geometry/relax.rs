@@ -107,11 +107,27 @@ pub fn relax_footprint(
     seeds: &[Vert],
     options: RelaxOptions,
 ) -> Relaxation {
+    relax_footprint_fixed(mesh, surface, seeds, options, &[], &mut Vec::new())
+}
+
+/// [`relax_footprint`] with the vertices marked in `fixed` left where they are (neither
+/// projected nor swept), the previous position of every vertex it may move pushed onto
+/// `saved` (each once, in slot order) so that the caller can put them back.
+pub(crate) fn relax_footprint_fixed(
+    mesh: &mut Mesh,
+    surface: &Surface,
+    seeds: &[Vert],
+    options: RelaxOptions,
+    fixed: &[bool],
+    saved: &mut Vec<(Vert, DVec3)>,
+) -> Relaxation {
     let n = mesh.map.vertex_slots();
     if mesh.positions.len() < n {
         mesh.positions.resize(n, DVec3::ZERO);
     }
-    let region = relax_region(&mesh.map, seeds, options.rings);
+    let is_fixed = |v: Vert| fixed.get(v.index()).copied().unwrap_or(false);
+    let mut region = relax_region(&mesh.map, seeds, options.rings);
+    region.retain(|&v| !is_fixed(v));
     let mut r = Relaxation {
         region: region.len(),
         ..Relaxation::default()
@@ -119,11 +135,12 @@ pub fn relax_footprint(
     let mut on: Vec<Vert> = seeds
         .iter()
         .copied()
-        .filter(|&v| mesh.map.is_live_vertex(v))
+        .filter(|&v| mesh.map.is_live_vertex(v) && !is_fixed(v))
         .chain(region.iter().copied())
         .collect();
     on.sort_unstable();
     on.dedup();
+    saved.extend(on.iter().map(|&v| (v, mesh.positions[v.index()])));
     // Placement is near the surface, not on it: every vertex of the footprint goes onto it.
     for &v in &on {
         let p = mesh.positions[v.index()];

@@ -141,7 +141,7 @@ impl Batcher<'_> {
             out.tried += 1;
             // A chain walks far: the guard counts the folds of the whole mesh (a few chains
             // per stage).
-            let folds = self.fold_guard.then(|| super::folds::folded_quads(mesh));
+            let folds = self.fold_guard.then(|| super::folds::unsound_quads(mesh));
             // A Q-zip from a to b is not one from b to a: if one way stalls, try the other.
             let walked = self
                 .walk(mesh, p.a, p.b, dist)
@@ -337,7 +337,7 @@ impl Batcher<'_> {
         mesh: &mut Mesh,
         steps: Vec<Step>,
         total: &mut f64,
-        folds: Option<usize>,
+        folds: Option<super::folds::FoldCount>,
         out: &mut ChainRun,
     ) {
         let mut region: Vec<Vert> = steps
@@ -347,9 +347,23 @@ impl Batcher<'_> {
         region.retain(|&v| mesh.map.is_live_vertex(v));
         region.sort_unstable();
         region.dedup();
-        let saved = super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS);
+        let saved = match self.surface {
+            Some(surface) => {
+                let mut saved = Vec::new();
+                crate::geometry::relax_footprint_fixed(
+                    mesh,
+                    surface,
+                    &region,
+                    super::batch::RELAX,
+                    &self.locked,
+                    &mut saved,
+                );
+                saved
+            }
+            None => super::smooth::laplacian(mesh, None, &region, &self.locked, RELAX_STEPS),
+        };
         let after = self.scorer.score(mesh).0;
-        let folded = folds.is_some_and(|n| super::folds::folded_quads(mesh) > n);
+        let folded = folds.is_some_and(|n| super::folds::unsound_quads(mesh).rises_from(n));
         if after < *total - self.eps && self.constraints.holds(mesh) && !folded {
             *total = after;
             out.kept += 1;

@@ -53,16 +53,63 @@ pub fn folded_quads(mesh: &Mesh) -> usize {
     mesh.map.faces().filter(|&f| is_folded(mesh, f)).count()
 }
 
-/// The folded quads with a corner among `verts` (each counted once, by `marks`: the guard
-/// counts round every candidate, so without listing and sorting the faces).
-pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut Marks) -> usize {
+/// Quads flagged by the fold tests of [`crate::quality`]: by the diagonal test of
+/// [`is_folded`], and by any of the three (a corner normal against the quad's, i.e. a
+/// negative scaled Jacobian, or the quad's normal against its neighbours'): what `zipmesh
+/// stats` counts as folded. The fold guard keeps neither count from rising.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct FoldCount {
+    diagonal: usize,
+    any: usize,
+}
+
+impl FoldCount {
+    /// Counts face `f` if it is a quad the tests flag.
+    fn add(&mut self, mesh: &Mesh, f: Face) {
+        if !mesh.map.is_live_face(f) || mesh.map.degree(f) != 4 {
+            return;
+        }
+        if let Some(q) = crate::quality::FaceQuality::of(mesh, f) {
+            self.diagonal += usize::from(q.folds.diagonal);
+            self.any += usize::from(q.folds.any());
+        }
+    }
+
+    /// Whether either count is above `before`'s.
+    pub(super) fn rises_from(self, before: FoldCount) -> bool {
+        self.diagonal > before.diagonal || self.any > before.any
+    }
+}
+
+/// The [`FoldCount`] of the faces round `v`.
+pub(super) fn folds_round(mesh: &Mesh, v: Vert) -> FoldCount {
+    let mut n = FoldCount::default();
+    for f in mesh.map.vertex_darts(v).filter_map(|d| mesh.map.face(d)) {
+        n.add(mesh, f);
+    }
+    n
+}
+
+/// The [`FoldCount`] of `mesh`.
+pub(super) fn unsound_quads(mesh: &Mesh) -> FoldCount {
+    let mut n = FoldCount::default();
+    for f in mesh.map.faces() {
+        n.add(mesh, f);
+    }
+    n
+}
+
+/// The [`FoldCount`] of the quads with a corner among `verts` (each counted once, by
+/// `marks`: the guard counts round every candidate, so without listing and sorting the
+/// faces).
+pub(super) fn folded_near(mesh: &Mesh, verts: &[Vert], marks: &mut Marks) -> FoldCount {
     let map = &mesh.map;
     marks.begin(map.face_slots());
-    let mut n = 0;
+    let mut n = FoldCount::default();
     for &v in verts.iter().filter(|&&v| map.is_live_vertex(v)) {
         for f in map.vertex_darts(v).filter_map(|d| map.face(d)) {
-            if marks.first(f.index()) && is_folded(mesh, f) {
-                n += 1;
+            if marks.first(f.index()) {
+                n.add(mesh, f);
             }
         }
     }

@@ -84,11 +84,10 @@ pub struct OptimizeOptions {
     /// After a batch that executed nothing, walk v3/v5 pairs together by chains of Q-zips,
     /// then singularities onto opposite ones ([`ChainStats`]).
     pub chains: bool,
-    /// Keep no Q-zip, chain or smoothing that leaves more folded quads ([`is_folded`])
-    /// than there were: from the first batch on, the number of folded quads never rises.
-    /// Off by default: it trades singularities for geometry (Spot, 40 batches: 36
-    /// singularities and 112 folded quads without it, 56 and none with it;
-    /// docs/results.md).
+    /// Keep no Q-zip, chain or smoothing that leaves more folded quads (any fold test of
+    /// [`crate::quality`]: what `zipmesh stats` counts, negative scaled Jacobians included)
+    /// than there were round it. On by default: with the footprints relaxed on the input
+    /// surface it costs few singularities (docs/quality.md, "After the optimizer").
     pub fold_guard: bool,
     terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
 }
@@ -104,7 +103,7 @@ impl Default for OptimizeOptions {
             preprocess: true,
             search_radius: 64,
             chains: true,
-            fold_guard: false,
+            fold_guard: true,
             terms: alloc::vec![
                 (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
                 (0.1, Box::new(Electric::default())),
@@ -158,8 +157,8 @@ impl OptimizeOptions {
     ///
     /// ```
     /// use zipmesh::optimize::OptimizeOptions;
-    /// assert!(!OptimizeOptions::default().fold_guard);
-    /// assert!(OptimizeOptions::default().fold_guard(true).fold_guard);
+    /// assert!(OptimizeOptions::default().fold_guard);
+    /// assert!(!OptimizeOptions::default().fold_guard(false).fold_guard);
     /// ```
     pub fn fold_guard(mut self, on: bool) -> Self {
         self.fold_guard = on;
@@ -507,10 +506,28 @@ pub fn optimize(
     let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
     let minimal = quad && at_defect_minimum(mesh);
     if options.preprocess && quad && !minimal {
+        let before = mesh.clone();
         if let Ok(p) = mesh_preprocess(mesh) {
             preprocessed = constraints.holds(mesh);
             if !preprocessed {
                 let _ = p.undo(mesh);
+            } else {
+                // The splits' new vertices go onto the surface, as a Q-zip's scar does.
+                let mut fixed = alloc::vec![false; mesh.map.vertex_slots()];
+                for v in constraints.locked_vertices() {
+                    if let Some(x) = fixed.get_mut(v.index()) {
+                        *x = true;
+                    }
+                }
+                let seeds = crate::geometry::edited_vertices(&before, mesh);
+                crate::geometry::relax_footprint_fixed(
+                    mesh,
+                    &surface,
+                    &seeds,
+                    batch::RELAX,
+                    &fixed,
+                    &mut Vec::new(),
+                );
             }
         }
     }
@@ -532,6 +549,7 @@ pub fn optimize(
         search_radius: options.search_radius,
         eps: 1e-9,
         fold_guard: options.fold_guard,
+        surface: Some(&surface),
         copies: Vec::new(),
         window: Default::default(),
         marks: Default::default(),
@@ -548,6 +566,8 @@ pub fn optimize(
         debug_assert_eq!(Counts::of(&mesh.map).euler_characteristic, chi);
         batches
     };
+    b.refresh_constraints(mesh);
+    settle(mesh, &surface, &b.locked);
     Ok(Outcome {
         input,
         triangles,
@@ -557,6 +577,62 @@ pub fn optimize(
         batches,
         final_counts: SingularityCounts::of(mesh),
     })
+}
+
+/// Puts every vertex that is off the input `surface` (by more than a part in 1e9 of the
+/// mesh's size) back on it, and relaxes a ring round them tangentially, never into a worse
+/// fan ([`crate::geometry::relax_footprint`]); vertices marked in `fixed` stay. What the
+/// preprocessing, the chains and the refused smoothings left off the surface ends on it.
+fn settle(mesh: &mut Mesh, surface: &Surface, fixed: &[bool]) {
+    let (lo, hi) = mesh.map.vertices().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), v| {
+            let p = mesh.positions[v.index()];
+            (lo.min(p), hi.max(p))
+        },
+    );
+    let tol = 1e-9 * (hi - lo).length();
+    let off: Vec<Vert> = mesh
+        .map
+        .vertices()
+        .filter(|&v| {
+            let p = mesh.positions[v.index()];
+            p.is_finite() && surface.closest(p).distance(p) > tol
+        })
+        .collect();
+    if off.is_empty() {
+        return;
+    }
+    // Each goes on the surface unless that folds one of its quads more: then it stays.
+    let mut stay = fixed.to_vec();
+    stay.resize(mesh.map.vertex_slots(), false);
+    let mut on = Vec::new();
+    for v in off {
+        if stay[v.index()] {
+            continue;
+        }
+        let (p, before) = (mesh.positions[v.index()], folds::folds_round(mesh, v));
+        mesh.positions[v.index()] = surface.closest(p);
+        if folds::folds_round(mesh, v).rises_from(before) {
+            mesh.positions[v.index()] = p;
+            stay[v.index()] = true;
+        } else {
+            on.push(v);
+        }
+    }
+    let o = crate::geometry::RelaxOptions {
+        rings: 1,
+        sweeps: 10,
+    };
+    let before = folds::unsound_quads(mesh);
+    let mut saved = Vec::new();
+    crate::geometry::relax_footprint_fixed(mesh, surface, &on, o, &stay, &mut saved);
+    // The sweeps keep each fan's count of bad faces, not which test flags them.
+    if folds::unsound_quads(mesh).rises_from(before) {
+        for (v, p) in saved.into_iter().rev() {
+            mesh.positions[v.index()] = p;
+        }
+    }
 }
 
 /// Why `mesh` cannot be optimized with `constraints`, if it cannot.
@@ -688,7 +764,8 @@ fn smooth_scars(
         .then(|| folds::folded_near(mesh, &region, &mut b.marks));
     smooth(mesh, surface, &region, &b.locked, iterations);
     let after = b.scorer.score(mesh).0;
-    let folded = folds.is_some_and(|n| folds::folded_near(mesh, &region, &mut b.marks) > n);
+    let folded =
+        folds.is_some_and(|n| folds::folded_near(mesh, &region, &mut b.marks).rises_from(n));
     if after <= *total && b.constraints.holds(mesh) && !folded {
         *total = after;
         true

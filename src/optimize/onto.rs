@@ -107,7 +107,7 @@ impl super::batch::Batcher<'_> {
                 continue;
             };
             out.tried += 1;
-            let folds = self.fold_guard.then(|| super::folds::folded_quads(mesh));
+            let folds = self.fold_guard.then(|| super::folds::unsound_quads(mesh));
             // A Q-zip from s to m is not one from m to s: if one way stalls, try the other.
             let walked = self
                 .walk_onto(mesh, w, dist, true)

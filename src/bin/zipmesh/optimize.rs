@@ -50,10 +50,14 @@ pub struct OptimizeArgs {
     /// ones, after an idle batch (quad meshes).
     #[arg(long)]
     no_chains: bool,
-    /// Keep no Q-zip, chain or smoothing that adds a folded quad (quad meshes; fewer
-    /// singularities go).
-    #[arg(long)]
+    /// Keep no Q-zip, chain or smoothing that adds a folded quad (quad meshes; the
+    /// default, kept for compatibility).
+    #[arg(long, conflicts_with = "no_fold_guard")]
     fold_guard: bool,
+    /// Let Q-zips, chains and smoothing fold quads (quad meshes; more singularities go,
+    /// the geometry suffers).
+    #[arg(long)]
+    no_fold_guard: bool,
     /// No look-ahead (pairs of edits round each irregular vertex) when the greedy passes stall
     /// (triangle meshes).
     #[arg(long)]
@@ -116,6 +120,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         ("--weight", !args.weights.is_empty()),
         ("--no-chains", args.no_chains),
         ("--fold-guard", args.fold_guard),
+        ("--no-fold-guard", args.no_fold_guard),
     ];
     if let Some((flag, _)) = quad_only.iter().find(|(_, set)| *set) {
         return Err(InputError(format!(
@@ -289,7 +294,7 @@ fn quad_options(args: &OptimizeArgs) -> OptimizeOptions {
         .seed(args.seed)
         .smoothing(!args.no_smooth)
         .chains(!args.no_chains)
-        .fold_guard(args.fold_guard);
+        .fold_guard(!args.no_fold_guard);
     for (name, w) in &args.weights {
         options = options.weight(name, *w);
     }
