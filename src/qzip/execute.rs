@@ -1091,6 +1091,32 @@ mod tests {
         Map::from_polygons((1 + 2 * k) as usize, &faces).unwrap()
     }
 
+    /// Each refusal says where and why, in its own words.
+    #[test]
+    fn zip_errors_read_as_documented() {
+        use alloc::string::ToString;
+        let v = Vert::new(7);
+        assert_eq!(
+            ZipError::Lost { index: 2, vertex: v }.to_string(),
+            "the collapse at position 2 would delete vertex 7, which the surgery still has to visit"
+        );
+        assert!(ZipError::StalePlan { index: 4 }
+            .to_string()
+            .starts_with("the surgery does not fit this map at position 4"));
+        assert!(ZipError::NotGridPreserving {
+            before: 6,
+            after: 2
+        }
+        .to_string()
+        .contains(
+            "(6 irregular vertices in the touched region before, a different set of 2 after)"
+        ));
+        assert!(ZipError::TriangleChanged { vertex: v }
+            .to_string()
+            .starts_with("the edit would change a triangle at vertex 7"));
+        assert!(ZipError::Untracked.to_string().ends_with("; refused"));
+    }
+
     /// `was_regular` reads a touched vertex as it was at its first touch (valence 4, interior,
     /// no triangle corner), an untouched one as it is now, and one the chain made as regular.
     #[test]
