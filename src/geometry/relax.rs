@@ -82,7 +82,10 @@ impl Fan {
 /// `Surface::new(&input)`): the live `seeds` (the vertices the edit created or moved:
 /// [`edited_vertices`] of the meshes before and after) are projected onto
 /// the surface, then the interior vertices within `options.rings` of them are smoothed
-/// tangentially for `options.sweeps` sweeps, never into a worse fan ([`mod@self`]).
+/// tangentially for `options.sweeps` sweeps, never into a worse fan: a move is kept only if
+/// the worst corner of the vertex's fan (read in the plane of the fan's normal before the
+/// move) does not fall below its value before or below 0, and no corner or diagonal fold
+/// appears.
 /// Deterministic: vertices go in slot order, and only their positions change.
 ///
 /// ```

@@ -15,7 +15,7 @@
 //! that instance starts ([`MeshFileError::byte`]); topology defects of a binary file name the
 //! faces (0-based). Nothing after the last element but white space is accepted.
 //!
-//! Written: `binary_little_endian` ([`write`], what `.ply` files get) or `ascii`
+//! Written: `binary_little_endian` ([`write()`], what `.ply` files get) or `ascii`
 //! ([`write_ascii`]), with `double x y z` and `list uchar int vertex_indices`, so positions
 //! round-trip bit for bit. A face of more than 255 corners cannot be written that way and is
 //! refused (`InvalidData`) before anything is written.
@@ -593,7 +593,7 @@ pub fn write<W: Write>(mesh: &Mesh, mut w: W) -> io::Result<()> {
 }
 
 /// Writes `mesh` as ASCII PLY, one vertex or face per line, with the same properties and
-/// the same failures as [`write`].
+/// the same failures as [`write()`].
 ///
 /// ```
 /// use zipmesh::{gen, io::ply};
