@@ -365,3 +365,18 @@ fn write_fuzz_seeds() {
         std::fs::write(dir.join(name), bytes).unwrap();
     }
 }
+
+/// An element without properties takes no bytes, however many instances it declares: a
+/// binary file with four billion of them is read at once.
+#[test]
+fn an_element_without_properties_takes_no_time() {
+    let header = format!("{VERTS}element empty 4000000000\n");
+    let mut body = Vec::new();
+    for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        for x in p {
+            body.extend(x.to_le_bytes());
+        }
+    }
+    let (mesh, _) = ply::parse_bytes(&file("binary_little_endian", &header, &body)).unwrap();
+    assert_eq!(mesh.positions.len(), 3);
+}

@@ -481,7 +481,9 @@ fn binary_body(h: &Header, body: &[u8], nv: usize, soup: &mut Soup) -> Result<()
     soup.binary = true;
     let big = h.encoding == Encoding::Big;
     let mut at = 0usize;
-    for e in &h.elements {
+    // An element without properties takes no bytes, whatever its count (a loop over it
+    // would only spin).
+    for e in h.elements.iter().filter(|e| !e.props.is_empty()) {
         for index in 0..e.count {
             let start = at;
             let byte = (h.body + start) as u64;
