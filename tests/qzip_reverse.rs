@@ -125,3 +125,28 @@ proptest::proptest! {
         proptest::prop_assert!(CanonicalCode::of(&m) == CanonicalCode::of(&map));
     }
 }
+
+/// A report read against a map it does not describe (a smaller map, the map before the edit)
+/// gives a run or none, never a panic: `find_reverse` and `derive_reverse` are public.
+#[test]
+fn a_report_of_another_map_does_not_panic() {
+    let original = gen::cube(4).map;
+    let small = gen::cube(1).map;
+    let mut runs = 0;
+    let mut previous = original.clone();
+    for path in pairs_within(&original, 6) {
+        for tag in Tag::CCW {
+            let mut edited = original.clone();
+            let Ok(r) = Qzip::new().zip_along(&mut edited, &path, tag) else {
+                continue;
+            };
+            runs += 1;
+            for other in [&small, &original, &previous] {
+                let _ = derive_reverse(other, &r);
+                let _ = find_reverse(other, &r, &original);
+            }
+            previous = edited;
+        }
+    }
+    assert!(runs >= 90, "only {runs} movements");
+}

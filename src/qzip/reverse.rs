@@ -76,7 +76,7 @@ impl core::fmt::Display for ReverseWay {
 /// ```
 pub fn derive_reverse(edited: &Map, report: &ZipReport) -> Option<ReverseRun> {
     let steps = report.surgery().steps();
-    let (from, to) = (report.moved_to(), report.moved_from());
+    let (from, to) = live_ends(edited, report)?;
     let path = literal_image(edited, report, &image_options(edited, report, from, to))?;
     let last = steps.last().map_or(Tag::LS, |s| s.hand.rotate_pi());
     let tag = read_back(edited, report, &path).unwrap_or(last);
@@ -85,6 +85,13 @@ pub fn derive_reverse(edited: &Map, report: &ZipReport) -> Option<ReverseRun> {
         tag,
         way: ReverseWay::Derived,
     })
+}
+
+/// The reverse run's ends (the moved terminal, then the moved initial singularity), if both
+/// are live in `edited`: a report of another map may name dead or out-of-range vertices.
+fn live_ends(edited: &Map, report: &ZipReport) -> Option<(Vert, Vert)> {
+    let (from, to) = (report.moved_to(), report.moved_from());
+    (edited.is_live_vertex(from) && edited.is_live_vertex(to)).then_some((from, to))
 }
 
 /// The initial tag of a reverse run along `path` read where it first runs back along a
@@ -119,6 +126,7 @@ fn read_back(edited: &Map, report: &ZipReport, path: &Path) -> Option<Tag> {
 /// what was measured (every movement on the real meshes as given is reversed).
 ///
 /// `edited` is the map after the edit that `report` describes, `original` the map before.
+/// Given a map the report does not describe, it returns a run or `None`, never panics.
 ///
 /// ```
 /// use zipmesh::{gen, is_isomorphic};
@@ -134,6 +142,7 @@ fn read_back(edited: &Map, report: &ZipReport, path: &Path) -> Option<Tag> {
 /// assert!(is_isomorphic(&m, &original));
 /// ```
 pub fn find_reverse(edited: &Map, report: &ZipReport, original: &Map) -> Option<ReverseRun> {
+    live_ends(edited, report)?;
     let mut target = Restores::new(edited, report, original);
     if let Some(d) = derive_reverse(edited, report) {
         let mut m = edited.clone();
@@ -291,15 +300,24 @@ fn near_edit(edited: &Map, report: &ZipReport, from: Vert, to: Vert) -> Vec<bool
         .filter(|&v| edited.is_live_vertex(v))
         .chain([from, to])
         .collect();
-    for &f in report.scar_faces() {
+    // A report of another map may name dead faces and edges: they are skipped, not read.
+    for &f in report
+        .scar_faces()
+        .iter()
+        .filter(|&&f| edited.is_live_face(f))
+    {
         core_set.extend(edited.face_darts(f).map(|d| edited.origin(d)));
     }
-    for &e in report.scar_edges() {
+    for &e in report
+        .scar_edges()
+        .iter()
+        .filter(|&&e| edited.is_live_edge(e))
+    {
         let d = e.dart(0);
         core_set.extend([edited.origin(d), edited.dest(d)]);
     }
     let mut allowed = alloc::vec![false; slots];
-    for &v in &core_set {
+    for &v in core_set.iter().filter(|&&v| edited.is_live_vertex(v)) {
         for d in edited.vertex_darts(v) {
             allowed[edited.dest(d).index()] = true;
         }
