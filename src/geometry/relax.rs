@@ -9,8 +9,10 @@
 //! moves each vertex of the region to the closest point of the input surface to its
 //! neighbours' mean, and keeps the move only where its faces get no worse ("smart"
 //! Laplacian: the fan's worst corner, read in the plane of the fan's normal before the
-//! move, does not fall below its value before or below 0, and no corner or diagonal fold
-//! appears). Boundary vertices keep their place after the projection.
+//! move, does not fall below its value before or below 0, its triangles' worst corner not
+//! below its value before or below 20 degrees, and no corner or diagonal fold appears).
+//! Boundary vertices keep their place after the projection. The triangle optimizer relaxes
+//! each batch the same way.
 
 use alloc::vec::Vec;
 
@@ -68,13 +70,22 @@ pub struct Relaxation {
 struct Fan {
     bad: usize,
     worst: f64,
+    /// The worst corner term of its triangles alone.
+    worst_triangle: f64,
 }
 
+/// The corner term of a 20-degree corner: a triangle's worst corner may fall below it only
+/// by rising (thin triangles are what a relaxed triangle mesh must not gain).
+const TRIANGLE_FLOOR: f64 = 0.342_020_143_325_668_7;
+
 impl Fan {
-    /// Whether `self` (after a move) is no worse than `before`: no new inverted face, and
-    /// the worst corner above 0 or no lower than before.
+    /// Whether `self` (after a move) is no worse than `before`: no new inverted face, the
+    /// worst corner above 0 or no lower than before, and the worst triangle corner above
+    /// 20 degrees or no lower than before.
     fn accepts(&self, before: &Fan) -> bool {
-        self.bad <= before.bad && (self.worst > 0.0 || self.worst >= before.worst)
+        let triangles =
+            self.worst_triangle >= TRIANGLE_FLOOR || self.worst_triangle >= before.worst_triangle;
+        self.bad <= before.bad && (self.worst > 0.0 || self.worst >= before.worst) && triangles
     }
 }
 
@@ -84,8 +95,9 @@ impl Fan {
 /// the surface, then the interior vertices within `options.rings` of them are smoothed
 /// tangentially for `options.sweeps` sweeps, never into a worse fan: a move is kept only if
 /// the worst corner of the vertex's fan (read in the plane of the fan's normal before the
-/// move) does not fall below its value before or below 0, and no corner or diagonal fold
-/// appears.
+/// move) does not fall below its value before or below 0, the worst corner of its
+/// triangles not below its value before or below 20 degrees, and no corner or diagonal
+/// fold appears.
 /// Deterministic: vertices go in slot order, and only their positions change.
 ///
 /// ```
@@ -220,6 +232,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
     let mut f = Fan {
         bad: 0,
         worst: f64::INFINITY,
+        worst_triangle: f64::INFINITY,
     };
     for c in faces_of(mesh, v) {
         let k = c.len();
@@ -235,6 +248,9 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
         };
         f.bad += usize::from(worst <= 0.0 || folded);
         f.worst = f.worst.min(worst);
+        if k == 3 {
+            f.worst_triangle = f.worst_triangle.min(worst);
+        }
     }
     f
 }

@@ -2,7 +2,8 @@
 //! batches of valence-improving edge flips, triple cancellations (Sec. 7.2), 5-7 pair
 //! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
 //! a two-edit look-ahead ([`super::tri_lookahead`]) and far pair moves (Sec. 7.1.1) of 5-7
-//! pairs 2 or 3 edges apart, each followed by local relaxation (Sec. 8) of what it touched.
+//! pairs 2 or 3 edges apart, each batch followed by relaxation of what it touched on the
+//! input surface ([`crate::geometry::relax_footprint`]).
 //! `docs/optimize.md` gives the reading.
 //!
 //! A flip, collapse or cancellation is kept only when it lowers the sum of
@@ -32,8 +33,8 @@ use super::smooth::Surface;
 use super::tri_lookahead::Lookahead;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
 use crate::tri_edit::{
-    can_cancel_triple, cancel_triple_with, move_far_pair_with, move_pair_with, relax_local,
-    Direction, FarStart, Moved, Start,
+    can_cancel_triple, cancel_triple_with, move_far_pair_with, move_pair_with, Direction, FarStart,
+    Moved, Start,
 };
 use crate::{Dart, Map, Mesh, Vert};
 
@@ -50,7 +51,9 @@ pub struct TriOptimizeOptions {
     pub max_batches: usize,
     /// How far (edges) an isolated 5-7 pair looks for another irregular vertex to move to.
     pub search_radius: usize,
-    /// Relax the vertices each batch touched (three local sweeps, Sec. 8).
+    /// Relax the vertices each batch touched on the input surface, two rings round them
+    /// ([`crate::geometry::relax_footprint`]): no face inverts, no triangle's smallest angle
+    /// falls below 20 degrees unless it rises.
     pub relax: bool,
     /// How far the face count may drift from the input's, as a fraction: an edit that
     /// would leave `[F - s, F + s]`, `s = floor(f F)`, is undone. `f` is clamped to
@@ -322,7 +325,11 @@ pub fn optimize_triangles(
             touched.sort_unstable();
             touched.dedup();
             // Positions were checked finite and edits keep them so: a refusal cannot happen.
-            let _ = relax_local(mesh, surface, &touched, 3);
+            let o = crate::geometry::RelaxOptions {
+                rings: 2,
+                sweeps: 10,
+            };
+            crate::geometry::relax_footprint(mesh, surface, &touched, o);
         }
         let row = TriBatch {
             batch,
