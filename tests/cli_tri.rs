@@ -28,8 +28,19 @@ fn zipmesh_to(args: &[&str], out: &Path) -> Output {
     zipmesh(&all)
 }
 
-/// Runs `zipmesh ARGS -o OUT --json`, which must succeed, and returns its report.
+/// Runs `zipmesh ARGS -o OUT --json`, which must succeed, and returns its report; with
+/// `--no-relax` unless ARGS choose a `--relax`, so that the placement rules can be compared
+/// bit for bit.
 fn report(args: &[&str], out: &Path) -> Value {
+    let mut all = args.to_vec();
+    if !all.contains(&"--relax") {
+        all.push("--no-relax");
+    }
+    report_as_given(&all, out)
+}
+
+/// Runs `zipmesh ARGS -o OUT --json` as given, which must succeed, and returns its report.
+fn report_as_given(args: &[&str], out: &Path) -> Value {
     let mut all = args.to_vec();
     all.push("--json");
     json(&zipmesh_to(&all, out))
@@ -282,7 +293,7 @@ fn tri_generate_and_cancel() {
                 "--config",
                 config,
             ];
-            let o = zipmesh_to(&[&args[..], &["--json"]].concat(), &out);
+            let o = zipmesh_to(&[&args[..], &["--json", "--no-relax"]].concat(), &out);
             // Toward the sphere's v5 the edit needs an irregular vertex regular: refused.
             if o.status.code() == Some(2) {
                 assert!(stderr(&o).contains("not regular"), "{}", stderr(&o));
@@ -644,9 +655,11 @@ fn bumpy_pair_file(dir: &Path) -> (PathBuf, u32, u32) {
     (file, c.index() as u32, q.index() as u32)
 }
 
-/// `--relax local|global`: OUT has the connectivity and report of the same edit without
-/// it; exactly the reported number of vertices move, each onto the input surface, fewer
-/// with fewer `--rings`; global relaxation does not raise Eq. 5. `--rings` alone is refused.
+/// `--relax surface|local|global`: OUT has the connectivity and report of the same edit with
+/// `--no-relax`; exactly the reported number of vertices move, each onto the input surface,
+/// fewer with fewer `--rings`; global relaxation does not raise Eq. 5; the surface
+/// relaxation (the default) adds no thin or flipped triangle. `--rings` or `--relax` with
+/// `--no-relax` is refused.
 #[test]
 fn tri_move_relax() {
     let dir = temp_dir("tri-relax");
@@ -662,11 +675,13 @@ fn tri_move_relax() {
         .find(|a| zipmesh_to(&a[..], &plain_out).status.success())
         .expect("some direction applies")
         .to_vec();
+    let by_default = report_as_given(&args, &plain_out);
+    assert_eq!(by_default["relax"]["mode"], "surface");
     let plain = report(&args, &plain_out);
     assert!(plain["relax"].is_null());
     let plain_mesh = read(&plain_out);
     let bits = |p: DVec3| p.to_array().map(f64::to_bits);
-    for mode in ["local", "global"] {
+    for mode in ["surface", "local", "global"] {
         let mut moved_by_rings = Vec::new();
         for rings in ["0", "3"] {
             let out = dir.join(format!("{mode}-{rings}.obj"));
@@ -700,6 +715,12 @@ fn tri_move_relax() {
             if mode == "global" {
                 assert!(e1.unwrap() <= e0.unwrap(), "{v}");
             }
+            if mode == "surface" {
+                let q = &v["quality"];
+                for k in ["thin_triangles", "flipped_triangles"] {
+                    assert!(q["output"][k].as_u64() <= q["input"][k].as_u64(), "{v}");
+                }
+            }
             moved_by_rings.push(changed.len());
         }
         assert!(
@@ -730,8 +751,14 @@ fn tri_move_relax() {
     assert!(energy("energy_after") <= energy("energy_before"), "{v}");
     let out = dir.join("rings-alone.obj");
     let mut all = args.to_vec();
-    all.extend(["--rings", "1"]);
+    all.extend(["--rings", "1", "--no-relax"]);
     let o = zipmesh_to(&all, &out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = zipmesh_to(
+        &[&args[..], &["--no-relax", "--relax", "local"]].concat(),
+        &out,
+    );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(!out.exists());
     let o = zipmesh_to(

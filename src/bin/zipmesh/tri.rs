@@ -4,16 +4,20 @@
 //! Same conventions as `zip`: 0-based vertex numbers of the file, OUT written compacted and
 //! atomically after the report, exit 2 and no OUT on bad input. Vertices the edit does not
 //! touch keep their positions bit for bit; a vertex an operator creates or moves is placed
-//! by its rule (`TriOp::apply_with`). With `--relax local|global` the edit's neighbourhood
-//! is then relaxed on the input surface (Sec. 8, `tri_edit::relax_local` / `relax_global`).
+//! by its rule (`TriOp::apply_with`). Then the edit's neighbourhood is relaxed on the input
+//! surface: by default without inverting a face or thinning a triangle
+//! (`geometry::relax_footprint`), with `--relax local|global` as Sec. 8 does
+//! (`tri_edit::relax_local` / `relax_global`); `--no-relax` keeps the placement.
 
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use zipmesh::geometry::{relax_footprint, RelaxOptions};
 use zipmesh::io;
 use zipmesh::ops::tri::TriRecord;
 use zipmesh::optimize::Surface;
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::tri_edit::{
     aggregate_type, aggregate_type_with, can_generate_pair, can_generate_pair_v7,
     can_generate_quadruple, can_generate_quadruple_apart, cancel_triple_along_with,
@@ -26,6 +30,7 @@ use zipmesh::tri_edit::{
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
+use crate::quality;
 use crate::qzip::InputError;
 
 /// The most atomic 5-7 moves `tri-cancel --triple` makes to bring a pair next to the
@@ -38,9 +43,13 @@ const LOCAL_SWEEPS: usize = 10;
 /// Solves of `--relax global` (it stops earlier when Eq. 5 no longer decreases).
 const GLOBAL_SOLVES: usize = 5;
 
-/// How `--relax` moves the vertices near the edit (Sec. 8).
+/// How `--relax` moves the vertices near the edit.
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Relax {
+    /// Onto the input surface and towards the neighbours' mean, a move kept only when no
+    /// face inverts and no triangle's smallest angle falls below 20 degrees unless it rises
+    /// (`geometry::relax_footprint`, 10 sweeps).
+    Surface,
     /// One vertex at a time toward its neighbours' centroid in its tangent plane (Turk).
     Local,
     /// The quadratic energy of Eq. 5 on tangent planes, solved for all at once.
@@ -50,6 +59,7 @@ pub enum Relax {
 impl Relax {
     fn name(self) -> &'static str {
         match self {
+            Relax::Surface => "surface",
             Relax::Local => "local",
             Relax::Global => "global",
         }
@@ -67,12 +77,17 @@ pub struct Files {
     /// Print one JSON value instead of text.
     #[arg(long)]
     json: bool,
-    /// Relax the edit's neighbourhood afterwards, on the input surface (Sec. 8). Without
-    /// it, every vertex the edit does not touch keeps its position bit for bit.
-    #[arg(long, value_enum)]
-    relax: Option<Relax>,
-    /// With --relax: how many rings around the vertices the edit touched relax too.
-    #[arg(long, default_value_t = 2, requires = "relax")]
+    /// How the edit's neighbourhood is relaxed on the input surface afterwards: `surface`
+    /// (the default) never inverts a face or thins a triangle; `local` and `global` are
+    /// Sec. 8's relaxations, which may.
+    #[arg(long, value_enum, default_value = "surface")]
+    relax: Relax,
+    /// Keep the placement: every vertex the edit does not touch keeps its position bit
+    /// for bit, and a vertex an operator creates or moves stays where its rule put it.
+    #[arg(long, conflicts_with_all = ["relax", "rings"])]
+    no_relax: bool,
+    /// How many rings around the vertices the edit touched relax too.
+    #[arg(long, default_value_t = 2)]
     rings: usize,
 }
 
@@ -323,7 +338,12 @@ fn finish(
     ops: &Ops,
     report: impl FnOnce(&Compaction) -> (Value, String),
 ) -> Result<ExitCode, InputError> {
-    let relaxed = f.relax.map(|mode| relax(f, &mut mesh, mode)).transpose()?;
+    let input = load(f)?;
+    let relaxed = (!f.no_relax)
+        .then(|| relax(f, &input, &mut mesh))
+        .transpose()?;
+    let reference = Reference::new(&input);
+    let quality = [&input, &mesh].map(|m| Summary::against(m, &reference));
     let c = mesh.compact();
     let pending = io::prepare_mesh(&f.output, &mesh)?;
     let (mut value, text) = report(&c);
@@ -332,7 +352,11 @@ fn finish(
     value["flips"] = json!(ops.flips);
     value["collapses"] = json!(ops.collapses);
     value["splits"] = json!(ops.splits);
-    value["relax"] = relax_json(f, relaxed.as_ref());
+    value["relax"] = relaxed.as_ref().map_or(Value::Null, |r| r.0.clone());
+    value["quality"] = json!({
+        "input": quality::to_json(&quality[0]),
+        "output": quality::to_json(&quality[1]),
+    });
     if f.json {
         outln!("{value}");
     } else {
@@ -342,58 +366,92 @@ fn finish(
             f.output.display(),
             ops.text()
         );
-        if let (Some(mode), Some(r)) = (f.relax, relaxed) {
-            outln!(
-                "relaxed ({}, {} rings): {} of {} vertices moved, Eq. 5 energy {:.6} -> {:.6}",
-                mode.name(),
-                f.rings,
-                r.moved,
-                r.movable,
-                r.energy_before,
-                r.energy_after
-            );
+        if let Some((_, line)) = &relaxed {
+            outln!("{line}");
         }
+        outln!("{}", quality_line(&quality));
     }
     out::flush()?;
     pending.commit()?;
     Ok(ExitCode::SUCCESS)
 }
 
-/// `--relax`: the vertices the edit touched (compared with the input file, read again) and
-/// `--rings` rings around them, relaxed on the input's surface.
-fn relax(f: &Files, mesh: &mut Mesh, mode: Relax) -> Result<Relaxed, InputError> {
-    let input = load(f)?;
+/// The relaxation: the vertices the edit touched (compared with the input file) and
+/// `--rings` rings around them, relaxed on the input's surface; the report's `relax` and
+/// its text line.
+fn relax(f: &Files, input: &Mesh, mesh: &mut Mesh) -> Result<(Value, String), InputError> {
     let touched = touched_vertices(&input.map, &mesh.map);
+    let surface = Surface::new(input);
+    let mode = f.relax;
+    if mode == Relax::Surface {
+        let before = mesh.positions.clone();
+        let o = RelaxOptions {
+            rings: f.rings,
+            sweeps: 10,
+        };
+        let r = relax_footprint(mesh, &surface, &touched, o);
+        let moved = (0..mesh.positions.len())
+            .filter(|&i| before.get(i) != mesh.positions.get(i))
+            .count();
+        let value = json!({
+            "mode": mode.name(), "rings": f.rings, "vertices": r.projected, "moved": moved,
+            "moves": r.moves, "refused": r.refused,
+        });
+        let line = format!(
+            "relaxed (surface, {} rings): {moved} of {} vertices moved, {} moves refused",
+            f.rings, r.projected, r.refused
+        );
+        return Ok((value, line));
+    }
     let region = relax_region(&mesh.map, &touched, f.rings);
-    let surface = Surface::new(&input);
     let r = match mode {
-        Relax::Local => relax_local(mesh, &surface, &region, LOCAL_SWEEPS),
         Relax::Global => relax_global(mesh, &surface, &region, GLOBAL_SOLVES),
+        _ => relax_local(mesh, &surface, &region, LOCAL_SWEEPS),
     };
-    r.map_err(|e| {
+    let r: Relaxed = r.map_err(|e| {
         err(format_args!(
             "{}: --relax {}: {e}",
             f.file.display(),
             mode.name()
         ))
-    })
+    })?;
+    let value = json!({
+        "mode": mode.name(),
+        "rings": f.rings,
+        "vertices": r.movable,
+        "moved": r.moved,
+        "iterations": r.iterations,
+        "edge_length": r.edge_length,
+        "energy_before": r.energy_before,
+        "energy_after": r.energy_after,
+    });
+    let line = format!(
+        "relaxed ({}, {} rings): {} of {} vertices moved, Eq. 5 energy {:.6} -> {:.6}",
+        mode.name(),
+        f.rings,
+        r.moved,
+        r.movable,
+        r.energy_before,
+        r.energy_after
+    );
+    Ok((value, line))
 }
 
-/// The report's `relax`: `null` without `--relax`.
-fn relax_json(f: &Files, r: Option<&Relaxed>) -> Value {
-    match (f.relax, r) {
-        (Some(mode), Some(r)) => json!({
-            "mode": mode.name(),
-            "rings": f.rings,
-            "vertices": r.movable,
-            "moved": r.moved,
-            "iterations": r.iterations,
-            "edge_length": r.edge_length,
-            "energy_before": r.energy_before,
-            "energy_after": r.energy_after,
-        }),
-        _ => Value::Null,
-    }
+/// The text line of a triangle edit's quality: thin and flipped triangles and the smallest
+/// angle, input then output, and the output's largest distance to the input surface.
+fn quality_line(q: &[Summary; 2]) -> String {
+    let far = q[1].distance.map_or(0.0, |d| d.max);
+    let angle = |s: &Summary| s.min_angle.unwrap_or(0.0);
+    format!(
+        "quality: triangles under 10 degrees {} -> {}, flipped {} -> {}, smallest angle \
+         {:.1} -> {:.1} degrees, max distance to the input {far:.2e} of its diagonal",
+        q[0].thin_triangles,
+        q[1].thin_triangles,
+        q[0].flipped_triangles,
+        q[1].flipped_triangles,
+        angle(&q[0]),
+        angle(&q[1]),
+    )
 }
 
 fn list(v: &[Option<u32>]) -> String {
