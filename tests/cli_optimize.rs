@@ -343,3 +343,35 @@ fn triangle_input_json_counts_match_a_recount() {
     );
     assert!(v["final"]["irregular"].as_u64() < v["input"]["irregular"].as_u64());
 }
+
+/// `--time-limit`: Blub stops inside the limit (with room for reading, the surface and
+/// writing in a debug build: the whole run takes minutes there), the JSON says so, OUT is a
+/// valid mesh; a limit that is not a positive number of seconds exits 2 without OUT.
+#[test]
+fn the_time_limit_stops_the_run() {
+    let dir = temp_dir("optimize-limit");
+    let inp = shared("quad/blub_quadrangulated.obj");
+    let out = dir.join("out.obj");
+    let o = zipmesh(&[
+        "optimize",
+        s(&inp),
+        "-o",
+        s(&out),
+        "--json",
+        "--time-limit",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["time_limit_reached"], true, "{v}");
+    let seconds = v["seconds"].as_f64().unwrap();
+    assert!(seconds < 30.0, "{seconds} s");
+    let (result, _) = io::read_mesh(&out).unwrap();
+    assert_eq!(result.map.check(), Ok(()));
+    for bad in ["0", "-1", "nan", "inf", "1e300", "soon"] {
+        let target = dir.join(format!("bad-{bad}.obj"));
+        let o = zipmesh(&["optimize", s(&inp), "-o", s(&target), "--time-limit", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", stderr(&o));
+        assert!(!target.exists());
+    }
+}

@@ -529,3 +529,38 @@ proptest! {
         prop_assert!(out.final_counts.triangles == 0 || out.triangles.refused > 0);
     }
 }
+
+/// `OptimizeOptions::until`: the test is asked before each batch and between the
+/// candidates of a batch. Stopped after its 40th answer, the run ends inside its first
+/// batch (fewer Q-zips than a whole first batch), says so, and leaves a valid map on the
+/// input surface; a run without the test is not stopped.
+#[test]
+fn a_stop_test_ends_the_run_inside_a_batch() {
+    let input = subdivided(300, 2, 0, 2);
+    let first = {
+        let mut mesh = input.clone();
+        let o = OptimizeOptions::default().batches(1);
+        optimize(&mut mesh, Constraints::default(), o, |_| {}).unwrap()
+    };
+    assert!(!first.stopped);
+    let asked = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let counter = asked.clone();
+    let o = OptimizeOptions::default()
+        .until(move || counter.fetch_add(1, std::sync::atomic::Ordering::SeqCst) >= 40);
+    let mut mesh = input.clone();
+    let out = optimize(&mut mesh, Constraints::default(), o, |_| {}).unwrap();
+    let qzips = |o: &zipmesh::optimize::Outcome| -> usize {
+        o.batches.iter().map(|b| b.qzips + b.chains.qzips).sum()
+    };
+    assert!(out.stopped);
+    assert_eq!(out.batches.len(), 1);
+    assert!(
+        qzips(&out) < qzips(&first),
+        "{} of {}",
+        qzips(&out),
+        qzips(&first)
+    );
+    assert_eq!(mesh.map.check(), Ok(()));
+    let s = zipmesh::quality::Summary::against(&mesh, &zipmesh::quality::Reference::new(&input));
+    assert!(s.distance.unwrap().max < 1e-6, "{:?}", s.distance);
+}

@@ -13,7 +13,7 @@ use super::folds::{folded_near, FoldCount};
 use super::marks::Marks;
 use super::score::{Bfs, Scorer};
 use super::smooth::Surface;
-use super::BatchStats;
+use super::{BatchStats, StopWhen};
 use crate::qzip::{Path, Qzip, Tag, ZipReport};
 use crate::rng::Rng;
 use crate::{Mesh, Vert};
@@ -116,6 +116,8 @@ pub(crate) struct Batcher<'q> {
     /// its score, and a list to build the next key in ([`Batcher::score_before`]); the
     /// score is forgotten when a search begins.
     pub(crate) before: (Vec<Vert>, Option<f64>, Vec<Vert>),
+    /// When it answers true, the batch stops searching and executing ([`super::StopWhen`]).
+    pub(crate) stop: StopWhen,
 }
 
 impl<'q> Batcher<'q> {
@@ -452,8 +454,10 @@ impl<'q> Batcher<'q> {
             .then(|| sample.chunks(size).map(|_| self.fork()).collect())
             .flatten();
         let Some(workers) = workers else {
+            let stop = self.stop.clone();
             return sample
                 .iter()
+                .take_while(|_| !stop.now())
                 .filter_map(|&s| self.best_candidate(mesh, s, defects, stats))
                 .collect();
         };
@@ -463,8 +467,10 @@ impl<'q> Batcher<'q> {
         let part = |(mut w, part): (Batcher<'q>, &[Vert])| {
             let mut copy = shared.clone();
             let mut st = BatchStats::default();
+            let stop = w.stop.clone();
             let found: Vec<Candidate> = part
                 .iter()
+                .take_while(|_| !stop.now())
                 .filter_map(|&s| w.best_candidate(&mut copy, s, defects, &mut st))
                 .collect();
             (found, st)
@@ -502,6 +508,7 @@ impl<'q> Batcher<'q> {
             marks: Marks::default(),
             before: Default::default(),
             copy_darts: self.copy_darts,
+            stop: self.stop.clone(),
         })
     }
 
@@ -536,6 +543,9 @@ impl<'q> Batcher<'q> {
         candidates.truncate(candidates.len().div_ceil(2));
         let mut operated = vec![false; mesh.map.vertex_slots()];
         for c in candidates {
+            if self.stop.now() {
+                break;
+            }
             self.execute(mesh, c, total, &mut operated, &mut out);
         }
         out
@@ -741,6 +751,7 @@ mod tests {
             marks: Marks::default(),
             before: Default::default(),
             copy_darts: COPY_DARTS,
+            stop: StopWhen::default(),
         };
         b.refresh_constraints(mesh);
         b

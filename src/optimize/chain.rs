@@ -130,6 +130,9 @@ impl Batcher<'_> {
         self.refresh_constraints(mesh);
         let mut out = ChainRun::default();
         for p in self.pairs(mesh) {
+            if self.stop.now() {
+                break;
+            }
             let (da, db) = (defect(mesh, p.a), defect(mesh, p.b));
             // An earlier chain may have cancelled or moved either end.
             if da * db != -1 || self.is_locked(p.a) || self.is_locked(p.b) {

@@ -66,7 +66,9 @@ use crate::{Mesh, Vert};
 #[derive(Debug)]
 #[non_exhaustive]
 pub struct OptimizeOptions {
-    /// The most batches to run.
+    /// The most batches to run; by default no limit: the run goes on while batches execute
+    /// Q-zips (each lowers the score), and ends after [`OptimizeOptions::patience`] idle
+    /// batches or when [`OptimizeOptions::until`]'s test answers true.
     pub max_batches: usize,
     /// Stop after this many batches in a row that executed no Q-zip (each samples another
     /// half of the singularities).
@@ -90,12 +92,32 @@ pub struct OptimizeOptions {
     /// surface it costs few singularities (docs/quality.md, "After the optimizer").
     pub fold_guard: bool,
     terms: Vec<(f64, Box<dyn ScoreTerm + Send>)>,
+    stop: StopWhen,
+}
+
+/// A test the run asks between batches and between the candidates of a batch (set by
+/// [`OptimizeOptions::until`]); none by default. A closure, so that the no_std library can
+/// keep a deadline read from a clock it does not have.
+#[derive(Clone, Default)]
+pub(crate) struct StopWhen(Option<alloc::sync::Arc<dyn Fn() -> bool + Send + Sync>>);
+
+impl StopWhen {
+    /// Whether the run should stop now.
+    pub(crate) fn now(&self) -> bool {
+        self.0.as_ref().is_some_and(|f| f())
+    }
+}
+
+impl core::fmt::Debug for StopWhen {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(if self.0.is_some() { "Some(..)" } else { "None" })
+    }
 }
 
 impl Default for OptimizeOptions {
     fn default() -> Self {
         OptimizeOptions {
-            max_batches: 100,
+            max_batches: usize::MAX,
             patience: 2,
             seed: 0,
             smooth: true,
@@ -104,6 +126,7 @@ impl Default for OptimizeOptions {
             search_radius: 64,
             chains: true,
             fold_guard: true,
+            stop: StopWhen::default(),
             terms: alloc::vec![
                 (1.0, Box::new(Count) as Box<dyn ScoreTerm + Send>),
                 (0.1, Box::new(Electric::default())),
@@ -122,6 +145,23 @@ impl OptimizeOptions {
     /// See [`OptimizeOptions`] for an example.
     pub fn batches(mut self, n: usize) -> Self {
         self.max_batches = n;
+        self
+    }
+
+    /// Stops the run when `stop` answers true: it is asked before each batch and before
+    /// each singularity's search and each Q-zip of a batch, so a deadline is kept to about
+    /// one candidate's time. The mesh is then as the last executed Q-zip left it, settled on
+    /// the input surface, and [`Outcome::stopped`] is true.
+    ///
+    /// ```
+    /// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
+    /// let mut mesh = gen::subdivided_icosahedron(3);
+    /// let out = optimize(&mut mesh, Constraints::default(), OptimizeOptions::default().until(|| true), |_| {}).unwrap();
+    /// assert!(out.stopped && out.batches.is_empty());
+    /// assert_eq!(mesh.map.check(), Ok(()));
+    /// ```
+    pub fn until(mut self, stop: impl Fn() -> bool + Send + Sync + 'static) -> Self {
+        self.stop = StopWhen(Some(alloc::sync::Arc::new(stop)));
         self
     }
 
@@ -407,6 +447,8 @@ pub struct Outcome {
     pub minimal: bool,
     /// One report per batch run (the last may have executed nothing).
     pub batches: Vec<BatchReport>,
+    /// Whether [`OptimizeOptions::until`]'s test stopped the run.
+    pub stopped: bool,
     /// The counts of the result.
     pub final_counts: SingularityCounts,
 }
@@ -555,16 +597,17 @@ pub fn optimize(
         marks: Default::default(),
         before: Default::default(),
         copy_darts: batch::COPY_DARTS,
+        stop: options.stop.clone(),
     };
     mark_features(&mut b, mesh);
     let initial_score = b.scorer.score(mesh).0;
-    let batches = if minimal {
-        Vec::new()
+    let (batches, stopped) = if minimal {
+        (Vec::new(), false)
     } else {
         let chi = Counts::of(&mesh.map).euler_characteristic;
-        let batches = run_batches(&mut b, mesh, &surface, &options, initial_score, progress);
+        let run = run_batches(&mut b, mesh, &surface, &options, initial_score, progress);
         debug_assert_eq!(Counts::of(&mesh.map).euler_characteristic, chi);
-        batches
+        run
     };
     b.refresh_constraints(mesh);
     settle(mesh, &surface, &b.locked);
@@ -575,6 +618,7 @@ pub fn optimize(
         preprocessed,
         minimal,
         batches,
+        stopped,
         final_counts: SingularityCounts::of(mesh),
     })
 }
@@ -654,7 +698,8 @@ fn check_input(mesh: &Mesh, constraints: &Constraints) -> Result<(), OptimizeErr
 
 /// The batches, from the score `total`: each a batch of Q-zips, the endgame's chains and
 /// walks when the batch executed nothing, and the smoothing of the scars; until
-/// `options.patience` batches in a row execute nothing, or `options.max_batches`.
+/// `options.patience` batches in a row execute nothing, `options.max_batches`, or the stop
+/// test answers true (then also true in the result).
 fn run_batches(
     b: &mut batch::Batcher<'_>,
     mesh: &mut Mesh,
@@ -662,14 +707,19 @@ fn run_batches(
     options: &OptimizeOptions,
     mut total: f64,
     mut progress: impl FnMut(&BatchReport),
-) -> Vec<BatchReport> {
+) -> (Vec<BatchReport>, bool) {
     let mut rng = Rng::new(options.seed);
     let mut batches = Vec::new();
     let mut idle = 0;
     // Chains are deterministic: after a stage that kept nothing, another one finds
     // nothing until a batch changes the mesh.
     let mut chains_stale = false;
+    let mut stopped = false;
     for i in 1..=options.max_batches {
+        if options.stop.now() {
+            stopped = true;
+            break;
+        }
         let mut run = b.run(mesh, &mut rng, &mut total);
         let mut chains = ChainStats::default();
         if run.qzips == 0 && options.chains && !chains_stale {
@@ -714,11 +764,16 @@ fn run_batches(
         progress(&report);
         batches.push(report);
         idle = if executed == 0 { idle + 1 } else { 0 };
+        // A batch the test cut short may have executed nothing: that is not idleness.
+        if options.stop.now() {
+            stopped = true;
+            break;
+        }
         if idle >= options.patience.max(1) {
             break;
         }
     }
-    batches
+    (batches, stopped)
 }
 
 fn mark_features(b: &mut batch::Batcher<'_>, mesh: &Mesh) {

@@ -94,6 +94,9 @@ impl super::batch::Batcher<'_> {
         self.refresh_constraints(mesh);
         let mut out = ChainRun::default();
         for w in self.walks(mesh) {
+            if self.stop.now() {
+                break;
+            }
             let (dm, du, ds) = (
                 defect(mesh, w.mover),
                 defect(mesh, w.target),

@@ -7,7 +7,7 @@ use serde_json::{json, Value};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use zipmesh::io;
 use zipmesh::optimize::{
     optimize, optimize_triangles, BatchReport, Constraints, OptimizeOptions, SingularityCounts,
@@ -25,9 +25,14 @@ pub struct OptimizeArgs {
     /// Where to write the result.
     #[arg(short, long)]
     pub(crate) output: PathBuf,
-    /// The most batches to run.
-    #[arg(long, default_value_t = 100)]
-    batches: usize,
+    /// The most batches to run. Quad meshes: no limit by default, the run goes on while
+    /// batches execute Q-zips; triangle meshes: 50 by default.
+    #[arg(long)]
+    batches: Option<usize>,
+    /// Stop after this many seconds (quad meshes), checked between the candidates of a
+    /// batch: OUT is the mesh as the last executed Q-zip left it, settled on the surface.
+    #[arg(long, value_parser = seconds)]
+    time_limit: Option<Duration>,
     /// The seed of the sampling (the same seed gives the same OUT).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -121,19 +126,21 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         ("--no-chains", args.no_chains),
         ("--fold-guard", args.fold_guard),
         ("--no-fold-guard", args.no_fold_guard),
+        ("--time-limit", args.time_limit.is_some()),
     ];
     if let Some((flag, _)) = quad_only.iter().find(|(_, set)| *set) {
         return Err(InputError(format!(
             "{name}: {flag} applies to quad meshes only (this one is all triangles)"
         )));
     }
+    let defaults = TriOptimizeOptions::default();
     let options = TriOptimizeOptions {
-        max_batches: args.batches,
+        max_batches: args.batches.unwrap_or(defaults.max_batches),
         relax: !args.no_smooth,
         lookahead: !args.no_lookahead,
-        ..TriOptimizeOptions::default()
+        ..defaults
     };
-    let bar = progress(args.batches);
+    let bar = progress(Some(options.max_batches));
     let start = Instant::now();
     let mut rows = Vec::new();
     let outcome = optimize_triangles(&mut mesh, &options, |b| {
@@ -267,17 +274,33 @@ fn constraints(args: &OptimizeArgs, mesh: &Mesh) -> Result<Constraints, InputErr
     Ok(c)
 }
 
-fn progress(planned: usize) -> Option<ProgressBar> {
+fn progress(planned: Option<usize>) -> Option<ProgressBar> {
     if !std::io::stderr().is_terminal() {
         return None;
     }
-    let bar = ProgressBar::new(planned as u64);
-    if let Ok(style) =
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] batch {pos}/{len} {msg}")
-    {
+    let (bar, template) = match planned {
+        Some(n) => (
+            ProgressBar::new(n as u64),
+            "{elapsed_precise} [{bar:30}] batch {pos}/{len} {msg}",
+        ),
+        None => (
+            ProgressBar::no_length(),
+            "{elapsed_precise} batch {pos} {msg}",
+        ),
+    };
+    if let Ok(style) = ProgressStyle::with_template(template) {
         bar.set_style(style);
     }
     Some(bar)
+}
+
+/// `--time-limit`: a positive number of seconds that a `Duration` holds.
+fn seconds(s: &str) -> Result<Duration, String> {
+    let x: f64 = s.parse().map_err(|_| format!("`{s}` is not a number"))?;
+    if x.is_nan() || x <= 0.0 {
+        return Err(format!("`{s}`: the limit must be above 0 seconds"));
+    }
+    Duration::try_from_secs_f64(x).map_err(|_| format!("`{s}`: too many seconds"))
 }
 
 fn summary(c: &SingularityCounts) -> String {
@@ -290,13 +313,19 @@ fn summary(c: &SingularityCounts) -> String {
 /// The quad optimizer's options from the command line.
 fn quad_options(args: &OptimizeArgs) -> OptimizeOptions {
     let mut options = OptimizeOptions::default()
-        .batches(args.batches)
         .seed(args.seed)
         .smoothing(!args.no_smooth)
         .chains(!args.no_chains)
         .fold_guard(!args.no_fold_guard);
     for (name, w) in &args.weights {
         options = options.weight(name, *w);
+    }
+    if let Some(n) = args.batches {
+        options = options.batches(n);
+    }
+    if let Some(limit) = args.time_limit {
+        let start = Instant::now();
+        options = options.until(move || start.elapsed() >= limit);
     }
     options
 }
@@ -379,6 +408,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         "initial_score": outcome.initial_score,
         "batches": rows,
         "final": counts(&outcome.final_counts),
+        "time_limit_reached": outcome.stopped,
         "seconds": seconds,
     });
     let qzips: usize = outcome
@@ -391,10 +421,15 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     } else {
         ""
     };
+    let limit = if outcome.stopped {
+        " (the time limit stopped it)"
+    } else {
+        ""
+    };
     let lines = [
         format!("{name}: {}{minimal}", summary(&outcome.input)),
         format!(
-            "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s",
+            "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s{limit}",
             out::escape(&args.output.display().to_string()),
             summary(&outcome.final_counts),
             outcome.batches.len()
