@@ -207,8 +207,8 @@ fn assert_meets_the_goal_with(mesh: &mut Mesh, o: OptimizeOptions) {
 /// the pair with itself only translates, so the pair chains stalled at 36. Walking a
 /// singularity onto an opposite one by Q-zips with a third cancels them: at most 17 left
 /// in 40 batches, the face count within 10 %. With the footprints relaxed on the surface and
-/// the fold guard (the defaults) 40 batches leave 30 (20 without the guard); the default 100
-/// batches leave 12 (docs/quality.md).
+/// the fold guard (the defaults) 40 batches leave 30 (20 without the guard); the default run,
+/// which goes on while batches improve, leaves 12 (docs/quality.md).
 #[test]
 fn blub_loses_more_than_half_of_its_singularities() {
     let path = common::shared("quad/blub_quadrangulated.obj");
