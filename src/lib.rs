@@ -44,22 +44,17 @@ extern crate std;
 pub mod arbitrary;
 #[cfg(feature = "campaign")]
 pub mod campaign;
-pub mod gen;
 pub mod geometry;
-pub mod hybrid;
-pub mod invariants;
 #[cfg(feature = "std")]
 pub mod io;
-pub mod map;
-pub mod mesh;
-pub mod ops;
 pub mod optimize;
 pub mod quality;
 pub mod qzip;
 #[cfg(feature = "render")]
 pub mod render;
-pub mod rng;
 pub mod tri_edit;
+
+pub use zipmesh_kernel::{gen, hybrid, invariants, map, mesh, ops, rng};
 
 pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
 pub use map::{

@@ -197,7 +197,7 @@ fn zip_and_moves_on_a_quad_dominant_mesh() {
     io::write_mesh(&inp, &mesh).unwrap();
     let (mesh, _) = io::read_mesh(&inp).unwrap();
     let m = &mesh.map;
-    let opts = hybrid::avoid_triangles(m, SketchOptions::default());
+    let opts = zipmesh::qzip::avoid_triangles(m, SketchOptions::default());
     let sing = irregular_vertices(m, MeshKind::Quad);
     let (a, b) = sing
         .iter()

@@ -34,7 +34,7 @@ fn fixtures() -> Vec<Map> {
 }
 
 fn opts(map: &Map) -> SketchOptions<'static> {
-    hybrid::avoid_triangles(map, SketchOptions::default())
+    zipmesh::qzip::avoid_triangles(map, SketchOptions::default())
 }
 
 /// The triangles with their corners (vertex, valence).

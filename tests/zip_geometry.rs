@@ -8,8 +8,8 @@ use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions};
 use zipmesh::invariants::{irregular_vertices, MeshKind};
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
-use zipmesh::qzip::{Path, Qzip, SketchOptions, Tag};
-use zipmesh::{hybrid, io, Mesh};
+use zipmesh::qzip::{avoid_triangles, Path, Qzip, SketchOptions, Tag};
+use zipmesh::{io, Mesh};
 
 /// The pairs tried per mesh: the first singularities, each with the closest others.
 const PAIRS: usize = 12;
@@ -26,7 +26,7 @@ fn load(name: &str) -> Mesh {
 /// fixed order (singularities spread over the vertex numbers).
 fn pairs(mesh: &Mesh, n: usize) -> Vec<Path> {
     let sing = irregular_vertices(&mesh.map, MeshKind::Quad);
-    let opts = hybrid::avoid_triangles(&mesh.map, SketchOptions::default());
+    let opts = avoid_triangles(&mesh.map, SketchOptions::default());
     let mut q = Qzip::with_options(opts);
     let step = (sing.len() / n.max(1)).max(1);
     let mut out = Vec::new();

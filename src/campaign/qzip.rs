@@ -370,7 +370,7 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
 /// `qzip-hybrid-grid`, `qzip-hybrid-reversal`, `qzip-hybrid-homotopy`. These run on a case of
 /// triangles and quads as it is, and on a pure-quad case with two triangle pairs inserted
 /// ([`gen::with_triangle_pairs`](crate::gen::with_triangle_pairs)); the paths wind around the
-/// triangles ([`avoid_triangles`](crate::hybrid::avoid_triangles)); a movement done must
+/// triangles ([`avoid_triangles`](crate::qzip::avoid_triangles)); a movement done must
 /// also keep every triangle (face handle and corner valences). Cases with other faces, or
 /// whose triangles leave no pair of singularities a path can join, are skipped (the
 /// `skipped` column); a swept path that comes near a triangle is not compared and is counted

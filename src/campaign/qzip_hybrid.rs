@@ -1,6 +1,6 @@
 //! The Q-zip properties on quad-dominant meshes (Q-zip paper, Sec. 3.2): grid preservation,
 //! reversal and homotopy with the paths winding around the triangles
-//! ([`crate::hybrid::avoid_triangles`]), and the triangles counted as what they are: every
+//! ([`crate::qzip::avoid_triangles`]), and the triangles counted as what they are: every
 //! triangle keeps its face and its corner valences, so the irregular valences of the quad
 //! vertices are those of the input.
 
@@ -11,7 +11,7 @@ use std::vec::Vec;
 
 use super::qzip::{grid_on, homotopy_on, reversal_on, Subject};
 use super::{Case, Outcome, PairChoice};
-use crate::qzip::SketchOptions;
+use crate::qzip::{self, SketchOptions};
 use crate::{gen, hybrid, Map};
 
 /// The quad-dominant map a case is checked on: a case of triangles and quads (at least one
@@ -45,7 +45,7 @@ impl<'c> Subject<'c> {
                 !map.is_boundary_vertex(v) && map.valence(v) != 4 && near.binary_search(&v).is_err()
             })
             .collect();
-        let opts = hybrid::avoid_triangles(&map, SketchOptions::default());
+        let opts = qzip::avoid_triangles(&map, SketchOptions::default());
         Some(Subject {
             map,
             sing,

@@ -139,8 +139,7 @@ impl<'q> Batcher<'q> {
         o.forbidden_faces.clear();
         // On a quad-dominant mesh the paths wind around the triangles (Sec. 3.2).
         if mesh.map.faces().any(|f| mesh.map.degree(f) == 3) {
-            let t =
-                crate::hybrid::avoid_triangles(&mesh.map, crate::qzip::SketchOptions::default());
+            let t = crate::qzip::avoid_triangles(&mesh.map, crate::qzip::SketchOptions::default());
             o.forbidden_edges.extend(t.forbidden_edges);
             o.forbidden_faces = t.forbidden_faces;
         }

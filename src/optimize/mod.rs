@@ -522,7 +522,7 @@ fn mean_face_area(mesh: &Mesh) -> f64 {
 /// Sec. 6.1), closest pair first; a merge is kept only if it does not raise the interior
 /// singularities plus boundary defects. The preprocessing runs only if the result is pure
 /// quad; the batches' Q-zips wind around the triangles left
-/// ([`crate::hybrid::avoid_triangles`]), which they never change.
+/// ([`crate::qzip::avoid_triangles`]), which they never change.
 ///
 /// ```
 /// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};

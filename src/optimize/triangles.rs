@@ -106,21 +106,22 @@ fn best_step(
     for (k, other) in [(i, j), (j, i)] {
         for mv in Move::ALL {
             // A probe on the map alone (positions play no part in the potential).
-            let Ok(e) = hybrid::move_triangle(&mut mesh.map, tips[k], mv) else {
+            let probe = hybrid::probe_move(&mut mesh.map, tips[k], mv, |map, e| {
+                let (t, o) = (e.tip(), e.follow(tips[other]));
+                let state = if k == i { (t, o) } else { (o, t) };
+                let collides = hybrid::collision(map, t, o).is_some();
+                (
+                    state,
+                    if collides {
+                        (0, 0)
+                    } else {
+                        potential(map, t, o)
+                    },
+                )
+            });
+            let Ok((state, p)) = probe else {
                 continue;
             };
-            let (t, o) = (e.tip(), e.follow(tips[other]));
-            let state = if k == i { (t, o) } else { (o, t) };
-            let p = if hybrid::collision(&mesh.map, t, o).is_some() {
-                (0, 0)
-            } else {
-                potential(&mesh.map, t, o)
-            };
-            // The move was just made on this map, so its undo is not refused; if it were,
-            // the full undo is tried, and then the crawl stops.
-            if e.undo_fresh(&mut mesh.map).is_err() && e.undo(&mut mesh.map).is_err() {
-                return None;
-            }
             let fresh = !visited.contains(&state);
             if fresh && best.is_none_or(|b| p < b.0) {
                 best = Some((p, k, mv));

@@ -29,6 +29,7 @@
 pub mod compass;
 pub mod execute;
 mod homotopy;
+mod hybrid;
 mod placement;
 pub mod prepare;
 mod preprocess;
@@ -41,6 +42,7 @@ mod zip;
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
 pub use homotopy::{one_quad_sweeps, start_turn, wraps};
+pub use hybrid::avoid_triangles;
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
 pub use reverse::{derive_reverse, find_reverse, ReverseRun, ReverseWay};

@@ -5,7 +5,6 @@ use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};
-use zipmesh::hybrid;
 use zipmesh::io::{self, MeshFileError};
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
@@ -118,7 +117,7 @@ fn load(a: &PairArgs) -> Result<(Mesh, Mesh, Path), InputError> {
     let map = &mesh.map;
     let name = a.file.display();
     let (from, to) = (Vert::new(a.from), Vert::new(a.to));
-    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
+    let opts = zipmesh::qzip::avoid_triangles(map, SketchOptions::default());
     let path = match &a.path {
         Some(vs) => {
             let vs: Vec<Vert> = vs.iter().map(|&v| Vert::new(v)).collect();
@@ -228,7 +227,7 @@ fn run_partners(args: &MovesArgs, n: usize) -> Result<ExitCode, InputError> {
     let (_, mesh) = load_mesh(&args.file, args.preprocess, &[("--from", args.from)])?;
     let map = &mesh.map;
     let from = Vert::new(args.from);
-    let opts = hybrid::avoid_triangles(map, SketchOptions::default());
+    let opts = zipmesh::qzip::avoid_triangles(map, SketchOptions::default());
     let mut rows = Vec::new();
     for (v, distance) in nearest_singularities(map, from, n) {
         let Ok(path) = sketch(map, from, v, &opts) else {

@@ -1,0 +1,247 @@
+//! Walking a triangle to a vertex (Q-zip paper, Fig. 14): the hybrid compass.
+//!
+//! The compass is the triangle's tip dart: every move hands on the new one, so where the
+//! base is (the EV direction) is carried along without being guessed. At the tip `T`, with
+//! tip dart `t`, each move sends the tip one edge along a fixed dart of `T`'s rotation:
+//! LE along `rotate_cw(t)`, VE along `rotate_cw²(t)`, RE along `rotate_ccw²(t)`, EV onto
+//! the base corners `dest(t)` and `dest(rotate_ccw(t))` (merged). With the paper's
+//! valence-5 tip these are the five neighbours, so every direction of a shortest path is one
+//! move; the "small rotation" of Fig. 14 is this choice of move by where the next path edge
+//! sits relative to `t`. Each step takes the applicable move whose new tip is nearest the
+//! target (breadth-first distances on the current map, ties in the order VE, EV, LE, RE)
+//! and must bring it strictly nearer; the walk is all or nothing.
+
+use super::mesh::move_triangle_with;
+use super::walk::{can_move_triangle, Move, TriangleMove};
+use crate::map::{Dart, Map, Vert};
+use crate::mesh::{Edited, Mesh, Positions, VertexAttributes};
+use crate::ops::{Refusal, VertexChanges};
+use alloc::collections::VecDeque;
+use alloc::vec;
+use alloc::vec::Vec;
+use core::fmt;
+
+/// Why a walk did not reach its target (the map is as it was).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WalkError {
+    /// The tip dart is not a triangle's, or the target is not a live vertex.
+    BadArguments(Refusal),
+    /// No path joins the tip to the target.
+    Unreachable,
+    /// At this tip no applicable move brings the tip nearer the target.
+    Stuck {
+        /// The tip vertex where the walk stopped (in the map as it was then).
+        tip: Vert,
+        /// Its distance to the target.
+        distance: usize,
+    },
+}
+
+impl fmt::Display for WalkError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            WalkError::BadArguments(r) => write!(f, "bad arguments: {r}"),
+            WalkError::Unreachable => f.write_str("no path joins the tip to the target"),
+            WalkError::Stuck { tip, distance } => write!(
+                f,
+                "no move brings the triangle nearer the target from vertex {} ({distance} edges away)",
+                tip.index()
+            ),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for WalkError {}
+
+/// A walk's moves, in order, and the triangle's tip dart at the end.
+#[derive(Clone, Debug)]
+pub struct Walk<A: VertexAttributes = Positions> {
+    steps: Vec<Edited<TriangleMove, A>>,
+    tip: Dart,
+}
+
+impl<A: VertexAttributes> Walk<A> {
+    /// The moves made, in order.
+    ///
+    /// See [`walk_to`] for an example.
+    pub fn moves(&self) -> Vec<Move> {
+        self.steps.iter().map(|e| e.record().kind()).collect()
+    }
+
+    /// The triangle's tip dart at the end.
+    ///
+    /// See [`walk_to`] for an example.
+    pub fn tip(&self) -> Dart {
+        self.tip
+    }
+
+    /// Undoes every move, last first: map and layer `==` as before the walk; on a stale
+    /// record the moves undone so far stay undone and the error is returned.
+    ///
+    /// See [`walk_to`] for an example.
+    pub fn undo_with(&self, map: &mut Map, attrs: &mut A) -> Result<(), Refusal> {
+        for e in self.steps.iter().rev() {
+            e.undo_with(map, attrs)?;
+        }
+        Ok(())
+    }
+}
+
+impl Walk<Positions> {
+    /// [`Walk::undo_with`] on a mesh's positions.
+    ///
+    /// See [`walk_to`] for an example.
+    pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
+        self.undo_with(&mut mesh.map, &mut mesh.positions)
+    }
+}
+
+/// Breadth-first edge distances to `target` (`usize::MAX` where unreachable or not
+/// reached): the search stops once every vertex at most one edge farther than `tip` is
+/// labelled, since every move lands the tip on a neighbour. O(ball around the target)
+/// instead of O(map) per step.
+fn distances(map: &Map, target: Vert, tip: Vert) -> Vec<usize> {
+    let mut dist = vec![usize::MAX; map.vertex_slots()];
+    let mut queue = VecDeque::from([target]);
+    dist[target.index()] = 0;
+    while let Some(v) = queue.pop_front() {
+        let reached = dist.get(tip.index()).copied().unwrap_or(usize::MAX);
+        if reached != usize::MAX && dist[v.index()] > reached {
+            break;
+        }
+        for d in map.vertex_darts(v) {
+            let w = map.dest(d);
+            if dist[w.index()] == usize::MAX {
+                dist[w.index()] = dist[v.index()] + 1;
+                queue.push_back(w);
+            }
+        }
+    }
+    dist
+}
+
+/// Where the tip goes by each move: the new tip vertex (EV: the nearer base corner).
+fn landing(map: &Map, t: Dart, mv: Move, dist: &[usize]) -> usize {
+    let d = |v: Vert| dist.get(v.index()).copied().unwrap_or(usize::MAX);
+    match mv {
+        Move::VE => d(map.dest(map.rotate_cw(map.rotate_cw(t)))),
+        Move::LE => d(map.dest(map.rotate_cw(t))),
+        Move::RE => d(map.dest(map.rotate_ccw(map.rotate_ccw(t)))),
+        Move::EV => d(map.dest(t)).min(d(map.dest(map.rotate_ccw(t)))),
+    }
+}
+
+/// The compass's choice at tip dart `t` towards `target`: the applicable move that lands
+/// the tip nearest the target, if one lands it nearer than it is; `None` at the target.
+///
+/// ```
+/// use zipmesh_kernel::{gen, hybrid::{compass, Move}};
+/// let (mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
+/// let m = &mesh.map;
+/// // The vertex two darts clockwise from the tip dart is reached by VE.
+/// let u = m.dest(m.rotate_cw(m.rotate_cw(tips[0])));
+/// assert_eq!(compass::next_move(m, tips[0], u), Some(Move::VE));
+/// ```
+pub fn next_move(map: &Map, t: Dart, target: Vert) -> Option<Move> {
+    if !map.is_live_vertex(target) || map.origin(t) == target {
+        return None;
+    }
+    next_move_by(map, t, &distances(map, target, map.origin(t)))
+}
+
+fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
+    let here = dist.get(map.origin(t).index()).copied()?;
+    Move::ALL
+        .into_iter()
+        .filter(|&mv| can_move_triangle(map, t, mv).is_ok())
+        .map(|mv| (landing(map, t, mv, dist), mv))
+        .filter(|&(d, _)| d < here)
+        .min()
+        .map(|(_, mv)| mv)
+}
+
+/// Walks the triangle of tip dart `t` until its tip is `target` (or `target` was merged
+/// into the tip by an EV), one compass move at a time (see the [module docs](self)), on a
+/// map and a per-vertex layer. All or nothing: on an error every move made is undone.
+///
+/// ```
+/// use zipmesh_kernel::{gen, hybrid::{self, compass}};
+/// let (mut mesh, tips) = gen::quad_dominant(10, 10, 1, 3);
+/// let before = mesh.clone();
+/// let tip = mesh.map.origin(tips[0]);
+/// // A vertex three edges away: straight on (two darts round each valence-4 vertex).
+/// let m = &mesh.map;
+/// let straight = |d: zipmesh_kernel::Dart| m.rotate_cw(m.rotate_cw(d.twin()));
+/// let target = m.dest(straight(straight(m.rotate_cw(m.rotate_cw(tips[0])))));
+/// let walk = compass::walk_to(&mut mesh, tips[0], target).unwrap();
+/// assert!(mesh.map.origin(walk.tip()) == target || !mesh.map.is_live_vertex(target));
+/// assert_ne!(mesh.map.origin(walk.tip()), tip);
+/// walk.undo(&mut mesh).unwrap();
+/// assert_eq!(mesh, before);
+/// ```
+pub fn walk_to_with<A: VertexAttributes>(
+    map: &mut Map,
+    attrs: &mut A,
+    t: Dart,
+    target: Vert,
+) -> Result<Walk<A>, WalkError> {
+    super::walk::triangle(map, t).map_err(WalkError::BadArguments)?;
+    if !map.is_live_vertex(target) {
+        return Err(WalkError::BadArguments(Refusal::DeadHandle));
+    }
+    let mut walk = Walk {
+        steps: Vec::new(),
+        tip: t,
+    };
+    while map.is_live_vertex(target) && map.origin(walk.tip) != target {
+        let dist = distances(map, target, map.origin(walk.tip));
+        let here = dist[map.origin(walk.tip).index()];
+        let stop = if here == usize::MAX {
+            Some(WalkError::Unreachable)
+        } else {
+            match next_move_by(map, walk.tip, &dist) {
+                Some(mv) => match move_triangle_with(map, attrs, walk.tip, mv) {
+                    Ok(e) => {
+                        walk.tip = e.record().tip();
+                        walk.steps.push(e);
+                        None
+                    }
+                    Err(r) => Some(WalkError::BadArguments(r)),
+                },
+                None => Some(WalkError::Stuck {
+                    tip: map.origin(walk.tip),
+                    distance: here,
+                }),
+            }
+        };
+        if let Some(e) = stop {
+            // The moves were just made, so their undo fits.
+            let _ = walk.undo_with(map, attrs);
+            return Err(e);
+        }
+    }
+    Ok(walk)
+}
+
+/// [`walk_to_with`] on a mesh's positions.
+///
+/// See [`walk_to_with`] for an example.
+pub fn walk_to(mesh: &mut Mesh, t: Dart, target: Vert) -> Result<Walk, WalkError> {
+    walk_to_with(&mut mesh.map, &mut mesh.positions, t, target)
+}
+
+/// Whether the walk's last move merged `target` away (EV onto it).
+///
+/// ```
+/// use zipmesh_kernel::{gen, hybrid::compass};
+/// let (mut mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
+/// let target = mesh.map.dest(tips[0]);
+/// let walk = compass::walk_to(&mut mesh, tips[0], target).unwrap();
+/// assert!(mesh.map.origin(walk.tip()) == target || compass::merged(&walk, target));
+/// ```
+pub fn merged<A: VertexAttributes>(walk: &Walk<A>, target: Vert) -> bool {
+    walk.steps
+        .last()
+        .is_some_and(|e| e.record().removed_vertex() == Some(target))
+}

@@ -1,0 +1,45 @@
+//! # zipmesh-kernel
+//!
+//! The `no_std` combinatorial-map kernel of [zipmesh](https://crates.io/crates/zipmesh):
+//! half-edge maps of quad, triangle and quad-dominant meshes ([`map`]), per-vertex values kept
+//! in step with edits ([`mesh`]), the triangle moves of quad-dominant meshes ([`hybrid`]), the invariants and canonical codes the editing papers state
+//! as checkable identities ([`invariants`]), and the atomic edits with their undo records
+//! ([`ops`]). It is the part of zipmesh that is checked exhaustively up to a bound (`proofs/`
+//! in the repository, docs/VERIFICATION.md) and it uses no `unsafe` code.
+//!
+//! ```
+//! use zipmesh_kernel::{invariants::Counts, Map};
+//! // Two quads sharing an edge: a disk.
+//! let map = Map::from_polygons(6, &[[0u32, 1, 4, 3], [1, 2, 5, 4]]).unwrap();
+//! map.check().unwrap();
+//! let c = Counts::of(&map);
+//! assert_eq!((c.euler_characteristic, c.boundary_loops), (1, 1));
+//! ```
+//!
+//! ## Features
+//! * `std` (default): `std::error::Error` for the error types.
+//! * `testkit`: [`gen`] (test meshes) and [`rng`] (the seeded generator behind them), for
+//!   tests, benchmarks and fuzzers.
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
+
+#[cfg(feature = "testkit")]
+pub mod gen;
+pub mod hybrid;
+pub mod invariants;
+pub mod map;
+pub mod mesh;
+pub mod ops;
+#[cfg(feature = "testkit")]
+pub mod rng;
+
+pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
+pub use map::{
+    BuildError, BuildReport, Compaction, Dart, Edge, Face, Map, RawError, Vert, Violation,
+};
+pub use mesh::Mesh;
