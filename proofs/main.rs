@@ -1,15 +1,7 @@
-//! Bounded model checking by exhaustive enumeration.
+//! Bounded model checking by exhaustive enumeration: the triangle paper's retriangulations.
 //!
-//! Each property is a plain function that takes its inputs from a [`choice::Choice`]
-//! source: [`choice::Exhaustive`] runs it on every input up to a stated bound, and
-//! [`choice::Random`] samples inputs past the bound. The bounds and counts are in each
-//! module's header and printed by the tests (`cargo test --test proofs -- --nocapture`).
+//! The kernel's exhaustive proofs (maps, polygon lists, the atomic operators) are in
+//! `crates/zipmesh-kernel/proofs/`; this one needs the triangle edits. Its bounds and counts
+//! are in the module's header and printed by `cargo test --test proofs -- --nocapture`.
 
-mod choice;
-mod maps;
-mod ops_quad;
-mod ops_tri;
-mod oracle;
-mod polygons;
-mod raw;
 mod retriangulate;

@@ -11,7 +11,7 @@
 //! then collapse, collapse then split, flip twice, edge split then collapse) by canonical
 //! code, and the `Mesh` wrappers' positions.
 
-#[path = "ops_tri/check.rs"]
+#[path = "../crates/zipmesh-kernel/tests/ops_tri/check.rs"]
 mod check;
 
 use check::{checked, Op, Rec};

@@ -6,9 +6,9 @@
 //! * Tori with some quads cut into triangles, small and 300 x 300, against an oracle that
 //!   searches the symmetries of the torus grid.
 
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::rng::Rng;
-use zipmesh::{gen, is_isomorphic, is_isomorphic_mirror, Map};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::rng::Rng;
+use zipmesh_kernel::{gen, is_isomorphic, is_isomorphic_mirror, Map};
 
 /// A map as the permutation data it was built from, with the built map and its code.
 struct Raw {

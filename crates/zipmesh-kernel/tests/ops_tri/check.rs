@@ -1,4 +1,4 @@
-//! The oracle for the triangle operators, shared by `tests/ops_tri.rs` and
+//! The oracle for the triangle operators, shared by the root crate's `tests/ops_tri.rs` and
 //! `proofs/ops_tri.rs`: apply an operator and check every documented promise: its effect on
 //! counts, valences and face degrees against the library's one statement of it
 //! (`TriOp::effect`), the rest using only the public accessors of the map (never the
@@ -6,12 +6,12 @@
 
 #![allow(dead_code)]
 
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::Refusal;
-use zipmesh::{Dart, Edge, Face, Map, Vert};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::ops::Refusal;
+use zipmesh_kernel::{Dart, Edge, Face, Map, Vert};
 
 /// One operator with its arguments, and the record of an applied one: the library's.
-pub use zipmesh::ops::tri::{TriOp as Op, TriRecord as Rec};
+pub use zipmesh_kernel::ops::tri::{TriOp as Op, TriRecord as Rec};
 
 pub fn can(map: &Map, op: Op) -> Result<(), Refusal> {
     op.can(map)
@@ -140,7 +140,7 @@ fn split_vertex_handles(
     before: &Map,
     after: &Map,
     [d1, d2]: [Dart; 2],
-    r: &zipmesh::ops::tri::VertexSplit,
+    r: &zipmesh_kernel::ops::tri::VertexSplit,
 ) {
     let w = before.origin(d1);
     let (a, b) = (before.dest(d1), before.dest(d2));

@@ -9,7 +9,7 @@
 use crate::choice::{Choice, Exhaustive};
 use crate::oracle::orbits;
 use std::collections::BTreeMap;
-use zipmesh::{Map, RawError};
+use zipmesh_kernel::{Map, RawError};
 
 /// What `from_permutation` may answer: `None` for Ok, else the errors that are true of it.
 fn allowed(next: &[u32], boundary: &[bool]) -> Option<Vec<RawError>> {

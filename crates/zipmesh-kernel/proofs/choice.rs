@@ -5,7 +5,7 @@
 //! random driver samples paths. A symbolic engine such as Kani would implement the same trait
 //! with `kani::any()` plus an assumption `x < n`, treating `any` and `sample` alike.
 
-use zipmesh::rng::Rng;
+use zipmesh_kernel::rng::Rng;
 
 /// A source of nondeterministic choices.
 pub trait Choice {

@@ -4,10 +4,10 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
-use zipmesh::invariants::canonical::{CanonicalCode, CanonicalWorkspace};
-use zipmesh::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
-use zipmesh::rng::Rng;
-use zipmesh::{gen, is_isomorphic, is_isomorphic_mirror, Face, Map, Mesh, Vert};
+use zipmesh_kernel::invariants::canonical::{CanonicalCode, CanonicalWorkspace};
+use zipmesh_kernel::invariants::{gauss_bonnet, irregular_vertices, Counts, Histograms, MeshKind};
+use zipmesh_kernel::rng::Rng;
+use zipmesh_kernel::{gen, is_isomorphic, is_isomorphic_mirror, Face, Map, Mesh, Vert};
 
 /// Which random generator.
 #[derive(Clone, Copy, Debug)]

@@ -16,10 +16,10 @@
 use crate::choice::{Choice, Exhaustive, Random};
 use crate::oracle::{permutations, Expected, RawMap};
 use std::collections::{BTreeMap, HashMap};
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::invariants::{gauss_bonnet, Counts, Histograms, MeshKind};
-use zipmesh::rng::Rng;
-use zipmesh::{is_isomorphic, is_isomorphic_mirror, Dart, Map, RawError, Vert};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::invariants::{gauss_bonnet, Counts, Histograms, MeshKind};
+use zipmesh_kernel::rng::Rng;
+use zipmesh_kernel::{is_isomorphic, is_isomorphic_mirror, Dart, Map, RawError, Vert};
 
 /// The exhaustive bound on edges (darts = 2 * edges).
 pub const MAX_EDGES: usize = 4;

@@ -35,10 +35,10 @@ use crate::oracle::RawMap;
 use check::{checked, Op};
 use std::collections::{BTreeMap, HashSet};
 use std::sync::OnceLock;
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::Refusal;
-use zipmesh::rng::Rng;
-use zipmesh::{Dart, Map};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::ops::Refusal;
+use zipmesh_kernel::rng::Rng;
+use zipmesh_kernel::{Dart, Map};
 
 /// Every operator call on `map`: each operator at every dart, the vertex split at every
 /// ordered pair of darts, and each with a dead handle.
@@ -313,7 +313,7 @@ fn every_operator_on_every_gluing_of_up_to_4_triangles() {
                 // The known failure elsewhere: no collapse of a tetrahedron is allowed.
                 for d in m.darts() {
                     assert_eq!(
-                        zipmesh::ops::tri::can_collapse_edge(m, d),
+                        zipmesh_kernel::ops::tri::can_collapse_edge(m, d),
                         Err(Refusal::LinkCondition)
                     );
                 }

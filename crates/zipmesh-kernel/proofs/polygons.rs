@@ -13,9 +13,9 @@ use crate::maps::{is_rotation, map_properties};
 use crate::oracle::RawMap;
 use std::collections::{BTreeMap, HashMap};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::invariants::Counts;
-use zipmesh::{BuildError, Map, Vert};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::invariants::Counts;
+use zipmesh_kernel::{BuildError, Map, Vert};
 
 pub const MAX_VERTICES: usize = 4;
 pub const MAX_FACES: usize = 3;

@@ -5,7 +5,7 @@
 
 use crate::choice::Choice;
 use std::collections::BTreeMap;
-use zipmesh::{Dart, Map, RawError};
+use zipmesh_kernel::{Dart, Map, RawError};
 
 /// A map as its raw data: darts `0..next.len()`, twin `d ^ 1`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]

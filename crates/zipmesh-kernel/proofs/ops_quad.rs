@@ -32,17 +32,17 @@
 use crate::choice::Exhaustive;
 use crate::oracle::RawMap;
 use std::collections::BTreeMap;
-use zipmesh::invariants::canonical::CanonicalCode;
-use zipmesh::ops::quad::{QuadRecord, Rotation};
-use zipmesh::ops::Refusal;
-use zipmesh::{Dart, Map, Vert};
+use zipmesh_kernel::invariants::canonical::CanonicalCode;
+use zipmesh_kernel::ops::quad::{QuadRecord, Rotation};
+use zipmesh_kernel::ops::Refusal;
+use zipmesh_kernel::{Dart, Map, Vert};
 
 /// The exhaustive bound on edges for single operators, and for two-operator sequences.
 const MAX_EDGES: usize = 4;
 const SEQ_EDGES: usize = 3;
 
 /// One operator with its arguments (the library's own value type).
-pub use zipmesh::ops::quad::QuadOp as Op;
+pub use zipmesh_kernel::ops::quad::QuadOp as Op;
 
 /// Every operator at every argument on a map whose darts are `0..n`.
 pub fn all_ops(m: &Map) -> Vec<Op> {
@@ -254,7 +254,7 @@ fn check_applied(before: &Map, after: &Map, op: Op, rec: &QuadRecord) {
 
 /// Loops plus surplus parallel edges: operators neither create nor remove any.
 fn defects(m: &Map) -> usize {
-    zipmesh::invariants::non_simple_edges(m)
+    zipmesh_kernel::invariants::non_simple_edges(m)
 }
 
 /// The inverse operator, as an ordinary operator on the result, is allowed and gives back
@@ -438,10 +438,10 @@ fn every_sequence_of_up_to_three_operators() {
 #[test]
 fn every_sequence_of_two_operators_from_small_quad_meshes() {
     let seeds = [
-        ("grid 2x1", zipmesh::gen::grid(2, 1).map),
-        ("grid 2x2", zipmesh::gen::grid(2, 2).map),
-        ("cube 1", zipmesh::gen::cube(1).map),
-        ("torus 3x3", zipmesh::gen::torus_grid(3, 3).map),
+        ("grid 2x1", zipmesh_kernel::gen::grid(2, 1).map),
+        ("grid 2x2", zipmesh_kernel::gen::grid(2, 2).map),
+        ("cube 1", zipmesh_kernel::gen::cube(1).map),
+        ("torus 3x3", zipmesh_kernel::gen::torus_grid(3, 3).map),
     ];
     let mut all: Vec<Tally> = (0..2).map(|_| Tally::default()).collect();
     for (name, m) in &seeds {

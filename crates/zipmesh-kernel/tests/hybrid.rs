@@ -4,9 +4,9 @@
 
 use proptest::prelude::*;
 use std::collections::BTreeMap;
-use zipmesh::hybrid::{self, collide, Collision, Move};
-use zipmesh::ops::Refusal;
-use zipmesh::{gen, is_isomorphic, Dart, Map, Mesh, Vert};
+use zipmesh_kernel::hybrid::{self, collide, Collision, Move};
+use zipmesh_kernel::ops::Refusal;
+use zipmesh_kernel::{gen, is_isomorphic, Dart, Map, Mesh, Vert};
 
 fn cases(n: u32) -> ProptestConfig {
     ProptestConfig {
@@ -249,7 +249,7 @@ fn collide_by_walking(seed: u64) -> Option<(Map, Vec<Dart>, [usize; 2], Collisio
     let (mesh, tips) = gen::quad_dominant(9, 9, 2, seed);
     let mut m = mesh.map;
     let mut tips = tips;
-    let mut rng = zipmesh::rng::Rng::new(seed);
+    let mut rng = zipmesh_kernel::rng::Rng::new(seed);
     for _ in 0..600 {
         for i in 0..tips.len() {
             for j in i + 1..tips.len() {
@@ -292,7 +292,10 @@ fn collisions() {
             continue;
         };
         assert_eq!(m.check(), Ok(()));
-        assert_eq!(zipmesh::ops::VertexChanges::removed_vertex(&rec), removed);
+        assert_eq!(
+            zipmesh_kernel::ops::VertexChanges::removed_vertex(&rec),
+            removed
+        );
         let rest: Vec<Dart> = others.iter().map(|&d| rec.follow(d)).collect();
         let ea = effective(&m, &rest);
         let mut got: Vec<(Vert, i64)> = ea
