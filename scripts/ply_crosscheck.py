@@ -1,7 +1,7 @@
 """Cross-checks zipmesh's PLY against an independent reader and writer (plyfile).
 
 Run: python3 -m venv /tmp/venv && /tmp/venv/bin/pip install plyfile numpy &&
-cargo build --release --features cli && /tmp/venv/bin/python scripts/ply_crosscheck.py
+cargo build --release -p zipmesh-cli && /tmp/venv/bin/python scripts/ply_crosscheck.py
 
 plyfile reads what zipmesh writes; zipmesh reads what plyfile writes (binary big- and
 little-endian and ASCII, float64 coordinates among extra properties, ushort corner indices

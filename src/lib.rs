@@ -30,7 +30,6 @@
 //!   `TriMesh`: the same distances, 2 to 5 times faster than the built-in grid for vertices
 //!   moved off the surface.
 //! * `render`: [`render`], pictures of meshes (SVG, and PNG through resvg).
-//! * `cli`: the `zipmesh` command-line tool (includes `campaign`, `parallel` and `render`).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
 #![no_std]
 #![forbid(unsafe_code)]

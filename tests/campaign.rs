@@ -104,7 +104,6 @@ fn broken_operator_is_caught_and_shrunk_to_a_small_replayable_mesh() {
     assert!(broken.check(&replay).is_fail());
     assert!(failure.replay.contains(path.to_str().unwrap()));
     assert!(failure.replay.contains("--property broken-collapse-undo"));
-    #[cfg(feature = "cli")]
     {
         // The JSON form parses and carries the same failure.
         let v: serde_json::Value = serde_json::from_str(&report.to_json(true)).unwrap();

@@ -3,6 +3,8 @@
 
 mod common;
 
+use common::{RAW_DISTANCE, RELAXED_DISTANCE};
+
 use glam::DVec3;
 use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions};
 use zipmesh::invariants::{irregular_vertices, MeshKind};
@@ -116,12 +118,6 @@ fn relaxed(
     }
 }
 
-/// Relaxed zips put every output vertex on the input surface (to rounding: this many
-/// diagonals; measured at most 5e-16).
-const RELAXED_DISTANCE: f64 = 1e-9;
-/// The raw placement (`zip --no-relax`) keeps every output vertex within this fraction of
-/// the diagonal of the input surface (measured at most 0.0112, on fandisk).
-const RAW_DISTANCE: f64 = 0.02;
 /// A relaxed zip adds at most this many folded quads (measured: 1, in 3 of the 44 zips on
 /// amo_quad, none elsewhere), and no quad with a negative scaled Jacobian.
 const RELAXED_FOLDS: usize = 1;
@@ -264,46 +260,4 @@ fn measure_cause() {
             read_unplaced.0, read_unplaced.1, read_placed.0, read_placed.1
         );
     }
-}
-
-/// `zipmesh zip` relaxes by default and reports the quality of input and output; with
-/// `--no-relax` the raw placement (on Spot, 15 to 2 by LC: 2 folded quads, 8e-4 of the
-/// diagonal off the surface; relaxed: none, and on the surface).
-#[cfg(feature = "cli")]
-#[test]
-fn zip_relaxes_by_default_and_reports_quality() {
-    use common::cli::{s, stdout, temp_dir, zipmesh};
-    let dir = temp_dir("zip-geometry");
-    let input = common::shared("quad/spot_quadrangulated.obj");
-    let run = |extra: &[&str]| {
-        let out = dir.join("moved.obj");
-        let mut args = vec![
-            "zip",
-            s(&input),
-            "--from",
-            "15",
-            "--to",
-            "2",
-            "--move",
-            "LC",
-        ];
-        args.extend(["-o", s(&out), "--json"]);
-        args.extend(extra);
-        let o = zipmesh(&args);
-        assert!(o.status.success(), "{o:?}");
-        serde_json::from_str::<serde_json::Value>(&stdout(&o)).unwrap()
-    };
-    let relaxed = run(&[]);
-    let q = &relaxed["quality"];
-    assert!(relaxed["relax"]["moves"].as_u64().unwrap() > 0);
-    assert_eq!(q["input"]["folded_quads"], 0);
-    assert_eq!(q["output"]["folded_quads"], 0);
-    assert_eq!(q["output"]["negative_scaled_jacobian"], 0);
-    assert!(q["output"]["distance"]["max"].as_f64().unwrap() < RELAXED_DISTANCE);
-    let raw = run(&["--no-relax"]);
-    let q = &raw["quality"];
-    assert!(raw["relax"].is_null());
-    assert_eq!(q["output"]["folded_quads"], 2);
-    let far = q["output"]["distance"]["max"].as_f64().unwrap();
-    assert!(far > RELAXED_DISTANCE && far < RAW_DISTANCE, "{far}");
 }

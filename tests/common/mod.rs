@@ -1,9 +1,6 @@
 //! Fixtures and checks shared by the Q-zip tests.
 #![allow(dead_code)]
 
-#[cfg(feature = "cli")]
-pub mod cli;
-#[cfg(feature = "render")]
 pub mod svg;
 pub mod tri;
 pub mod tri_sweep;
@@ -12,6 +9,13 @@ use zipmesh::invariants::{irregular_valences, irregular_vertices, MeshKind};
 use zipmesh::ops::quad;
 use zipmesh::qzip::{sketch, verify_edit, Path, Qzip, QzipError, SketchOptions, Tag, ZipReport};
 use zipmesh::{gen, Map, Mesh, Vert};
+
+/// Relaxed zips put every output vertex on the input surface (to rounding: this many
+/// diagonals; measured at most 5e-16).
+pub const RELAXED_DISTANCE: f64 = 1e-9;
+/// The raw placement (`zip --no-relax`) keeps every output vertex within this fraction of
+/// the diagonal of the input surface (measured at most 0.0112, on fandisk).
+pub const RAW_DISTANCE: f64 = 0.02;
 
 /// Catmull-Clark of an icosahedron, `levels` times: 12 v5s and 20 v3s, isolated
 /// (2^(levels-1) edges apart), everything else regular.
@@ -82,9 +86,7 @@ pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), Q
 
 /// A mesh of `tests/data`, which must exist.
 pub fn shared(rel: &str) -> std::path::PathBuf {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(rel);
+    let p = repository().join("tests/data").join(rel);
     assert!(p.is_file(), "missing shared test mesh {}", p.display());
     p
 }
@@ -93,7 +95,7 @@ pub fn shared(rel: &str) -> std::path::PathBuf {
 /// singularities where the cage had non-quads or irregular vertices), with `pairs` quads
 /// re-split into triangle pairs walked apart (`gen::with_triangle_pairs`).
 pub fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/poly");
+    let dir = repository().join("tests/data/poly");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -112,4 +114,14 @@ pub fn cages(pairs: usize, seed: u64) -> Vec<(String, Mesh)> {
             (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
         })
         .collect()
+}
+
+/// The repository's root (where `tests/data/` is), from the root crate's tests or another
+/// crate's that include this module.
+pub fn repository() -> std::path::PathBuf {
+    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors()
+        .find(|p| p.join("tests/data").is_dir())
+        .unwrap_or(here)
+        .to_path_buf()
 }

@@ -2,12 +2,13 @@
 //! on the written mesh, the printed undo restoring the input up to isomorphism
 //! (`invariants::canonical`), untouched vertices keeping their positions bit for bit, and
 //! exit 2 with no output file on bad input.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, temp_dir, zipmesh};
 use glam::DVec3;
+use run::{s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Output;

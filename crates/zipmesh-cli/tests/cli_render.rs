@@ -1,13 +1,14 @@
 //! `zipmesh render`: the SVG's balls match the library's scene, PNG output has the asked
 //! size, paths from `zip --json` / `optimize --json`-shaped reports are drawn, and bad input
 //! (sizes, views, names, path entries) exits 2 with no OUT (an existing OUT unchanged).
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, stdout, temp_dir, zipmesh};
 use common::shared;
 use common::svg::{assert_xmlish, circles, elements};
+use run::{s, stderr, stdout, temp_dir, zipmesh};
 use serde_json::{json, Value};
 use std::fs;
 use std::path::{Path, PathBuf};

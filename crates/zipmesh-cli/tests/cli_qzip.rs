@@ -1,18 +1,18 @@
 //! `zipmesh moves` and `zipmesh zip`: JSON reports checked against the library, the printed
 //! undo restoring the input, and exit 2 with no output file on bad input.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{temp_dir, zipmesh};
+use run::{temp_dir, zipmesh};
 use serde_json::Value;
-use std::path::Path;
 use std::process::Output;
 use zipmesh::qzip::{moves, sketch, SketchOptions, Tag};
 use zipmesh::{io, is_isomorphic, Vert};
 
 fn spot() -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/spot_quadrangulated.obj");
+    let p = run::root().join("tests/data/quad/spot_quadrangulated.obj");
     p.to_str().unwrap().to_string()
 }
 
@@ -140,9 +140,8 @@ fn bad_input_exits_2_without_output() {
     let dir = temp_dir("qzip-bad");
     let out = dir.join("out.obj");
     let o = out.to_str().unwrap();
-    let torus = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/tri/torus.obj");
-    let helmet =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/osd_catmark_helmet.obj");
+    let torus = run::root().join("tests/data/tri/torus.obj");
+    let helmet = run::root().join("tests/data/quad/osd_catmark_helmet.obj");
     let cases: Vec<(Vec<String>, &str)> = vec![
         (
             vec!["--from".into(), FROM.into(), "--to".into(), "16".into()],
@@ -208,7 +207,7 @@ fn bad_input_exits_2_without_output() {
 /// says so; the exit status is 0 and OUT is written (the edit itself is fine).
 #[test]
 fn zip_without_a_reverse_run_gives_undo_null() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+    let file = run::root()
         .join("tests/data/quad/osd_catmark_toroidal_tet.obj")
         .to_str()
         .unwrap()
@@ -274,7 +273,7 @@ fn zip_help_documents_a_null_undo() {
 fn moves_lists_the_nearest_partners_with_their_movements() {
     use zipmesh::qzip::{moves, sketch, SketchOptions};
     let file = common::shared("quad/spot_quadrangulated.obj");
-    let o = common::cli::zipmesh(&[
+    let o = run::zipmesh(&[
         "moves",
         file.to_str().unwrap(),
         "--from",
@@ -283,7 +282,7 @@ fn moves_lists_the_nearest_partners_with_their_movements() {
         "4",
         "--json",
     ]);
-    assert!(o.status.success(), "{}", common::cli::stderr(&o));
+    assert!(o.status.success(), "{}", run::stderr(&o));
     let rows: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let rows = rows.as_array().unwrap();
     assert_eq!(rows.len(), 4);
@@ -312,6 +311,50 @@ fn moves_lists_the_nearest_partners_with_their_movements() {
         assert_eq!(got, want, "{r}");
     }
     // Without --to and --partners nothing is moved.
-    let o = common::cli::zipmesh(&["moves", file.to_str().unwrap(), "--from", "15"]);
+    let o = run::zipmesh(&["moves", file.to_str().unwrap(), "--from", "15"]);
     assert_eq!(o.status.code(), Some(2));
+}
+
+/// `zipmesh zip` relaxes by default and reports the quality of input and output; with
+/// `--no-relax` the raw placement (on Spot, 15 to 2 by LC: 2 folded quads, 8e-4 of the
+/// diagonal off the surface; relaxed: none, and on the surface).
+#[test]
+fn zip_relaxes_by_default_and_reports_quality() {
+    use run::{s, stdout, temp_dir, zipmesh};
+    let dir = temp_dir("zip-geometry");
+    let input = common::shared("quad/spot_quadrangulated.obj");
+    let run = |extra: &[&str]| {
+        let out = dir.join("moved.obj");
+        let mut args = vec![
+            "zip",
+            s(&input),
+            "--from",
+            "15",
+            "--to",
+            "2",
+            "--move",
+            "LC",
+        ];
+        args.extend(["-o", s(&out), "--json"]);
+        args.extend(extra);
+        let o = zipmesh(&args);
+        assert!(o.status.success(), "{o:?}");
+        serde_json::from_str::<serde_json::Value>(&stdout(&o)).unwrap()
+    };
+    let relaxed = run(&[]);
+    let q = &relaxed["quality"];
+    assert!(relaxed["relax"]["moves"].as_u64().unwrap() > 0);
+    assert_eq!(q["input"]["folded_quads"], 0);
+    assert_eq!(q["output"]["folded_quads"], 0);
+    assert_eq!(q["output"]["negative_scaled_jacobian"], 0);
+    assert!(q["output"]["distance"]["max"].as_f64().unwrap() < common::RELAXED_DISTANCE);
+    let raw = run(&["--no-relax"]);
+    let q = &raw["quality"];
+    assert!(raw["relax"].is_null());
+    assert_eq!(q["output"]["folded_quads"], 2);
+    let far = q["output"]["distance"]["max"].as_f64().unwrap();
+    assert!(
+        far > common::RELAXED_DISTANCE && far < common::RAW_DISTANCE,
+        "{far}"
+    );
 }

@@ -2,11 +2,12 @@
 //! each machine and `zipmesh check --merge A.json B.json ...` give the table, the JSON and
 //! the exit status of one unsharded run; reports of different campaigns, duplicate and
 //! missing shards are refused with exit status 2.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, stdout, temp_dir, zipmesh};
+use run::{s, stderr, stdout, temp_dir, zipmesh};
 use serde_json::Value;
 use std::fs;
 use std::path::{Path, PathBuf};

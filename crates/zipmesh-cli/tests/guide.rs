@@ -7,7 +7,9 @@
 //! except `...`, which stands for lines the guide leaves out (timings, say). The commands
 //! run in order in one fresh folder where `tests/` is the repository's, so the guide's paths
 //! (`tests/data/...`) work and its outputs land in the folder.
-#![cfg(all(feature = "cli", unix))]
+#![cfg(unix)]
+
+mod run;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -89,7 +91,7 @@ fn workdir() -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("guide");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let tests = run::root().join("tests");
     std::os::unix::fs::symlink(tests, dir.join("tests")).unwrap();
     dir
 }
@@ -106,7 +108,7 @@ fn shows(line: &str, shown: &str) -> bool {
 
 #[test]
 fn every_command_of_the_guide_runs_as_written() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide.md");
+    let path = run::root().join("docs/guide.md");
     let guide = std::fs::read_to_string(&path).expect("docs/guide.md");
     let steps = steps(&guide);
     assert!(steps.len() >= 10, "the guide has {} commands", steps.len());

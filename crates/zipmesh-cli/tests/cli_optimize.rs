@@ -1,11 +1,12 @@
 //! `zipmesh optimize`: the JSON counts equal a recount of OUT and its rows add up (kept
 //! chains included), the same seed writes the same file, and bad input exits 2 without OUT.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, temp_dir, zipmesh};
 use common::shared;
+use run::{s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::fs;
 use zipmesh::optimize::SingularityCounts;
@@ -90,8 +91,7 @@ fn rows_add_up(batches: &[Value]) {
 #[test]
 fn kept_chains_are_reported_and_add_up() {
     let dir = temp_dir("optimize-chains");
-    let inp =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/cubespikes.obj");
+    let inp = run::root().join("tests/data/quad/cubespikes.obj");
     let out = dir.join("out.obj");
     let args = ["optimize", s(&inp), "-o", s(&out), "--json", "--paths"];
     let o = zipmesh(&[&args[..], &["--batches", "40"]].concat());

@@ -31,7 +31,7 @@ use zipmesh::quality::{Reference, Summary};
 use zipmesh::{BuildReport, Mesh};
 
 /// The mesh `zipmesh stats` reads when no file is given (Spot's control mesh, CC0).
-const DEFAULT_MESH: &str = include_str!("../../../data/spot_control_mesh.obj");
+const DEFAULT_MESH: &str = include_str!("../data/spot_control_mesh.obj");
 const DEFAULT_NAME: &str = "spot_control_mesh.obj (built in)";
 
 #[derive(Parser)]

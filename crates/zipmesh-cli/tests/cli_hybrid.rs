@@ -1,10 +1,11 @@
 //! `zipmesh tri-walk`: the JSON report checked against the library, the printed undo
 //! restoring the input up to isomorphism, and exit 2 with no output file on bad input.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, temp_dir, zipmesh};
+use run::{s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Output;

@@ -1,12 +1,13 @@
 //! The `zipmesh` binary: JSON stats against the library, hashes, `iso` exit codes, and
 //! errors for bad files and bad usage.
-#![cfg(feature = "cli")]
 
+#[path = "../../../tests/common/mod.rs"]
 mod common;
+mod run;
 
-use common::cli::{s, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
 use common::shared;
 use glam::DVec3;
+use run::{s, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
 use serde_json::Value;
 use std::fs;
 use std::path::Path;
@@ -213,7 +214,7 @@ fn stats_without_a_file_reads_the_shipped_mesh_from_any_directory() {
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
     let json: Value = serde_json::from_str(&stdout(&out)).unwrap();
-    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/spot_control_mesh.obj");
+    let shipped = run::root().join("crates/zipmesh-cli/data/spot_control_mesh.obj");
     let (mesh, _) = io::read_mesh(shipped).unwrap();
     assert_stats_match(&json, &mesh, 0);
 
