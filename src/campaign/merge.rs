@@ -4,7 +4,7 @@
 //! `zipmesh check --shard i/n --json`); [`merge`] sums the rows and keeps, for each
 //! property, the failure of the smallest position, which is the failure one unsharded run
 //! reports and shrinks (shrinking depends on the case and the property only). Reports of
-//! different campaigns ([`Campaign`], the seed, the property list, the shard count) or an
+//! different campaigns ([`Campaign`](super::Campaign), the seed, the property list, the shard count) or an
 //! incomplete set of shards are refused with a [`MergeError`].
 
 use super::report::{Failure, Report, Row};
@@ -15,30 +15,6 @@ use std::collections::BTreeMap;
 use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
-
-/// What a campaign's results depend on besides its seed and its properties: two shard
-/// reports merge only when these are equal.
-///
-/// ```
-/// use zipmesh::campaign::{self, Config};
-/// let r = campaign::run(&Config { cases: 3, max_faces: 100, ..Config::default() }, &campaign::kernel());
-/// assert_eq!((r.campaign.cases, r.campaign.max_faces), (3, 100));
-/// assert!(r.campaign.inputs.is_empty()); // generated cases
-/// ```
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Campaign {
-    /// The positions before sharding: generated cases, or given cases.
-    pub cases: u64,
-    /// The face budget of generated cases.
-    pub max_faces: usize,
-    /// The given cases, one label each (a file name; `generated case I` for a generated case
-    /// given by index), with ` --focus V` when the case has a focus; empty when the campaign
-    /// generates its cases.
-    pub inputs: Vec<String>,
-    /// Other settings the properties depend on ([`Config::settings`](super::Config::settings);
-    /// `zipmesh check` records `max-distance` when it is not the default).
-    pub settings: BTreeMap<String, String>,
-}
 
 /// Why shard reports could not be merged. Reports are numbered from 0 in the order given.
 ///

@@ -66,7 +66,7 @@ mod tri_edit;
 
 pub use budget::CheckCounter;
 pub use case::{Case, Kind, Origin};
-pub use merge::{merge, Campaign, MergeError};
+pub use merge::{merge, MergeError};
 pub use optimize::{
     check_optimize_triangles, optimize_property, optimize_triangles_property, OPTIMIZE_MAX_FACES,
     TRI_OPTIMIZE_MAX_FACES,
@@ -74,8 +74,9 @@ pub use optimize::{
 pub use property::{
     builtin, builtin_with, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property,
 };
-pub use qzip::{qzip_properties, PairChoice};
-pub use report::{Failure, Report, Row};
+pub use qzip::PairChoice;
+pub use qzip_hybrid::qzip_properties;
+pub use report::{Campaign, Failure, Report, Row};
 pub use shard::{Shard, ShardError};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
 pub use tri_edit::tri_edit_properties;

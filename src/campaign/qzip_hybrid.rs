@@ -5,12 +5,11 @@
 //! vertices are those of the input.
 
 use std::borrow::Cow;
-use std::format;
-use std::string::String;
+use std::string::ToString;
 use std::vec::Vec;
 
-use super::qzip::{grid_on, homotopy_on, reversal_on, Subject};
-use super::{Case, Outcome, PairChoice};
+use super::qzip::{grid_on, homotopy_on, quad_properties, reversal_on, Subject};
+use super::{Case, Outcome, PairChoice, Property};
 use crate::qzip::{self, SketchOptions};
 use crate::{gen, hybrid, Map};
 
@@ -55,46 +54,54 @@ impl<'c> Subject<'c> {
     }
 }
 
-/// The triangles of `map`, each with its sorted corner valences.
-fn corner_valences(map: &Map) -> Vec<(crate::Face, [usize; 3])> {
-    hybrid::triangles(map)
-        .into_iter()
-        .map(|f| {
-            let mut v = [0; 3];
-            for (x, d) in v.iter_mut().zip(map.face_darts(f)) {
-                *x = map.valence(map.origin(d));
-            }
-            v.sort_unstable();
-            (f, v)
-        })
-        .collect()
-}
-
-/// Whether every triangle of `before` is still a triangle of `after` (same face handle)
-/// with the same corner valences, and there are no others.
-pub(super) fn triangles_kept(before: &Map, after: &Map) -> Result<(), String> {
-    let (b, a) = (corner_valences(before), corner_valences(after));
-    if a == b {
-        return Ok(());
-    }
-    // Only the triangles that differ: a real mesh has dozens that do not.
-    let changed: Vec<String> = b
-        .iter()
-        .filter(|t| !a.contains(t))
-        .map(|&(f, v)| match a.iter().find(|&&(g, _)| g == f) {
-            Some((_, w)) => format!("{f:?} {v:?} -> {w:?}"),
-            None => format!("{f:?} {v:?} -> gone"),
-        })
-        .chain(
-            a.iter()
-                .filter(|&&(f, _)| !b.iter().any(|&(g, _)| g == f))
-                .map(|(f, w)| format!("{f:?} new {w:?}")),
-        )
-        .collect();
-    Err(format!(
-        "the triangles changed (corner valences): {}",
-        changed.join(", ")
-    ))
+/// The Q-zip properties with this choice of pairs: `qzip-grid` (every movement done keeps
+/// a valid pure-quad map with the same Euler characteristic, boundary loops and irregular
+/// valences, moves the pair's valences, and undoes exactly; a refusal changes nothing),
+/// `qzip-reversal` (the reverse run found restores the original up to isomorphism; a
+/// movement with no reverse run found is counted in [`Row::unchecked`](super::Row::unchecked),
+/// not failed),
+/// `qzip-homotopy` (paths one swept quad apart give the same maps, labels matched by
+/// [`start_turn`](crate::qzip::start_turn)), `qzip-four-moves` (in a regular region the movements done are pairwise
+/// different); then the first three again on quad-dominant meshes (Sec. 3.2):
+/// `qzip-hybrid-grid`, `qzip-hybrid-reversal`, `qzip-hybrid-homotopy`. These run on a case of
+/// triangles and quads as it is, and on a pure-quad case with two triangle pairs inserted
+/// ([`gen::with_triangle_pairs`](crate::gen::with_triangle_pairs)); the paths wind around the
+/// triangles ([`avoid_triangles`](crate::qzip::avoid_triangles)); a movement done must
+/// also keep every triangle (face handle and corner valences). Cases with other faces, or
+/// whose triangles leave no pair of singularities a path can join, are skipped (the
+/// `skipped` column); a swept path that comes near a triangle is not compared and is counted
+/// in `qzip-hybrid-homotopy`'s `unchecked` column.
+///
+/// ```
+/// use zipmesh::campaign::{qzip_properties, Case, PairChoice};
+/// let case = Case::from_mesh(zipmesh::gen::subdivided_icosahedron(2), 0, 0, "ico");
+/// let props = qzip_properties(PairChoice { max_distance: 4, per_case: Some(2) });
+/// assert!(props[0].check(&case).is_pass()); // qzip-grid
+/// for p in &props {
+///     assert!(!p.check(&case).is_fail(), "{}", p.name());
+/// }
+/// ```
+pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
+    let about = |s: &str| s.to_string();
+    let mut all = quad_properties(choice);
+    all.extend([
+        Property::new(
+            "qzip-hybrid-grid",
+            about("on a quad-dominant mesh (triangle pairs inserted into a quad case), a Q-zip winding around the triangles keeps the grid and every triangle (face, corner valences) and undoes exactly"),
+            move |c| grid(c, choice)
+        ),
+        Property::new(
+            "qzip-hybrid-reversal",
+            about("on a quad-dominant mesh, the reverse Q-zip found restores the original up to isomorphism"),
+            move |c| reversal(c, choice)
+        ),
+        Property::new(
+            "qzip-hybrid-homotopy",
+            about("on a quad-dominant mesh, paths one swept quad apart (both away from the triangles) give the same maps"),
+            move |c| homotopy(c, choice)
+        ),
+    ]);
+    all
 }
 
 /// `qzip-hybrid-grid`.
@@ -114,7 +121,7 @@ pub(super) fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
 
 #[cfg(test)]
 mod tests {
-    use super::triangles_kept;
+    use super::super::qzip::triangles_kept;
     use crate::Map;
 
     /// The message names only the triangle whose corner valences changed.

@@ -1,14 +1,38 @@
 //! The campaign's report: one row per property, the failures, as a table or as JSON.
 
-use super::merge::Campaign;
 use super::shrink::Shrunk;
 use super::Shard;
 use core::time::Duration;
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::format;
 use std::path::{Path, PathBuf};
 use std::string::{String, ToString};
 use std::vec::Vec;
+
+/// What a campaign's results depend on besides its seed and its properties: two shard
+/// reports merge only when these are equal.
+///
+/// ```
+/// use zipmesh::campaign::{self, Config};
+/// let r = campaign::run(&Config { cases: 3, max_faces: 100, ..Config::default() }, &campaign::kernel());
+/// assert_eq!((r.campaign.cases, r.campaign.max_faces), (3, 100));
+/// assert!(r.campaign.inputs.is_empty()); // generated cases
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Campaign {
+    /// The positions before sharding: generated cases, or given cases.
+    pub cases: u64,
+    /// The face budget of generated cases.
+    pub max_faces: usize,
+    /// The given cases, one label each (a file name; `generated case I` for a generated case
+    /// given by index), with ` --focus V` when the case has a focus; empty when the campaign
+    /// generates its cases.
+    pub inputs: Vec<String>,
+    /// Other settings the properties depend on ([`Config::settings`](super::Config::settings);
+    /// `zipmesh check` records `max-distance` when it is not the default).
+    pub settings: BTreeMap<String, String>,
+}
 
 /// One property's totals.
 ///

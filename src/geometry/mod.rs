@@ -3,13 +3,13 @@
 //!
 //! The kernel (`map`, `ops`, `qzip`) edits connectivity and places each new vertex by a
 //! rule of the attribute layer; this module moves positions afterwards, on the input
-//! surface ([`crate::optimize::Surface`]), and measures with [`crate::quality`].
+//! surface ([`Surface`]), with the measures of one polygon that `quality` reports
+//! (`quality::{normal, scaled_jacobian, corner_fold, ...}`).
 //! `docs/quality.md` ("Q-zip placement and relaxation") gives the numbers on the shipped
 //! meshes.
 //!
 //! ```
-//! use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions};
-//! use zipmesh::optimize::Surface;
+//! use zipmesh::geometry::{edited_vertices, relax_footprint, RelaxOptions, Surface};
 //! use zipmesh::qzip::{Qzip, Tag};
 //! let input = zipmesh::gen::cube(4);
 //! let mut mesh = input.clone();
@@ -20,7 +20,12 @@
 //! assert!(r.region >= seeds.len());
 //! ```
 
+pub(crate) mod element;
+mod region;
 mod relax;
+mod surface;
 
+pub use region::{relax_region, touched_vertices};
 pub(crate) use relax::relax_footprint_fixed;
 pub use relax::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};
+pub use surface::Surface;

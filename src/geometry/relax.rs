@@ -18,9 +18,9 @@ use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use crate::optimize::Surface;
-use crate::quality::{corner_fold, diagonal_fold, normal};
-use crate::tri_edit::relax_region;
+use super::element::{corner_fold, corners, diagonal_fold, normal};
+use super::region::{relax_region, touched_vertices};
+use crate::geometry::Surface;
 use crate::{Mesh, Vert};
 
 /// How far and how long [`relax_footprint`] works.
@@ -215,7 +215,7 @@ fn faces_of(mesh: &Mesh, v: Vert) -> impl Iterator<Item = Vec<DVec3>> + '_ {
     mesh.map
         .vertex_darts(v)
         .filter_map(|d| mesh.map.face(d))
-        .map(|f| crate::quality::corners(mesh, f))
+        .map(|f| corners(mesh, f))
 }
 
 /// The unit sum of the normals of `v`'s faces: the plane its moves are judged in.
@@ -256,7 +256,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
 }
 
 /// The vertices of `after` an edit of `before` created or moved: live in `after` and dead
-/// in `before`, or with other neighbours ([`crate::tri_edit::touched_vertices`]), or at
+/// in `before`, or with other neighbours ([`touched_vertices`]), or at
 /// another position. The last catches a vertex a collapse removed and a later split made
 /// again in the same slot, with the same neighbours but a new place. The seeds of
 /// [`relax_footprint`].
@@ -272,7 +272,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
 /// assert!(!edited_vertices(&input, &mesh).is_empty());
 /// ```
 pub fn edited_vertices(before: &Mesh, after: &Mesh) -> Vec<Vert> {
-    let mut out = crate::tri_edit::touched_vertices(&before.map, &after.map);
+    let mut out = touched_vertices(&before.map, &after.map);
     let moved = |v: Vert| before.positions.get(v.index()) != after.positions.get(v.index());
     out.extend(after.map.vertices().filter(|&v| moved(v)));
     out.sort_unstable();

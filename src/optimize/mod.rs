@@ -21,6 +21,7 @@ mod marks;
 mod onto;
 pub mod score;
 pub mod smooth;
+mod tri_guard;
 mod tri_lookahead;
 mod tri_mesh;
 mod triangles;
@@ -30,6 +31,7 @@ use alloc::vec::Vec;
 
 use glam::DVec3;
 
+pub use crate::geometry::Surface;
 pub use constraints::{ConstraintError, Constraints};
 pub use defect::{
     at_defect_minimum, defect, ideal_boundary_valence, singularities, vertex_angle, Singularity,
@@ -38,7 +40,7 @@ pub use folds::{folded_quads, is_folded};
 pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
 };
-pub use smooth::{smooth, spring_stiffness, Surface};
+pub use smooth::{smooth, spring_stiffness};
 pub use tri_mesh::{
     optimize_triangles, tri_score, TriBatch, TriCounts, TriOptimizeError, TriOptimizeOptions,
     TriOutcome,

@@ -29,8 +29,9 @@ use core::fmt;
 
 use glam::DVec3;
 
-use super::smooth::Surface;
+use super::tri_guard::{face_normal, fan, folds, region_normal, Budget};
 use super::tri_lookahead::Lookahead;
+use crate::geometry::Surface;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
 use crate::tri_edit::{
     can_cancel_triple, cancel_triple_with, move_far_pair_with, move_pair_with, Direction, FarStart,
@@ -186,18 +187,6 @@ impl fmt::Display for TriOptimizeError {
 
 #[cfg(feature = "std")]
 impl std::error::Error for TriOptimizeError {}
-
-/// The face counts an edit may leave.
-pub(super) struct Budget {
-    min: usize,
-    max: usize,
-}
-
-impl Budget {
-    pub(super) fn holds(&self, map: &Map) -> bool {
-        (self.min..=self.max).contains(&map.num_faces())
-    }
-}
 
 /// What interior vertices cost: how many are irregular, and the sum of `(valence - 6)^2`.
 #[derive(Clone, Copy, Default, PartialEq, Eq, Debug)]
@@ -411,14 +400,6 @@ fn flip_gain(map: &Map, vals: &Valences, d: Dart) -> Option<bool> {
     Some(improves([a, b, c, e], after))
 }
 
-/// The unit normal of the triangle of `d`, `None` if degenerate.
-fn face_normal(mesh: &Mesh, d: Dart) -> Option<DVec3> {
-    let m = &mesh.map;
-    let p = |v: Vert| mesh.positions[v.index()];
-    let (a, b, c) = (p(m.origin(d)), p(m.dest(d)), p(m.dest(m.next(d))));
-    (b - a).cross(c - a).try_normalize()
-}
-
 /// Whether the two triangles of `d` turned over (or became degenerate) compared with `old`.
 fn turned_over(mesh: &Mesh, d: Dart, old: DVec3) -> bool {
     [d, d.twin()]
@@ -524,33 +505,6 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
     }
     debug_assert!(vals.is_current(&mesh.map), "a stale valence");
     kept
-}
-
-/// The summed unit normals of the triangles round `verts` (a reference direction for
-/// [`folds`]).
-pub(super) fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
-    verts
-        .iter()
-        .filter(|&&v| mesh.map.is_live_vertex(v))
-        .flat_map(|&v| fan(&mesh.map, v))
-        .filter_map(|x| face_normal(mesh, x))
-        .sum::<DVec3>()
-        .normalize_or_zero()
-}
-
-/// Whether a triangle round `verts` is degenerate or faces away from `reference` (more
-/// than about 70 degrees off): the edit folded the surface there.
-pub(super) fn folds(mesh: &Mesh, verts: &[Vert], reference: DVec3) -> bool {
-    verts
-        .iter()
-        .filter(|&&v| mesh.map.is_live_vertex(v))
-        .flat_map(|&v| fan(&mesh.map, v))
-        .any(|x| face_normal(mesh, x).is_none_or(|n| n.dot(reference) < 0.3))
-}
-
-/// The darts leaving `v` that have a face (one per triangle round `v`).
-fn fan(map: &Map, v: Vert) -> impl Iterator<Item = Dart> + '_ {
-    map.vertex_darts(v).filter(move |&x| map.face(x).is_some())
 }
 
 /// Triples `v, a, b` of interior v5/v7s, `a` a neighbour of `v` and `b` a neighbour of `v`

@@ -5,9 +5,9 @@ use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use super::element::{self, Angles};
+use crate::geometry::element::{self, corners, Angles};
 use crate::map::Face;
-use crate::{Mesh, Vert};
+use crate::Mesh;
 
 /// Which of the three fold tests fire for a quad (all `false` for other faces).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -123,32 +123,6 @@ impl FaceQuality {
         }
         q
     }
-}
-
-/// The corners of face `f` of `mesh`, in order; those without a position read as the
-/// origin. Empty for a face that is not live.
-///
-/// ```
-/// use glam::DVec3;
-/// use zipmesh::{gen, quality::corners, Face};
-/// let c = corners(&gen::grid(1, 1), Face::new(0));
-/// assert_eq!(c.len(), 4);
-/// assert!(c.contains(&DVec3::ZERO));
-/// ```
-pub fn corners(mesh: &Mesh, f: Face) -> Vec<DVec3> {
-    if !mesh.map.is_live_face(f) {
-        return Vec::new();
-    }
-    let at = |v: Vert| {
-        mesh.positions
-            .get(v.index())
-            .copied()
-            .unwrap_or(DVec3::ZERO)
-    };
-    mesh.map
-        .face_darts(f)
-        .map(|d| at(mesh.map.origin(d)))
-        .collect()
 }
 
 /// The sum of the unit normals (given by `normal`) of the faces across the edges of face

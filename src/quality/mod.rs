@@ -32,16 +32,15 @@
 //! assert_eq!(s.distance.unwrap().max, 0.0); // still on the plane
 //! ```
 
-mod element;
 mod face;
 mod reference;
 mod summary;
 
-pub use element::{
-    angles, corner_fold, corner_normal, diagonal_fold, edge_ratio, normal, quad_normal,
+pub use crate::geometry::element::{
+    angles, corner_fold, corner_normal, corners, diagonal_fold, edge_ratio, normal, quad_normal,
     scaled_jacobian, Angles,
 };
-pub use face::{corners, measure_faces, neighbour_normals, FaceQuality, Folds};
+pub use face::{measure_faces, neighbour_normals, FaceQuality, Folds};
 pub use reference::{Distances, Reference};
 pub use summary::{FoldCounts, Percentiles, Summary, THIN_TRIANGLE_DEGREES};
 

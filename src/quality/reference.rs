@@ -1,7 +1,7 @@
 //! The distance of a mesh's vertices to a reference surface (the input before an edit).
 //!
 //! Closest points come from parry3d-f64's `TriMesh` with the `parry` feature and from
-//! [`crate::optimize::Surface`] without it: the same distances (to 1e-16 of the diagonal);
+//! [`crate::geometry::Surface`] without it: the same distances (to 1e-16 of the diagonal);
 //! parry's 2 to 5 times faster for vertices moved off the surface, the grid as fast or
 //! faster for vertices on it (docs/quality.md, "Closest points").
 
@@ -30,7 +30,7 @@ pub struct Reference {
     #[cfg(feature = "parry")]
     closest: Option<parry3d_f64::shape::TriMesh>,
     #[cfg(not(feature = "parry"))]
-    closest: crate::optimize::Surface,
+    closest: crate::geometry::Surface,
 }
 
 impl core::fmt::Debug for Reference {
@@ -119,8 +119,8 @@ fn build(triangles: Vec<[DVec3; 3]>) -> Option<parry3d_f64::shape::TriMesh> {
 }
 
 #[cfg(not(feature = "parry"))]
-fn build(triangles: Vec<[DVec3; 3]>) -> crate::optimize::Surface {
-    crate::optimize::Surface::from_triangles(triangles)
+fn build(triangles: Vec<[DVec3; 3]>) -> crate::geometry::Surface {
+    crate::geometry::Surface::from_triangles(triangles)
 }
 
 /// The faces of `mesh` fanned from their first corners, without the triangles that have a

@@ -227,7 +227,7 @@ fn nearest_rank_percentiles() {
 #[test]
 fn reference_distances_are_those_of_the_surface() {
     let mesh = gen::subdivided_icosahedron(2);
-    let (r, s) = (Reference::new(&mesh), crate::optimize::Surface::new(&mesh));
+    let (r, s) = (Reference::new(&mesh), crate::geometry::Surface::new(&mesh));
     let mut rng = crate::rng::Rng::new(3);
     let mut u = || rng.below(2_000_001) as f64 / 1_000_000.0 - 1.0;
     for _ in 0..2_000 {

@@ -20,7 +20,6 @@
 //! keeps the handle; every other vertex keeps its value.
 
 use super::execute::ZipReport;
-use super::preprocess::Preprocessed;
 use crate::map::Map;
 use crate::mesh::{Journal, Rule, VertexAttributes};
 use crate::ops::quad::QuadRecord;
@@ -56,12 +55,6 @@ pub(super) fn place_created<A: VertexAttributes>(
 impl Undo for ZipReport {
     fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
         ZipReport::undo(self, map)
-    }
-}
-
-impl Undo for Preprocessed {
-    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
-        Preprocessed::undo(self, map)
     }
 }
 

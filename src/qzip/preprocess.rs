@@ -234,6 +234,12 @@ fn split(
     Ok(QuadRecord::from(s))
 }
 
+impl crate::ops::Undo for Preprocessed {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        Preprocessed::undo(self, map)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

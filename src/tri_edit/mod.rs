@@ -74,6 +74,7 @@ pub mod relax;
 mod triple;
 mod types;
 
+pub use crate::geometry::{relax_region, touched_vertices};
 pub use apart::{
     can_generate_quadruple_apart, generate_quadruple_apart, generate_quadruple_apart_with,
     quadruple_sides,
@@ -94,10 +95,7 @@ pub use quadruple::{
 pub use record::VertexMove;
 #[cfg(feature = "sparse")]
 pub use relax::relax_global;
-pub use relax::{
-    mean_edge_length, relax_energy, relax_local, relax_region, touched_vertices, RelaxError,
-    Relaxed,
-};
+pub use relax::{mean_edge_length, relax_energy, relax_local, RelaxError, Relaxed};
 pub use triple::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
     cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,

@@ -28,6 +28,7 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod edit;
 #[cfg(feature = "testkit")]
 pub mod gen;
 pub mod hybrid;

@@ -35,6 +35,7 @@
 //! assert_eq!(path.len(), 3);
 //! ```
 
+mod heap;
 mod search;
 mod store;
 mod validate;

@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 
 use hashbrown::HashMap;
 
-use super::search::{AEntry, Entry};
+use super::heap::{AEntry, Entry};
 use crate::{Dart, Vert};
 
 /// What a search knows of one vertex, in 16 bytes (the searches are bound by memory traffic

@@ -10,7 +10,7 @@ use nalgebra_sparse::na::DMatrix;
 use nalgebra_sparse::{CooMatrix, CscMatrix};
 
 use super::{centres, energy, finish, finite, frame, targets, RelaxError, Relaxed, Start, Targets};
-use crate::optimize::Surface;
+use crate::geometry::Surface;
 use crate::{Map, Mesh, Vert};
 
 /// Added to the diagonal of the normal equations: a region free to slide as a whole (a

@@ -949,7 +949,7 @@ fn compare_walks(ma: &Map, wa: &mut Walk, mb: &Map, wb: &mut Walk) -> core::cmp:
 }
 
 /// Whether an isomorphism of the whole maps takes dart `a` of the first to dart `b` of the
-/// second: the breadth-first readings from the two agree (as in [`compare_starts`]) and each
+/// second: the breadth-first readings from the two agree (the walk of [`least_start`]) and each
 /// reads every live dart of its map, so both maps are connected. `true` implies equal
 /// canonical codes; `false` says nothing when an isomorphism exists that moves the anchor.
 /// Dense labels (one slot per dart): the walk reads the whole map when it succeeds.

@@ -8,8 +8,8 @@
 
 use super::attributes::{Blend, Positions, VertexAttributes};
 use super::Mesh;
+use crate::edit::{Refusal, Undo};
 use crate::map::{Map, Vert};
-use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
 use hashbrown::HashSet;
 

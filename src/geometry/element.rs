@@ -7,7 +7,12 @@
 
 use core::f64::consts::PI;
 
+use alloc::vec::Vec;
+
 use glam::DVec3;
+
+use crate::map::Face;
+use crate::{Mesh, Vert};
 
 /// The corner normal `c_i = (p_{i+1} - p_i) x (p_{i-1} - p_i)` of corner `i` (mod the
 /// number of corners); zero for fewer than three corners.
@@ -213,4 +218,30 @@ pub fn edge_ratio(p: &[DVec3]) -> f64 {
     } else {
         f64::INFINITY
     }
+}
+
+/// The corners of face `f` of `mesh`, in order; those without a position read as the
+/// origin. Empty for a face that is not live.
+///
+/// ```
+/// use glam::DVec3;
+/// use zipmesh::{gen, quality::corners, Face};
+/// let c = corners(&gen::grid(1, 1), Face::new(0));
+/// assert_eq!(c.len(), 4);
+/// assert!(c.contains(&DVec3::ZERO));
+/// ```
+pub fn corners(mesh: &Mesh, f: Face) -> Vec<DVec3> {
+    if !mesh.map.is_live_face(f) {
+        return Vec::new();
+    }
+    let at = |v: Vert| {
+        mesh.positions
+            .get(v.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    };
+    mesh.map
+        .face_darts(f)
+        .map(|d| at(mesh.map.origin(d)))
+        .collect()
 }
