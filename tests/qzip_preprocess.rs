@@ -167,3 +167,18 @@ fn a_valence_20000_vertex_is_preprocessed() {
     p.undo(&mut m).unwrap();
     assert!(m == map);
 }
+
+/// A preprocessing's record undoes through the `Undo` trait as through its own method, so
+/// it can sit on one undo stack with the operators' records.
+#[test]
+fn preprocessing_undoes_through_the_undo_trait() {
+    let mut m = hub(9, 3);
+    let before = m.clone();
+    let p = preprocess(&mut m).unwrap();
+    assert!(!p.records().is_empty() && m != before);
+    let stack: Vec<Box<dyn zipmesh::ops::Undo>> = vec![Box::new(p)];
+    for r in stack.iter().rev() {
+        r.undo(&mut m).unwrap();
+    }
+    assert_eq!(m, before);
+}

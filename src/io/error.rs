@@ -551,6 +551,7 @@ impl std::error::Error for MeshFileError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match &self.kind {
             ErrorKind::Io(e) => Some(e),
+            ErrorKind::Topology { error, .. } => Some(error),
             _ => None,
         }
     }

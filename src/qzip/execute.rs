@@ -286,7 +286,14 @@ impl fmt::Display for ZipError {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for ZipError {}
+impl std::error::Error for ZipError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Refused { refusal, .. } | Self::Cleanup { refusal, .. } => Some(refusal),
+            _ => None,
+        }
+    }
+}
 
 /// The dart of the quad collapsed at edge `e: P -> N` that leaves `N` (collapsing at it
 /// merges `N` with the corner next to `P`), and that quad's corner next to `N`.

@@ -350,7 +350,14 @@ impl fmt::Display for PrepareError {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for PrepareError {}
+impl std::error::Error for PrepareError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Carry(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 fn end_error(map: &Map, index: usize, vertex: Vert) -> PrepareError {
     PrepareError::End {

@@ -66,7 +66,14 @@ impl fmt::Display for Broken {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for Broken {}
+impl std::error::Error for Broken {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Invalid(v) => Some(v),
+            _ => None,
+        }
+    }
+}
 
 /// The degrees of the faces that are not quads, sorted.
 fn non_quads(map: &Map) -> alloc::vec::Vec<usize> {

@@ -46,7 +46,16 @@ impl fmt::Display for QzipError {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for QzipError {}
+impl std::error::Error for QzipError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(match self {
+            Self::Sketch(e) => e,
+            Self::Plan(e) => e,
+            Self::Prepare(e) => e,
+            Self::Execute(e) => e,
+        })
+    }
+}
 
 /// Stages 2 to 4 along `path`: all or nothing.
 pub(crate) fn zip_along(map: &mut Map, path: &Path, initial: Tag) -> Result<ZipReport, QzipError> {

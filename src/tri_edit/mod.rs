@@ -154,7 +154,14 @@ impl fmt::Display for TriEditError {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for TriEditError {}
+impl std::error::Error for TriEditError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TriEditError::Refused(r) => Some(r),
+            _ => None,
+        }
+    }
+}
 
 /// Whether `v` is live, interior and of valence `k`.
 pub(crate) fn interior_of_valence(map: &Map, v: Vert, k: usize) -> bool {

@@ -52,3 +52,46 @@ impl AEntry {
         Vert::new(self.0 .0 as u32)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::collections::BinaryHeap;
+    use alloc::vec::Vec;
+
+    /// Dijkstra's heap pops by smallest distance, then smallest vertex; `partial_cmp` agrees
+    /// with `cmp`.
+    #[test]
+    fn dijkstra_entries_pop_smallest_first() {
+        let entries = [Entry(2.5, 1), Entry(0.5, 9), Entry(2.5, 0), Entry(1.0, 3)];
+        for a in &entries {
+            for b in &entries {
+                assert_eq!(a.partial_cmp(b), Some(a.cmp(b)));
+            }
+        }
+        let mut heap: BinaryHeap<Entry> = entries.into_iter().collect();
+        let order: Vec<(f64, u32)> =
+            core::iter::from_fn(|| heap.pop().map(|e| (e.0, e.1))).collect();
+        assert_eq!(order, [(0.5, 9), (1.0, 3), (2.5, 0), (2.5, 1)]);
+    }
+
+    /// An A* entry gives back what it packs, and pops by smallest f, then largest g, then
+    /// smallest vertex.
+    #[test]
+    fn a_star_entries_unpack_and_pop_in_order() {
+        let e = AEntry::new(3.75, 12, Vert::new(40));
+        assert_eq!((e.f(), e.g(), e.vertex()), (3.75, 12, Vert::new(40)));
+        let mut heap: BinaryHeap<AEntry> = [
+            AEntry::new(2.0, 1, Vert::new(5)),
+            AEntry::new(1.0, 0, Vert::new(7)),
+            AEntry::new(2.0, 4, Vert::new(6)),
+            AEntry::new(2.0, 4, Vert::new(2)),
+        ]
+        .into_iter()
+        .collect();
+        let order: Vec<(f64, u32, u32)> = core::iter::from_fn(|| heap.pop())
+            .map(|e| (e.f(), e.g(), e.vertex().index() as u32))
+            .collect();
+        assert_eq!(order, [(1.0, 0, 7), (2.0, 4, 2), (2.0, 4, 6), (2.0, 1, 5)]);
+    }
+}

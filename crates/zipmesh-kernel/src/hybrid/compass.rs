@@ -52,7 +52,14 @@ impl fmt::Display for WalkError {
 }
 
 #[cfg(feature = "std")]
-impl std::error::Error for WalkError {}
+impl std::error::Error for WalkError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            WalkError::BadArguments(r) => Some(r),
+            _ => None,
+        }
+    }
+}
 
 /// A walk's moves, in order, and the triangle's tip dart at the end.
 #[derive(Clone, Debug)]
