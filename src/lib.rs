@@ -53,13 +53,12 @@ pub mod qzip;
 pub mod render;
 pub mod tri_edit;
 
+// The kernel's modules and root items, at the paths they have always had here.
 pub use zipmesh_kernel::{gen, hybrid, invariants, map, mesh, ops, rng};
-
-pub use invariants::canonical::{is_isomorphic, is_isomorphic_mirror};
-pub use map::{
-    BuildError, BuildReport, Compaction, Dart, Edge, Face, Map, RawError, Vert, Violation,
+pub use zipmesh_kernel::{
+    is_isomorphic, is_isomorphic_mirror, BuildError, BuildReport, Compaction, Dart, Edge, Face,
+    Map, Mesh, RawError, Vert, Violation,
 };
-pub use mesh::Mesh;
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]
