@@ -1,4 +1,4 @@
-//! Theorems 5.1 and 5.5 of the irregular-vertex paper by exhaustive retriangulation.
+//! Theorems 5.1 and 5.5 of the triangle paper by exhaustive retriangulation.
 //!
 //! A region `R` of a triangle mesh is given by its boundary cycle `b_0 .. b_(n-1)` and, for
 //! each boundary vertex, the number `t(b_j)` of triangles of `R` at it (the boundary's

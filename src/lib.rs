@@ -31,6 +31,15 @@
 //!   moved off the surface.
 //! * `render`: [`render`], pictures of meshes (SVG, and PNG through resvg).
 //! * `arbitrary`: `arbitrary::Arbitrary` for the fuzzers' input types.
+//!
+//! ## The papers
+//! * The Q-zip paper: *Q-zip: Singularity Editing Primitive for Quad Meshes*, ACM
+//!   Transactions on Graphics (Q-zip, Sec. 2; triangles in quad meshes, Sec. 3.2;
+//!   the batch optimizer, Sec. 4): [`qzip`], [`optimize`].
+//! * The triangle paper: Yuanyuan Li, Eugene Zhang, Yoshihiro Kobayashi, Peter Wonka,
+//!   *Editing Operations for Irregular Vertices in Triangle Meshes*, ACM Transactions on
+//!   Graphics 29(6), 2010 (the semantic edits, Sec. 6-7; relaxation,
+//!   Sec. 8): [`tri_edit`], [`optimize`] on triangle meshes.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -1,5 +1,5 @@
 //! Composite movement of a pair of irregular vertices that need not be adjacent
-//! (`zipmesh::tri_edit::move_far_pair`, irregular-vertex paper Sec. 7.1): a 5-7 pair at
+//! (`zipmesh::tri_edit::move_far_pair`, triangle paper Sec. 7.1): a 5-7 pair at
 //! distance 2 on a triangulated torus, 5-5 pairs of a geodesic sphere; and the general
 //! solution of Sec. 7.1.2's equations.
 

@@ -1,4 +1,4 @@
-//! Semantic triangle edits (`zipmesh::tri_edit`, irregular-vertex paper Sec. 6.2-6.3) on a
+//! Semantic triangle edits (`zipmesh::tri_edit`, triangle paper Sec. 6.2-6.3) on a
 //! regular triangulated torus and on random triangle meshes: valence effects, exact undo,
 //! refusals that leave the map unchanged, the six directions of a 5-7 movement, 5-7 generation, type splits, 5-5-7-7 quadruples.
 

@@ -1,5 +1,5 @@
 //! v7 movement with 5-7 generation and removal, and 5-5-7 / 5-7-7 triple cancellation
-//! (`zipmesh::tri_edit`, irregular-vertex paper Sec. 6.2 and 7.2-7.3): every configuration
+//! (`zipmesh::tri_edit`, triangle paper Sec. 6.2 and 7.2-7.3): every configuration
 //! at a lone v7 of a lattice cone and at the v5 of a geodesic sphere, and random meshes
 //! (refusal equal to the `can_*` with the map unchanged, or the documented effect and exact
 //! undo).

@@ -1,4 +1,4 @@
-//! Semantic editing of irregular vertices in triangle meshes (irregular-vertex paper,
+//! Semantic editing of irregular vertices in triangle meshes (triangle paper,
 //! Sec. 6.2-6.3): operations that move, create and remove v5 and v7 vertices, each built from
 //! the graph operators of [`crate::ops::tri`].
 //!

@@ -1,4 +1,4 @@
-//! Relaxation of the geometry after a connectivity edit (irregular-vertex paper, Sec. 8):
+//! Relaxation of the geometry after a connectivity edit (triangle paper, Sec. 8):
 //! the edits leave triangles with poor aspect ratios, and relaxation moves the vertices of
 //! the edit's neighbourhood along the input surface to even them out. Connectivity never
 //! changes; only the positions of the region's interior vertices do.

@@ -20,6 +20,14 @@
 //! * `std` (default): `std::error::Error` for the error types.
 //! * `testkit`: [`gen`] (test meshes) and [`rng`] (the seeded generator behind them), for
 //!   tests, benchmarks and fuzzers.
+//!
+//! ## The papers
+//! * The Q-zip paper: *Q-zip: Singularity Editing Primitive for Quad Meshes*, ACM
+//!   Transactions on Graphics (quad collapse and vertex split, Sec. 2.2; triangles in quad
+//!   meshes, Sec. 3.2).
+//! * The triangle paper: Yuanyuan Li, Eugene Zhang, Yoshihiro Kobayashi, Peter Wonka,
+//!   *Editing Operations for Irregular Vertices in Triangle Meshes*, ACM Transactions on
+//!   Graphics 29(6), 2010 (edge flip, edge collapse and vertex split, Sec. 6.1).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

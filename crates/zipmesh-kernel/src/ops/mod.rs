@@ -10,7 +10,7 @@
 //!   map has not been changed in between (other records undone in reverse order are fine).
 //! * Handles of elements the operator did not touch stay valid.
 //!
-//! Modules: [`quad`] (Q-zip paper, Sec. 2.2) and [`tri`] (irregular-vertex paper, Sec. 6.1).
+//! Modules: [`quad`] (Q-zip paper, Sec. 2.2) and [`tri`] (triangle paper, Sec. 6.1).
 
 pub use effect::{Effect, EffectMismatch, VertexChanges};
 

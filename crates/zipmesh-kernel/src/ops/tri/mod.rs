@@ -1,4 +1,4 @@
-//! Triangle operators (irregular-vertex paper, Sec. 6.1): edge flip, edge collapse with the
+//! Triangle operators (triangle paper, Sec. 6.1): edge flip, edge collapse with the
 //! link condition, vertex split (the collapse's inverse) and edge split.
 //!
 //! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
