@@ -21,9 +21,7 @@ mod marks;
 mod onto;
 pub mod score;
 pub mod smooth;
-mod tri_guard;
-mod tri_lookahead;
-mod tri_mesh;
+mod tri;
 mod triangles;
 
 use alloc::boxed::Box;
@@ -41,7 +39,7 @@ pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
 };
 pub use smooth::{smooth, spring_stiffness};
-pub use tri_mesh::{
+pub use tri::{
     optimize_triangles, tri_score, TriBatch, TriCounts, TriOptimizeError, TriOptimizeOptions,
     TriOutcome,
 };

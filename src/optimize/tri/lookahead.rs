@@ -15,7 +15,7 @@
 use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
 
-use super::tri_guard::{folds, region_normal, Budget};
+use super::guard::{folds, region_normal, Budget};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::Effect;
 use crate::{Dart, Map, Mesh, Vert};

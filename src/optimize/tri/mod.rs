@@ -1,7 +1,7 @@
 //! Automatic singularity reduction of pure triangle meshes (beyond the paper):
 //! batches of valence-improving edge flips, triple cancellations (Sec. 7.2), 5-7 pair
 //! moves (Sec. 6.2) that bring isolated pairs towards the nearest other irregular vertex,
-//! a two-edit look-ahead ([`super::tri_lookahead`]) and far pair moves (Sec. 7.1.1) of 5-7
+//! a two-edit look-ahead ([`lookahead`]) and far pair moves (Sec. 7.1.1) of 5-7
 //! pairs 2 or 3 edges apart, each batch followed by relaxation of what it touched on the
 //! input surface ([`crate::geometry::relax_footprint`]).
 //! `docs/optimize.md` gives the reading.
@@ -29,8 +29,9 @@ use core::fmt;
 
 use glam::DVec3;
 
-use super::tri_guard::{face_normal, fan, folds, region_normal, Budget};
-use super::tri_lookahead::Lookahead;
+mod guard;
+mod lookahead;
+
 use crate::geometry::Surface;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
 use crate::tri_edit::{
@@ -38,6 +39,8 @@ use crate::tri_edit::{
     Moved, Start,
 };
 use crate::{Dart, Map, Mesh, Vert};
+use guard::{face_normal, fan, folds, region_normal, Budget};
+use lookahead::Lookahead;
 
 /// How a run goes. Start from [`TriOptimizeOptions::default`].
 ///
