@@ -9,7 +9,10 @@ use common::tri::{distance, far_five_seven, irregular};
 use std::collections::BTreeSet;
 use zipmesh::gen::geodesic_sphere;
 use zipmesh::invariants::canonical::canonical_hash;
-use zipmesh::tri_edit::{can_move_far_pair, far_pair_directions, move_far_pair, Moved, Start};
+use zipmesh::tri_edit::{
+    can_move_far_pair, far_pair_directions, far_pair_inverse, far_pair_start, move_far_pair, Moved,
+    Start,
+};
 use zipmesh::{Map, Vert};
 
 /// Every pipeline start at `s` (every dart, configuration and reading) towards `o`: a
@@ -88,6 +91,37 @@ fn far_five_seven_pair_moves_in_six_directions() {
         })
         .collect();
     assert_eq!(named, from5);
+}
+
+/// The undo of a composite move, found by `far_pair_inverse`: for every direction of the
+/// far 5-7 pair, one and two steps, the direction it names, taken as many steps from the
+/// moved pair, gives the input back (up to isomorphism); against another map it names none.
+#[test]
+fn far_pair_inverse_names_a_direction_that_undoes_the_move() {
+    let (map, p, q) = far_five_seven();
+    let mut found = 0;
+    for dir in 0..6 {
+        for steps in 1..=2u32 {
+            let mut m = map.clone();
+            let (mut s, mut o) = (p, q);
+            for _ in 0..steps {
+                let (d, start, moved) = far_pair_start(&m, s, o, dir, 64).unwrap();
+                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64).unwrap().pair();
+            }
+            let Some(back) = far_pair_inverse(&m, &map, (s, o), steps, 64) else {
+                continue;
+            };
+            found += 1;
+            for _ in 0..steps {
+                let (d, start, moved) = far_pair_start(&m, s, o, back, 64).unwrap();
+                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64).unwrap().pair();
+            }
+            assert_eq!(canonical_hash(&m), canonical_hash(&map), "dir {dir}, {steps} steps");
+            let other = geodesic_sphere(2);
+            assert_eq!(far_pair_inverse(&m, &other, (s, o), steps, 64), None);
+        }
+    }
+    assert!(found >= 10, "an undo found for {found} of 12 moves");
 }
 
 /// Sec. 7.1.2: a 5-5 pair (two neighbouring v5 of a geodesic sphere) moves in six

@@ -26,7 +26,7 @@ use super::triple::{
     cancel_triple_along_with, distance, generate_pair_v7_with, TripleCancel, Via7,
 };
 use super::{interior_of_valence, TriEditError};
-use crate::invariants::canonical::CanonicalWorkspace;
+use crate::invariants::canonical::{is_isomorphic, CanonicalWorkspace};
 use crate::map::{Dart, Map, Vert};
 use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::{Refusal, Undo};
@@ -266,6 +266,72 @@ pub fn far_pair_directions(
         d = map.rotate_ccw(d);
     }
     Ok(found)
+}
+
+/// The start of direction `dir` for the pair `(s, o)`: the `dir`-th of
+/// [`far_pair_directions`], or [`TriEditError::NoDirection`] with how many apply.
+///
+/// ```
+/// use zipmesh::tri_edit::{far_pair_start, move_far_pair, TriEditError};
+/// use zipmesh::{gen, Vert};
+/// let mut map = gen::geodesic_sphere(3);
+/// let fives: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+/// let (s, o) = (fives[0], fives[1]);
+/// let past = far_pair_start(&map, s, o, 6, 64); // there are six at most
+/// assert!(matches!(past, Err(TriEditError::NoDirection { available }) if available <= 6));
+/// let (d, start, moved) = far_pair_start(&map, s, o, 0, 64).unwrap();
+/// move_far_pair(&mut map, d, start, moved, o, 64).unwrap();
+/// ```
+pub fn far_pair_start(
+    map: &Map,
+    s: Vert,
+    o: Vert,
+    dir: usize,
+    max_steps: usize,
+) -> Result<FarStart, TriEditError> {
+    let dirs = far_pair_directions(map, s, o, max_steps)?;
+    dirs.get(dir).copied().ok_or(TriEditError::NoDirection {
+        available: dirs.len(),
+    })
+}
+
+/// The direction whose `steps` composite moves from the pair `(s, o)` of `edited`, each
+/// started by [`far_pair_start`], give a map isomorphic to `original`: the undo of `steps`
+/// moves in one direction. `None` when none of the six does. The paper names no opposite
+/// direction, so each is tried on a copy: up to six times `steps` moves, each with its
+/// [`far_pair_directions`].
+///
+/// ```
+/// use zipmesh::tri_edit::{far_pair_inverse, far_pair_start, move_far_pair};
+/// use zipmesh::{gen, Vert};
+/// let original = gen::geodesic_sphere(3);
+/// let mut map = original.clone();
+/// let fives: Vec<Vert> = map.vertices().filter(|&v| map.valence(v) == 5).collect();
+/// let (d, start, moved) = far_pair_start(&map, fives[0], fives[1], 0, 64).unwrap();
+/// let m = move_far_pair(&mut map, d, start, moved, fives[1], 64).unwrap();
+/// assert!(far_pair_inverse(&map, &original, m.pair(), 1, 64).is_some());
+/// ```
+pub fn far_pair_inverse(
+    edited: &Map,
+    original: &Map,
+    (s, o): (Vert, Vert),
+    steps: u32,
+    max_steps: usize,
+) -> Option<usize> {
+    (0..6).find(|&dir| {
+        let mut m = edited.clone();
+        let (mut s, mut o) = (s, o);
+        for _ in 0..steps {
+            let Ok((d, start, moved)) = far_pair_start(&m, s, o, dir, max_steps) else {
+                return false;
+            };
+            let Ok(e) = move_far_pair(&mut m, d, start, moved, o, max_steps) else {
+                return false;
+            };
+            (s, o) = e.pair();
+        }
+        is_isomorphic(&m, original)
+    })
 }
 
 /// Record of a [`move_far_pair`]: the generation at the starting vertex, then the walk and

@@ -80,8 +80,8 @@ pub use apart::{
     quadruple_sides,
 };
 pub use composite::{
-    can_move_far_pair, far_pair_directions, move_far_pair, move_far_pair_with, FarPairMove,
-    FarStart, Start,
+    can_move_far_pair, far_pair_directions, far_pair_inverse, far_pair_start, move_far_pair,
+    move_far_pair_with, FarPairMove, FarStart, Start,
 };
 pub use generate::{
     can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
@@ -133,6 +133,12 @@ pub enum TriEditError {
     WrongValence,
     /// The graph operator refused, for this reason.
     Refused(Refusal),
+    /// A composite direction past those that apply to the pair (see
+    /// [`far_pair_start`]).
+    NoDirection {
+        /// How many of the six directions apply.
+        available: usize,
+    },
 }
 
 impl From<Refusal> for TriEditError {
@@ -149,6 +155,11 @@ impl fmt::Display for TriEditError {
             TriEditError::WrongValence => f.write_str("the vertex has the wrong valence"),
             TriEditError::Irregular => f.write_str("a vertex that must be regular is not"),
             TriEditError::Refused(r) => write!(f, "the graph operator refused: {r}"),
+            TriEditError::NoDirection { available } => write!(
+                f,
+                "only {available} of the six composite directions apply here (an irregular \
+                 vertex or the boundary in the way)"
+            ),
         }
     }
 }

@@ -21,9 +21,9 @@ use zipmesh::quality::{Reference, Summary};
 use zipmesh::tri_edit::{
     aggregate_type, aggregate_type_with, can_generate_pair, can_generate_pair_v7,
     can_generate_quadruple, can_generate_quadruple_apart, cancel_triple_along_with,
-    far_pair_directions, generate_pair, generate_pair_v7, generate_pair_v7_with,
-    generate_pair_with, generate_quadruple_apart_with, generate_quadruple_with, move_far_pair,
-    move_far_pair_with, move_pair_with, quadruple_sides, relax_global, relax_local, relax_region,
+    far_pair_inverse, far_pair_start, generate_pair, generate_pair_v7, generate_pair_v7_with,
+    generate_pair_with, generate_quadruple_apart_with, generate_quadruple_with, move_far_pair_with,
+    move_pair_with, quadruple_sides, relax_global, relax_local, relax_region,
     remove_quadruple_with, split_type, split_type_with, touched_vertices, Direction, FarStart,
     Moved, Quadruple, Relaxed, TriEditError, TripleEdit, Via, Via7,
 };
@@ -543,44 +543,18 @@ fn move_far(args: &MoveArgs, mut mesh: Mesh, a: Vert, b: Vert) -> Result<ExitCod
         ops.add(r.walk().cancellation().removal().record());
         (s, o) = r.pair();
     }
-    let back = far_undo(&mesh.map, &original, s, o, args.steps);
+    let back = far_pair_inverse(&mesh.map, &original, (s, o), args.steps, MAX_WALK);
     let pair = if swapped { (o, s) } else { (s, o) };
     finish_move(args, mesh, &ops, pair, back)
 }
 
 /// The start of the composite move in direction `dir` at `s`, or why there is none.
 fn far_start(map: &Map, s: Vert, o: Vert, dir: usize) -> Result<FarStart, String> {
-    let dirs = far_pair_directions(map, s, o, MAX_WALK).map_err(|e| match e {
+    far_pair_start(map, s, o, dir, MAX_WALK).map_err(|e| match e {
         TriEditError::NotAPair => "not a pair of interior v5 / v7 vertices (a 5-7, 5-5 or \
                                    7-7 pair)"
             .to_string(),
         e => why(e),
-    })?;
-    dirs.get(dir).copied().ok_or_else(|| {
-        format!(
-            "only {} of the six composite directions apply here (an irregular vertex or \
-             the boundary in the way)",
-            dirs.len()
-        )
-    })
-}
-
-/// The direction whose `steps` composite moves take the edited map back to the input (up
-/// to isomorphism), found by trying each; `None` when none does.
-fn far_undo(edited: &Map, original: &Map, s: Vert, o: Vert, steps: u32) -> Option<usize> {
-    (0..6).find(|&dir| {
-        let mut m = edited.clone();
-        let (mut s, mut o) = (s, o);
-        for _ in 0..steps {
-            let Ok((d, how, moved)) = far_start(&m, s, o, dir) else {
-                return false;
-            };
-            let Ok(e) = move_far_pair(&mut m, d, how, moved, o, MAX_WALK) else {
-                return false;
-            };
-            (s, o) = e.pair();
-        }
-        is_isomorphic(&m, original)
     })
 }
 
