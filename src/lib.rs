@@ -63,7 +63,7 @@ pub mod render;
 pub mod tri_edit;
 
 // The kernel's modules and root items, at the paths they have always had here.
-pub use zipmesh_kernel::{gen, hybrid, invariants, map, mesh, ops, rng};
+pub use zipmesh_kernel::{gen, invariants, map, mesh, ops, quad_dominant, rng};
 pub use zipmesh_kernel::{
     is_isomorphic, is_isomorphic_mirror, BuildError, BuildReport, Compaction, Dart, Edge, Face,
     Map, Mesh, RawError, Vert, Violation,

@@ -2,9 +2,9 @@
 //! (anyhow, `{:#}` reports) reaches the kernel's reason.
 
 use std::error::Error;
-use zipmesh::hybrid::compass::WalkError;
 use zipmesh::map::{BuildError, Violation};
 use zipmesh::ops::Refusal;
+use zipmesh::quad_dominant::compass::WalkError;
 use zipmesh::qzip::{Broken, PlanError, PrepareError, Qzip, QzipError, SketchError, Tag, ZipError};
 use zipmesh::tri_edit::TriEditError;
 use zipmesh::{gen, io, Dart, Vert};

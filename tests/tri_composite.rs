@@ -106,7 +106,9 @@ fn far_pair_inverse_names_a_direction_that_undoes_the_move() {
             let (mut s, mut o) = (p, q);
             for _ in 0..steps {
                 let (d, start, moved) = far_pair_start(&m, s, o, dir, 64).unwrap();
-                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64).unwrap().pair();
+                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64)
+                    .unwrap()
+                    .pair();
             }
             let Some(back) = far_pair_inverse(&m, &map, (s, o), steps, 64) else {
                 continue;
@@ -114,9 +116,15 @@ fn far_pair_inverse_names_a_direction_that_undoes_the_move() {
             found += 1;
             for _ in 0..steps {
                 let (d, start, moved) = far_pair_start(&m, s, o, back, 64).unwrap();
-                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64).unwrap().pair();
+                (s, o) = move_far_pair(&mut m, d, start, moved, o, 64)
+                    .unwrap()
+                    .pair();
             }
-            assert_eq!(canonical_hash(&m), canonical_hash(&map), "dir {dir}, {steps} steps");
+            assert_eq!(
+                canonical_hash(&m),
+                canonical_hash(&map),
+                "dir {dir}, {steps} steps"
+            );
             let other = geodesic_sphere(2);
             assert_eq!(far_pair_inverse(&m, &other, (s, o), steps, 64), None);
         }

@@ -6,12 +6,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use zipmesh::hybrid::{self, Move};
+use zipmesh::quad_dominant::{self, Move};
 use zipmesh::{gen, Dart, Map};
 
 enum Undo {
-    Move(hybrid::TriangleMove),
-    Merge(hybrid::TriangleMerge),
+    Move(quad_dominant::TriangleMove),
+    Merge(quad_dominant::TriangleMerge),
 }
 
 /// A quad-dominant mesh from the first bytes, with its triangles' tip darts.
@@ -44,9 +44,9 @@ fuzz_target!(|data: &[u8]| {
             (None, Dart::new((a * 7 % map.dart_slots().max(1)) as u32))
         };
         let before = map.clone();
-        let can = hybrid::can_move_triangle(&map, t, mv);
+        let can = quad_dominant::can_move_triangle(&map, t, mv);
         let effect = mv.effect(&map, t);
-        match hybrid::move_triangle(&mut map, t, mv) {
+        match quad_dominant::move_triangle(&mut map, t, mv) {
             Err(r) => {
                 assert_eq!(can, Err(r));
                 assert!(map == before, "a refused move changed the map");
@@ -71,9 +71,9 @@ fuzz_target!(|data: &[u8]| {
         // A collision of two tracked triangles: merge them.
         if k & 8 != 0 && tips.len() >= 2 {
             let (p, q) = (tips[0], tips[1]);
-            if hybrid::collision(&map, p, q).is_some() {
+            if quad_dominant::collision(&map, p, q).is_some() {
                 let before = map.clone();
-                match hybrid::merge_collision(&mut map, p, q) {
+                match quad_dominant::merge_collision(&mut map, p, q) {
                     Ok(m) => {
                         assert_eq!(map.check(), Ok(()));
                         tips.drain(..2);

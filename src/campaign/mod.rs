@@ -58,7 +58,7 @@ mod merge;
 mod optimize;
 mod property;
 mod qzip;
-mod qzip_hybrid;
+mod qzip_quad_dominant;
 mod report;
 mod shard;
 mod shrink;
@@ -72,10 +72,10 @@ pub use optimize::{
     TRI_OPTIMIZE_MAX_FACES,
 };
 pub use property::{
-    builtin, builtin_with, hybrid, kernel, operators, undo_property, CheckFn, Outcome, Property,
+    builtin, builtin_with, kernel, operators, undo_property, CheckFn, Outcome, Property,
 };
 pub use qzip::PairChoice;
-pub use qzip_hybrid::qzip_properties;
+pub use qzip_quad_dominant::qzip_properties;
 pub use report::{Campaign, Failure, Report, Row};
 pub use shard::{Shard, ShardError};
 pub use shrink::{shrink, Shrunk, SHRINK_BUDGET};
@@ -142,6 +142,9 @@ impl Default for Config {
 /// assert_eq!(select(&all, &["euler".into()]).unwrap()[0].name(), "euler");
 /// assert_eq!(select(&all, &["nope".into()]).unwrap_err(), "nope");
 /// assert_eq!(select(&all, &[]).unwrap().len(), all.len());
+/// // The quad-dominant properties' earlier names still select them.
+/// let old = select(&all, &["qzip-hybrid-grid".into()]).unwrap();
+/// assert_eq!(old[0].name(), "qzip-quad-dominant-grid");
 /// ```
 pub fn select(all: &[Property], names: &[String]) -> Result<Vec<Property>, String> {
     if names.is_empty() {
@@ -150,8 +153,13 @@ pub fn select(all: &[Property], names: &[String]) -> Result<Vec<Property>, Strin
     names
         .iter()
         .map(|n| {
+            // Counterexamples found outside carry the earlier names in their file names.
+            let current = n
+                .strip_prefix("qzip-hybrid-")
+                .map(|rest| alloc::format!("qzip-quad-dominant-{rest}"));
+            let wanted = current.as_deref().unwrap_or(n);
             all.iter()
-                .find(|p| p.name() == n)
+                .find(|p| p.name() == wanted)
                 .cloned()
                 .ok_or_else(|| n.clone())
         })

@@ -198,7 +198,7 @@ pub fn builtin_with(choice: super::PairChoice) -> Vec<Property> {
     let mut all = kernel();
     all.extend(operators());
     all.extend(super::tri_edit_properties());
-    all.extend(hybrid());
+    all.extend(quad_dominant());
     all.extend(super::qzip_properties(choice));
     all.push(super::optimize_property());
     all.push(super::optimize_triangles_property());
@@ -209,13 +209,13 @@ pub fn builtin_with(choice: super::PairChoice) -> Vec<Property> {
 /// triangle moves per case (on a mixed case its own triangles, on a quad case two inserted
 /// triangle pairs, [`crate::gen::with_triangle_pairs`]): `can_move_triangle` and the move
 /// agree, a refusal changes nothing, an application passes `check()` with its
-/// [`crate::hybrid::Move::effect`], and undoing every move, last first, restores the map
+/// [`crate::quad_dominant::Move::effect`], and undoing every move, last first, restores the map
 /// exactly.
 ///
 /// ```
-/// assert_eq!(zipmesh::campaign::hybrid()[0].name(), "tri-walk");
+/// assert_eq!(zipmesh::campaign::quad_dominant()[0].name(), "tri-walk");
 /// ```
-pub fn hybrid() -> Vec<Property> {
+pub fn quad_dominant() -> Vec<Property> {
     alloc::vec![Property::new(
         "tri-walk",
         "triangle moves VE/EV/LE/RE: can_* agrees, documented effect, valid map; exact undo",
@@ -756,22 +756,22 @@ fn tri_edge_split(case: &Case) -> Outcome {
 // Quad-dominant properties.
 
 fn tri_walk(case: &Case) -> Outcome {
-    use crate::hybrid::{self, Move};
+    use crate::quad_dominant::{self, Move};
     let m0 = &case.mesh.map;
     if !m0.faces().any(|f| m0.degree(f) == 4) {
         return Outcome::Skip;
     }
     let mut rng = Rng::new(case.seed ^ case.index.rotate_left(17) ^ 0x7472_6977);
-    let mut map = if hybrid::triangles(m0).is_empty() {
+    let mut map = if quad_dominant::triangles(m0).is_empty() {
         crate::gen::with_triangle_pairs(case.mesh.clone(), 2, 4, rng.next_u64())
             .0
             .map
     } else {
         m0.clone()
     };
-    let mut tips: Vec<Dart> = hybrid::triangles(&map)
+    let mut tips: Vec<Dart> = quad_dominant::triangles(&map)
         .into_iter()
-        .map(|f| hybrid::default_tip(&map, f).unwrap_or(map.face_dart(f)))
+        .map(|f| quad_dominant::default_tip(&map, f).unwrap_or(map.face_dart(f)))
         .collect();
     if tips.is_empty() {
         return Outcome::Skip;
@@ -783,10 +783,10 @@ fn tri_walk(case: &Case) -> Outcome {
         let (i, mv) = (rng.below(tips.len()), Move::ALL[rng.below(4)]);
         let t = tips[i];
         let before = map.clone();
-        let can = hybrid::can_move_triangle(&map, t, mv);
+        let can = quad_dominant::can_move_triangle(&map, t, mv);
         let effect = mv.effect(&map, t);
         let focus = Some(map.origin(t));
-        match hybrid::move_triangle(&mut map, t, mv) {
+        match quad_dominant::move_triangle(&mut map, t, mv) {
             Err(r) if can == Err(r) && map == before => {}
             Err(r) => {
                 return Outcome::fail(

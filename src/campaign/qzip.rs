@@ -13,7 +13,7 @@ use crate::qzip::{
     find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, ReverseWay,
     SketchOptions, Tag,
 };
-use crate::{hybrid, Map, Vert};
+use crate::{quad_dominant, Map, Vert};
 
 /// How a Q-zip property picks its pairs.
 ///
@@ -55,7 +55,7 @@ fn singularities(map: &Map) -> Option<Vec<Vert>> {
 }
 
 /// What a Q-zip property runs on: a map, its singularities (the path ends to draw from) and
-/// the sketch options; on a quad-dominant subject ([`super::qzip_hybrid`]) also the vertices
+/// the sketch options; on a quad-dominant subject ([`super::qzip_quad_dominant`]) also the vertices
 /// within one edge of a triangle, which no path may visit.
 pub(super) struct Subject<'c> {
     pub map: Cow<'c, Map>,
@@ -387,7 +387,7 @@ pub(super) fn quad_properties(choice: PairChoice) -> Vec<Property> {
 
 /// The triangles of `map`, each with its sorted corner valences.
 fn corner_valences(map: &Map) -> Vec<(crate::Face, [usize; 3])> {
-    hybrid::triangles(map)
+    quad_dominant::triangles(map)
         .into_iter()
         .map(|f| {
             let mut v = [0; 3];

@@ -19,10 +19,10 @@ pub mod defect;
 mod folds;
 mod marks;
 mod onto;
+mod quad_dominant;
 pub mod score;
 pub mod smooth;
 mod tri;
-mod triangles;
 
 use alloc::boxed::Box;
 use alloc::vec::Vec;
@@ -35,6 +35,7 @@ pub use defect::{
     at_defect_minimum, defect, ideal_boundary_valence, singularities, vertex_angle, Singularity,
 };
 pub use folds::{folded_quads, is_folded};
+pub use quad_dominant::TriangleStage;
 pub use score::{
     Context, Count, Electric, FaceBudget, Isotropy, Potential, ScoreTerm, Separatrix, Sizing,
 };
@@ -43,7 +44,6 @@ pub use tri::{
     optimize_triangles, tri_score, TriBatch, TriCounts, TriOptimizeError, TriOptimizeOptions,
     TriOutcome,
 };
-pub use triangles::TriangleStage;
 
 use crate::invariants::{Counts, MeshKind};
 use crate::qzip::{mesh_preprocess, Qzip, SketchOptions};
@@ -542,7 +542,7 @@ pub fn optimize(
     let input = SingularityCounts::of(mesh);
     let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
-    let triangles = triangles::pair_triangles(mesh, &constraints);
+    let triangles = quad_dominant::pair_triangles(mesh, &constraints);
     let mut preprocessed = false;
     // Nothing can lower the total defect: leave the mesh as it is (no v6 splits either).
     let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;

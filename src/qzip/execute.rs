@@ -495,7 +495,7 @@ impl Touched {
     /// Whether every triangle corner the surgery touched is still the same vertex with the
     /// same valence, and no other touched vertex became one; else the first that is not.
     /// Q-zip treats a triangle's edges as boundary edges (Sec. 3.2): only the triangle
-    /// moves (`hybrid`) change its corners.
+    /// moves (`quad_dominant`) change its corners.
     fn triangles_kept(&self, map: &Map) -> Result<(), Vert> {
         for s in &self.list {
             let live = map.is_live_vertex(s.v);

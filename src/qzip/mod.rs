@@ -29,11 +29,11 @@
 pub mod compass;
 pub mod execute;
 mod homotopy;
-mod hybrid;
 mod placement;
 pub mod prepare;
 mod preprocess;
 mod quad;
+mod quad_dominant;
 mod reverse;
 pub mod sketch;
 mod verify;
@@ -42,9 +42,9 @@ mod zip;
 pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Turn};
 pub use execute::{execute, ZipError, ZipReport};
 pub use homotopy::{one_quad_sweeps, start_turn, wraps};
-pub use hybrid::avoid_triangles;
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
 pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
+pub use quad_dominant::avoid_triangles;
 pub use reverse::{derive_reverse, find_reverse, ReverseRun, ReverseWay};
 pub use sketch::{
     max_edge_length, sketch, validate_path, Guide, Path, SketchError, SketchOptions,

@@ -415,10 +415,10 @@ mod tests {
     /// Each kind of unchecked count is named for what it is, not for the reversal's.
     #[test]
     fn unchecked_counts_say_what_they_count() {
-        let rev = unchecked_meaning("qzip-hybrid-reversal");
+        let rev = unchecked_meaning("qzip-quad-dominant-reversal");
         assert_eq!(rev, unchecked_meaning("qzip-reversal"));
         assert!(rev.contains("reverse"));
-        let hom = unchecked_meaning("qzip-hybrid-homotopy");
+        let hom = unchecked_meaning("qzip-quad-dominant-homotopy");
         assert!(hom.contains("triangle") && hom != rev);
         assert_ne!(unchecked_meaning("validity"), rev);
     }

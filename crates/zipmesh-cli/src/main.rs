@@ -7,9 +7,9 @@
 //! `SIGINT` and `SIGTERM` (temporary files removed). `check` adds its own (see `check.rs`).
 
 mod check;
-mod hybrid;
 mod optimize;
 mod out;
+mod quad_dominant;
 mod quality;
 mod qzip;
 mod render;
@@ -114,7 +114,7 @@ enum Command {
     TriCancel(tri::CancelArgs),
     /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
     /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
-    TriWalk(hybrid::TriWalkArgs),
+    TriWalk(quad_dominant::TriWalkArgs),
     /// Reduce the singularities of a quad, quad-dominant or triangle mesh by batches of
     /// Q-zips (Q-zip paper, Sec. 4.1; triangle meshes by the triangle paper's moves)
     /// and write the result; `--json` prints the counts before, after each batch and at the end.
@@ -154,7 +154,7 @@ fn dispatch(command: Command) -> Result<ExitCode, String> {
         Command::TriGenerate(args) => tri::run_generate(args).map_err(|e| e.to_string()),
         Command::TriType(args) => tri::run_type(args).map_err(|e| e.to_string()),
         Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
-        Command::TriWalk(args) => hybrid::run_tri_walk(args).map_err(|e| e.to_string()),
+        Command::TriWalk(args) => quad_dominant::run_tri_walk(args).map_err(|e| e.to_string()),
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),

@@ -2,7 +2,7 @@
 //!
 //! The `no_std` combinatorial-map kernel of [zipmesh](https://crates.io/crates/zipmesh):
 //! half-edge maps of quad, triangle and quad-dominant meshes ([`map`]), per-vertex values kept
-//! in step with edits ([`mesh`]), the triangle moves of quad-dominant meshes ([`hybrid`]), the invariants and canonical codes the editing papers state
+//! in step with edits ([`mesh`]), the triangle moves of quad-dominant meshes ([`quad_dominant`]), the invariants and canonical codes the editing papers state
 //! as checkable identities ([`invariants`]), and the atomic edits with their undo records
 //! ([`ops`]). It is the part of zipmesh that is checked exhaustively up to a bound (`proofs/`
 //! in the repository, docs/VERIFICATION.md) and it uses no `unsafe` code.
@@ -39,11 +39,11 @@ extern crate std;
 pub mod edit;
 #[cfg(feature = "testkit")]
 pub mod gen;
-pub mod hybrid;
 pub mod invariants;
 pub mod map;
 pub mod mesh;
 pub mod ops;
+pub mod quad_dominant;
 #[cfg(feature = "testkit")]
 pub mod rng;
 

@@ -8,12 +8,12 @@ use alloc::vec::Vec;
 use glam::DVec3;
 
 mod catmull_clark;
-mod hybrid;
+mod quad_dominant;
 mod random;
 mod solids;
 
 pub use catmull_clark::catmull_clark;
-pub use hybrid::{quad_dominant, with_triangle_pairs};
+pub use quad_dominant::{quad_dominant, with_triangle_pairs};
 pub use random::{random_mixed, random_quad, random_triangle, MAX_RANDOM_FACES, MAX_RANDOM_GENUS};
 pub use solids::{cone_disk, geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron};
 

@@ -12,12 +12,12 @@ impl Move {
     /// handle), and VE's new face is a quad.
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+    /// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
     /// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
     /// let before = mesh.map.clone();
     /// let effect = Move::EV.effect(&mesh.map, tips[0]).unwrap();
     /// assert_eq!(effect.deltas(), [-1, -2, -1]);
-    /// let r = hybrid::move_triangle(&mut mesh.map, tips[0], Move::EV).unwrap();
+    /// let r = quad_dominant::move_triangle(&mut mesh.map, tips[0], Move::EV).unwrap();
     /// assert_eq!(effect.check(&before, &mesh.map, &r), Ok(()));
     /// ```
     pub fn effect(self, m: &Map, t: Dart) -> Result<Effect, Refusal> {

@@ -4,8 +4,8 @@ use clap::{ArgGroup, Args};
 use serde_json::json;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use zipmesh::hybrid::{self, compass, Move};
 use zipmesh::io;
+use zipmesh::quad_dominant::{self, compass, Move};
 use zipmesh::{is_isomorphic, Dart, Face, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
@@ -51,7 +51,7 @@ pub struct TriWalkArgs {
     /// Make the moves this many times.
     #[arg(long, default_value_t = 1, conflicts_with = "to")]
     steps: usize,
-    /// Walk the triangle's tip to this vertex along shortest paths (the hybrid compass).
+    /// Walk the triangle's tip to this vertex along shortest paths (the quad-dominant compass).
     #[arg(long)]
     to: Option<u32>,
     /// Where to write the edited mesh (compacted: vertices and faces renumbered).
@@ -89,7 +89,7 @@ fn tip_dart(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Dart, In
                     f.index()
                 ))
             }),
-        None => hybrid::default_tip(map, f).ok_or_else(|| {
+        None => quad_dominant::default_tip(map, f).ok_or_else(|| {
             bad(format!(
                 "triangle {}: no corner has the highest valence alone; name the tip with --tip",
                 f.index()
@@ -119,7 +119,7 @@ fn walk(
     let mut tip = t;
     for _ in 0..a.steps {
         for &mv in seq {
-            let e = hybrid::mesh_move_triangle(mesh, tip, mv).map_err(|r| {
+            let e = quad_dominant::mesh_move_triangle(mesh, tip, mv).map_err(|r| {
                 InputError(format!(
                     "{name}: move {} ({mv}) was refused: {r}",
                     done.len() + 1
@@ -147,7 +147,7 @@ fn undo_of(
     let mut t = tip;
     let restores = back
         .iter()
-        .all(|&mv| match hybrid::move_triangle(&mut m, t, mv) {
+        .all(|&mv| match quad_dominant::move_triangle(&mut m, t, mv) {
             Ok(r) => {
                 t = r.tip();
                 true

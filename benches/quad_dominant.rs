@@ -1,4 +1,4 @@
-//! Criterion benches of the quad-dominant edits (`zipmesh::hybrid`, Q-zip paper Sec. 3.2) on
+//! Criterion benches of the quad-dominant edits (`zipmesh::quad_dominant`, Q-zip paper Sec. 3.2) on
 //! torus grids with triangle pairs (`gen::quad_dominant`) of two sizes: each triangle move
 //! applied and undone; a move and its inverse applied (no undo); a compass walk straight on
 //! (4 and 11 edges on the small torus, 8 and 32 on the large) applied and undone, and there
@@ -6,8 +6,8 @@
 //! `optimize` with no batch, on a fresh copy each iteration, the copy not timed).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
-use zipmesh::hybrid::{self, compass, Move};
 use zipmesh::optimize::{optimize, Constraints, OptimizeOptions};
+use zipmesh::quad_dominant::{self, compass, Move};
 use zipmesh::{gen, Dart, Map, Vert};
 
 /// The vertex `k` edges straight on from the tip along the VE direction.
@@ -21,16 +21,19 @@ fn ahead(m: &Map, tip: Dart, k: usize) -> Vert {
 }
 
 fn moves(c: &mut Criterion) {
-    let mut g = c.benchmark_group("hybrid (apply + undo)");
+    let mut g = c.benchmark_group("quad-dominant (apply + undo)");
     g.sample_size(10);
     for n in [24, 256] {
         let (mut mesh, tips) = gen::quad_dominant(n, n, 1, 3);
         let t = tips[0];
         for mv in Move::ALL {
-            assert!(hybrid::can_move_triangle(&mesh.map, t, mv).is_ok(), "{mv}");
+            assert!(
+                quad_dominant::can_move_triangle(&mesh.map, t, mv).is_ok(),
+                "{mv}"
+            );
             g.bench_function(format!("{mv}, torus {n}"), |b| {
                 b.iter(|| {
-                    let e = hybrid::mesh_move_triangle(&mut mesh, t, mv).expect("applies");
+                    let e = quad_dominant::mesh_move_triangle(&mut mesh, t, mv).expect("applies");
                     e.undo(&mut mesh).expect("undo")
                 })
             });
@@ -41,8 +44,9 @@ fn moves(c: &mut Criterion) {
             let mut tip = t;
             g.bench_function(format!("{a} then {z}, apply only, torus {n}"), |b| {
                 b.iter(|| {
-                    let r = hybrid::move_triangle(&mut mesh.map, tip, a).expect("applies");
-                    let r = hybrid::move_triangle(&mut mesh.map, r.tip(), z).expect("applies");
+                    let r = quad_dominant::move_triangle(&mut mesh.map, tip, a).expect("applies");
+                    let r =
+                        quad_dominant::move_triangle(&mut mesh.map, r.tip(), z).expect("applies");
                     tip = r.tip();
                 })
             });

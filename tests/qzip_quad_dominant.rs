@@ -4,12 +4,12 @@
 //! homotopic paths give isomorphic results. A plan that meets a triangle in a counted fan
 //! is refused and changes nothing: no collapse is ever attempted on a triangle. The
 //! fixtures include the polygon cages of `tests/data/poly/` after one Catmull-Clark step
-//! with quads re-split; the campaign's `qzip-hybrid-*` properties are run here too.
+//! with quads re-split; the campaign's `qzip-quad-dominant-*` properties are run here too.
 
 use zipmesh::campaign::{self, Case, Config, PairChoice};
-use zipmesh::hybrid;
 use zipmesh::invariants::canonical::canonical_hash;
 use zipmesh::invariants::{irregular_vertices, MeshKind};
+use zipmesh::quad_dominant;
 use zipmesh::qzip::{
     find_reverse, one_quad_sweeps, sketch, start_turn, verify_edit, Path, Qzip, SketchOptions, Tag,
 };
@@ -39,7 +39,7 @@ fn opts(map: &Map) -> SketchOptions<'static> {
 
 /// The triangles with their corners (vertex, valence).
 fn triangles(map: &Map) -> Vec<(Face, Vec<(Vert, usize)>)> {
-    hybrid::triangles(map)
+    quad_dominant::triangles(map)
         .into_iter()
         .map(|f| {
             let c = map
@@ -106,8 +106,8 @@ fn grid_preservation_and_reversal() {
     let cage_maps = cages(3, 0).into_iter().map(|(_, m)| (true, m.map));
     for (is_cage, map) in fixtures().into_iter().map(|m| (false, m)).chain(cage_maps) {
         let t = if is_cage { &mut c } else { &mut t };
-        assert_eq!(hybrid::triangles(&map).len() % 2, 0);
-        assert!(!hybrid::triangles(&map).is_empty());
+        assert_eq!(quad_dominant::triangles(&map).len() % 2, 0);
+        assert!(!quad_dominant::triangles(&map).is_empty());
         for path in pairs(&map, 6) {
             for tag in Tag::CCW {
                 let mut m = map.clone();
@@ -233,11 +233,11 @@ fn a_plan_meeting_a_triangle_is_refused() {
 /// cases with triangle pairs inserted, mixed cases as they are) and on the cages, with
 /// something checked; what they skip is in the `skipped` column (printed).
 #[test]
-fn hybrid_qzip_properties_hold_in_a_campaign() {
+fn quad_dominant_qzip_properties_hold_in_a_campaign() {
     let names = [
-        "qzip-hybrid-grid",
-        "qzip-hybrid-reversal",
-        "qzip-hybrid-homotopy",
+        "qzip-quad-dominant-grid",
+        "qzip-quad-dominant-reversal",
+        "qzip-quad-dominant-homotopy",
     ];
     let names: Vec<String> = names.map(String::from).to_vec();
     let props =
@@ -277,22 +277,22 @@ fn hybrid_qzip_properties_hold_in_a_campaign() {
     );
 }
 
-/// The hybrid properties check the triangles: a mesh whose triangles are all in one
+/// The quad-dominant properties check the triangles: a mesh whose triangles are all in one
 /// region the paths cannot leave is skipped, not passed silently, and a pure-triangle case
 /// is skipped too.
 #[test]
-fn hybrid_qzip_properties_skip_what_they_cannot_check() {
+fn quad_dominant_qzip_properties_skip_what_they_cannot_check() {
     let props = campaign::qzip_properties(PairChoice::default());
-    let hybrid: Vec<_> = props
+    let quad_dominant: Vec<_> = props
         .iter()
-        .filter(|p| p.name().starts_with("qzip-hybrid"))
+        .filter(|p| p.name().starts_with("qzip-quad-dominant"))
         .collect();
-    assert_eq!(hybrid.len(), 3);
+    assert_eq!(quad_dominant.len(), 3);
     let tri = Case::from_mesh(gen::random_triangle(80, 0, 0, 1), 0, 0, "triangles");
     // A regular torus with triangles: no quad singularity to join.
     let (flat, _) = gen::quad_dominant(10, 10, 1, 2);
     let flat = Case::from_mesh(flat, 0, 0, "torus");
-    for p in hybrid {
+    for p in quad_dominant {
         assert!(
             !p.check(&tri).is_pass() && !p.check(&tri).is_fail(),
             "{}",
@@ -318,21 +318,24 @@ fn counterexample(name: &str) -> zipmesh::Mesh {
 /// --seed 0 --property NAME` replays them (every pair within 12 edges, every movement): the
 /// triangles inserted by the campaign are kept, and homotopic paths agree.
 #[test]
-fn the_hybrid_counterexamples_hold() {
+fn the_quad_dominant_counterexamples_hold() {
     let every = PairChoice {
         max_distance: 12,
         per_case: None,
     };
     let all = campaign::qzip_properties(every);
     for (file, property) in [
-        ("qzip-hybrid-grid-seed0-case0.obj", "qzip-hybrid-grid"),
+        (
+            "qzip-hybrid-grid-seed0-case0.obj",
+            "qzip-quad-dominant-grid",
+        ),
         (
             "qzip-hybrid-reversal-seed0-case0.obj",
-            "qzip-hybrid-reversal",
+            "qzip-quad-dominant-reversal",
         ),
         (
             "qzip-hybrid-homotopy-seed0-case0.obj",
-            "qzip-hybrid-homotopy",
+            "qzip-quad-dominant-homotopy",
         ),
     ] {
         let case = Case::from_mesh(counterexample(file), 0, 0, file);
@@ -343,7 +346,7 @@ fn the_hybrid_counterexamples_hold() {
 }
 
 /// The grid counterexample with the campaign's triangles (its stream for them, salt
-/// `0x6879_6272` in `src/campaign/qzip_hybrid.rs`).
+/// `0x6879_6272` in `src/campaign/qzip_quad_dominant.rs`).
 fn grid_counterexample_with_triangles() -> Map {
     let mesh = counterexample("qzip-hybrid-grid-seed0-case0.obj");
     let case = Case::from_mesh(mesh.clone(), 0, 0, "grid");

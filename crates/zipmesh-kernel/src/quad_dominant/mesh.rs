@@ -11,10 +11,10 @@ use crate::ops::{Refusal, VertexChanges};
 /// layers), placing the vertex VE creates or EV merges; undo gives back map and layer `==`.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 /// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let before = mesh.clone();
-/// let e = hybrid::move_triangle_with(&mut mesh.map, &mut mesh.positions, tips[0], Move::VE).unwrap();
+/// let e = quad_dominant::move_triangle_with(&mut mesh.map, &mut mesh.positions, tips[0], Move::VE).unwrap();
 /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
@@ -47,10 +47,10 @@ pub fn move_triangle_with<A: VertexAttributes>(
 /// [`move_triangle_with`] on a [`Mesh`]'s positions.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 /// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let before = mesh.clone();
-/// let e = hybrid::mesh_move_triangle(&mut mesh, tips[0], Move::EV).unwrap();
+/// let e = quad_dominant::mesh_move_triangle(&mut mesh, tips[0], Move::EV).unwrap();
 /// e.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```

@@ -31,7 +31,7 @@ use core::str::FromStr;
 /// One of the four moves of a triangle by one edge.
 ///
 /// ```
-/// use zipmesh_kernel::hybrid::Move;
+/// use zipmesh_kernel::quad_dominant::Move;
 /// assert_eq!(Move::VE.reverse(), Move::EV);
 /// assert_eq!(Move::LE.reverse(), Move::RE);
 /// assert_eq!("re".parse::<Move>(), Ok(Move::RE));
@@ -295,11 +295,11 @@ fn plan_collapse(map: &Map, tri: Tri) -> Result<Plan, Refusal> {
 /// [`Refusal::ValenceTooLow`] (EV: the tip has valence 2).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let map = mesh.map;
 /// for mv in Move::ALL {
-///     assert!(hybrid::can_move_triangle(&map, tips[0], mv).is_ok());
+///     assert!(quad_dominant::can_move_triangle(&map, tips[0], mv).is_ok());
 /// }
 /// ```
 pub fn can_move_triangle(map: &Map, t: Dart, mv: Move) -> Result<(), Refusal> {
@@ -314,11 +314,11 @@ pub fn can_move_triangle(map: &Map, t: Dart, mv: Move) -> Result<(), Refusal> {
 /// refusal comes back and the map holds the move, still valid.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let mut map = mesh.map;
 /// let before = map.clone();
-/// let v = hybrid::probe_move(&mut map, tips[0], Move::VE, |m, r| m.valence(m.origin(r.tip())));
+/// let v = quad_dominant::probe_move(&mut map, tips[0], Move::VE, |m, r| m.valence(m.origin(r.tip())));
 /// assert_eq!(v, Ok(5));
 /// assert_eq!(map, before);
 /// ```
@@ -347,11 +347,11 @@ pub fn probe_move<R>(
 /// other vertex keeps its valence and every surviving face its degree.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let mut map = mesh.map;
 /// let (before, face) = (map.clone(), map.face(tips[0]));
-/// let r = hybrid::move_triangle(&mut map, tips[0], Move::VE).unwrap();
+/// let r = quad_dominant::move_triangle(&mut map, tips[0], Move::VE).unwrap();
 /// assert_eq!(map.check(), Ok(()));
 /// assert_eq!(map.valence(map.origin(r.tip())), 5);
 /// assert_eq!(map.face(r.tip()), face); // the triangle keeps its face
@@ -531,10 +531,10 @@ impl TriangleMove {
     /// So the tip dart of another triangle next to the moved one is `follow(old tip dart)`.
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+    /// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
     /// let (mesh, tips) = gen::quad_dominant(6, 6, 2, 7);
     /// let mut map = mesh.map;
-    /// let r = hybrid::move_triangle(&mut map, tips[0], Move::VE).unwrap();
+    /// let r = quad_dominant::move_triangle(&mut map, tips[0], Move::VE).unwrap();
     /// // The other triangles are not beside it: their tip darts stay.
     /// assert_eq!(r.follow(tips[1]), tips[1]);
     /// ```
@@ -548,10 +548,10 @@ impl TriangleMove {
     /// The move made.
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+    /// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
     /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
     /// let mut map = mesh.map;
-    /// assert_eq!(hybrid::move_triangle(&mut map, tips[0], Move::LE).unwrap().kind(), Move::LE);
+    /// assert_eq!(quad_dominant::move_triangle(&mut map, tips[0], Move::LE).unwrap().kind(), Move::LE);
     /// ```
     pub fn kind(&self) -> Move {
         self.mv
@@ -560,10 +560,10 @@ impl TriangleMove {
     /// The triangle's tip dart before the move.
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid::{self, Move}};
+    /// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
     /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
     /// let mut map = mesh.map;
-    /// assert_eq!(hybrid::move_triangle(&mut map, tips[0], Move::RE).unwrap().from(), tips[0]);
+    /// assert_eq!(quad_dominant::move_triangle(&mut map, tips[0], Move::RE).unwrap().from(), tips[0]);
     /// ```
     pub fn from(&self) -> Dart {
         self.from

@@ -1,7 +1,7 @@
 //! Quad-dominant input (Tarini et al. 2010, Sec. 6.1; Q-zip paper, Sec. 3.2): before the
 //! batches, pairs of triangles crawl towards each other by triangle moves
-//! ([`crate::hybrid::move_triangle`]) until they share an edge, and merge
-//! ([`crate::hybrid::merge_collision`]), so that a mesh with an even number of triangles can
+//! ([`crate::quad_dominant::move_triangle`]) until they share an edge, and merge
+//! ([`crate::quad_dominant::merge_collision`]), so that a mesh with an even number of triangles can
 //! come out pure quad.
 //!
 //! A crawl is greedy: at each step it tries the four moves of both triangles and takes one
@@ -18,9 +18,9 @@ use alloc::vec::Vec;
 use hashbrown::HashMap;
 
 use super::{Constraints, SingularityCounts};
-use crate::hybrid::{self, Move, TriangleMove};
 use crate::map::{Dart, Face, Map, Vert};
 use crate::mesh::Edited;
+use crate::quad_dominant::{self, Move, TriangleMove};
 use crate::Mesh;
 
 /// How far (edges) two triangles may be apart to be paired.
@@ -106,10 +106,10 @@ fn best_step(
     for (k, other) in [(i, j), (j, i)] {
         for mv in Move::ALL {
             // A probe on the map alone (positions play no part in the potential).
-            let probe = hybrid::probe_move(&mut mesh.map, tips[k], mv, |map, e| {
+            let probe = quad_dominant::probe_move(&mut mesh.map, tips[k], mv, |map, e| {
                 let (t, o) = (e.tip(), e.follow(tips[other]));
                 let state = if k == i { (t, o) } else { (o, t) };
-                let collides = hybrid::collision(map, t, o).is_some();
+                let collides = quad_dominant::collision(map, t, o).is_some();
                 (
                     state,
                     if collides {
@@ -162,7 +162,7 @@ fn crawl_and_merge(
     let mut visited = alloc::vec![(tips[i], tips[j])];
     // A few moves uphill get a pair out of a local minimum of the potential.
     let mut uphill = ESCAPES;
-    while hybrid::collision(&mesh.map, tips[i], tips[j]).is_none() && edits.len() < limit {
+    while quad_dominant::collision(&mesh.map, tips[i], tips[j]).is_none() && edits.len() < limit {
         let Some((k, mv, up)) = best_step(mesh, tips, i, j, &visited) else {
             break;
         };
@@ -172,7 +172,7 @@ fn crawl_and_merge(
             }
             uphill -= 1;
         }
-        let Ok(e) = hybrid::mesh_move_triangle(mesh, tips[k], mv) else {
+        let Ok(e) = quad_dominant::mesh_move_triangle(mesh, tips[k], mv) else {
             break;
         };
         for t in tips.iter_mut() {
@@ -182,8 +182,8 @@ fn crawl_and_merge(
         visited.push((tips[i], tips[j]));
         edits.push(e);
     }
-    if hybrid::collision(&mesh.map, tips[i], tips[j]).is_some() {
-        if let Ok(rec) = hybrid::merge_collision(&mut mesh.map, tips[i], tips[j]) {
+    if quad_dominant::collision(&mesh.map, tips[i], tips[j]).is_some() {
+        if let Ok(rec) = quad_dominant::merge_collision(&mut mesh.map, tips[i], tips[j]) {
             if constraints.holds(mesh) && irregularity(mesh) <= before {
                 let rest = tips.iter().enumerate().filter(|&(k, _)| k != i && k != j);
                 *tips = rest.map(|(_, &t)| rec.follow(t)).collect();
@@ -232,9 +232,9 @@ fn closest_pair(map: &Map, tips: &[Dart], tried: &[(Face, Face)]) -> Option<(usi
 /// Merges pairs of triangles of `mesh`, closest first, each pair tried once.
 pub(crate) fn pair_triangles(mesh: &mut Mesh, constraints: &Constraints) -> TriangleStage {
     let map = &mesh.map;
-    let mut tips: Vec<Dart> = hybrid::triangles(map)
+    let mut tips: Vec<Dart> = quad_dominant::triangles(map)
         .into_iter()
-        .map(|f| hybrid::default_tip(map, f).unwrap_or(map.face_dart(f)))
+        .map(|f| quad_dominant::default_tip(map, f).unwrap_or(map.face_dart(f)))
         .collect();
     let mut stage = TriangleStage {
         input: tips.len(),

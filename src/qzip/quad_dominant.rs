@@ -1,8 +1,8 @@
 //! Q-zip on quad-dominant maps (Sec. 3.2): the sketch keeps its paths off the triangles.
 
 use super::SketchOptions;
-use crate::hybrid;
 use crate::map::Map;
+use crate::quad_dominant;
 use alloc::vec::Vec;
 
 /// Sketch options for Q-zip on a quad-dominant map (Sec. 3.2, "wind the path around the
@@ -21,8 +21,8 @@ use alloc::vec::Vec;
 /// assert!(sketch(&mesh.map, far, tip, &opts).is_err());
 /// ```
 pub fn avoid_triangles<'a>(map: &Map, opts: SketchOptions<'a>) -> SketchOptions<'a> {
-    let tris = hybrid::triangles(map);
-    let near = hybrid::near_triangles(map);
+    let tris = quad_dominant::triangles(map);
+    let near = quad_dominant::near_triangles(map);
     let edges: Vec<crate::map::Edge> = near
         .iter()
         .flat_map(|&v| map.vertex_darts(v).map(|d| d.edge()))

@@ -1,4 +1,4 @@
-//! Walking a triangle to a vertex (Q-zip paper, Fig. 14): the hybrid compass.
+//! Walking a triangle to a vertex (Q-zip paper, Fig. 14): the quad-dominant compass.
 //!
 //! The compass is the triangle's tip dart: every move hands on the new one, so where the
 //! base is (the EV direction) is carried along without being guessed. At the tip `T`, with
@@ -143,7 +143,7 @@ fn landing(map: &Map, t: Dart, mv: Move, dist: &[usize]) -> usize {
 /// the tip nearest the target, if one lands it nearer than it is; `None` at the target.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{compass, Move}};
+/// use zipmesh_kernel::{gen, quad_dominant::{compass, Move}};
 /// let (mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
 /// let m = &mesh.map;
 /// // The vertex two darts clockwise from the tip dart is reached by VE.
@@ -173,7 +173,7 @@ fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
 /// map and a per-vertex layer. All or nothing: on an error every move made is undone.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, compass}};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, compass}};
 /// let (mut mesh, tips) = gen::quad_dominant(10, 10, 1, 3);
 /// let before = mesh.clone();
 /// let tip = mesh.map.origin(tips[0]);
@@ -241,7 +241,7 @@ pub fn walk_to(mesh: &mut Mesh, t: Dart, target: Vert) -> Result<Walk, WalkError
 /// Whether the walk's last move merged `target` away (EV onto it).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::compass};
+/// use zipmesh_kernel::{gen, quad_dominant::compass};
 /// let (mut mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
 /// let target = mesh.map.dest(tips[0]);
 /// let walk = compass::walk_to(&mut mesh, tips[0], target).unwrap();

@@ -11,13 +11,13 @@ use std::vec::Vec;
 use super::qzip::{grid_on, homotopy_on, quad_properties, reversal_on, Subject};
 use super::{Case, Outcome, PairChoice, Property};
 use crate::qzip::{self, SketchOptions};
-use crate::{gen, hybrid, Map};
+use crate::{gen, quad_dominant, Map};
 
 /// The quad-dominant map a case is checked on: a case of triangles and quads (at least one
 /// of each) as it is; a pure-quad case with two triangle pairs inserted
 /// ([`gen::with_triangle_pairs`], eight random moves each); `None` for anything else
 /// (pure triangle, other polygons) or when no pair fits.
-fn hybrid_map(case: &Case) -> Option<Cow<'_, Map>> {
+fn quad_dominant_map(case: &Case) -> Option<Cow<'_, Map>> {
     let m = &case.mesh.map;
     let count = |k: usize| m.faces().filter(|&f| m.degree(f) == k).count();
     let (tris, quads) = (count(3), count(4));
@@ -33,11 +33,11 @@ fn hybrid_map(case: &Case) -> Option<Cow<'_, Map>> {
 }
 
 impl<'c> Subject<'c> {
-    /// The quad-dominant subject of a case ([`hybrid_map`]): singularities are the interior
+    /// The quad-dominant subject of a case ([`quad_dominant_map`]): singularities are the interior
     /// irregular vertices away from the triangles.
-    fn hybrid(case: &'c Case) -> Option<Subject<'c>> {
-        let map = hybrid_map(case)?;
-        let near = hybrid::near_triangles(&map);
+    fn quad_dominant(case: &'c Case) -> Option<Subject<'c>> {
+        let map = quad_dominant_map(case)?;
+        let near = quad_dominant::near_triangles(&map);
         let sing = map
             .vertices()
             .filter(|&v| {
@@ -63,14 +63,14 @@ impl<'c> Subject<'c> {
 /// `qzip-homotopy` (paths one swept quad apart give the same maps, labels matched by
 /// [`start_turn`](crate::qzip::start_turn)), `qzip-four-moves` (in a regular region the movements done are pairwise
 /// different); then the first three again on quad-dominant meshes (Sec. 3.2):
-/// `qzip-hybrid-grid`, `qzip-hybrid-reversal`, `qzip-hybrid-homotopy`. These run on a case of
+/// `qzip-quad-dominant-grid`, `qzip-quad-dominant-reversal`, `qzip-quad-dominant-homotopy`. These run on a case of
 /// triangles and quads as it is, and on a pure-quad case with two triangle pairs inserted
 /// ([`gen::with_triangle_pairs`](crate::gen::with_triangle_pairs)); the paths wind around the
 /// triangles ([`avoid_triangles`](crate::qzip::avoid_triangles)); a movement done must
 /// also keep every triangle (face handle and corner valences). Cases with other faces, or
 /// whose triangles leave no pair of singularities a path can join, are skipped (the
 /// `skipped` column); a swept path that comes near a triangle is not compared and is counted
-/// in `qzip-hybrid-homotopy`'s `unchecked` column.
+/// in `qzip-quad-dominant-homotopy`'s `unchecked` column.
 ///
 /// ```
 /// use zipmesh::campaign::{qzip_properties, Case, PairChoice};
@@ -86,17 +86,17 @@ pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
     let mut all = quad_properties(choice);
     all.extend([
         Property::new(
-            "qzip-hybrid-grid",
+            "qzip-quad-dominant-grid",
             about("on a quad-dominant mesh (triangle pairs inserted into a quad case), a Q-zip winding around the triangles keeps the grid and every triangle (face, corner valences) and undoes exactly"),
             move |c| grid(c, choice)
         ),
         Property::new(
-            "qzip-hybrid-reversal",
+            "qzip-quad-dominant-reversal",
             about("on a quad-dominant mesh, the reverse Q-zip found restores the original up to isomorphism"),
             move |c| reversal(c, choice)
         ),
         Property::new(
-            "qzip-hybrid-homotopy",
+            "qzip-quad-dominant-homotopy",
             about("on a quad-dominant mesh, paths one swept quad apart (both away from the triangles) give the same maps"),
             move |c| homotopy(c, choice)
         ),
@@ -104,19 +104,19 @@ pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
     all
 }
 
-/// `qzip-hybrid-grid`.
+/// `qzip-quad-dominant-grid`.
 pub(super) fn grid(case: &Case, choice: PairChoice) -> Outcome {
-    Subject::hybrid(case).map_or(Outcome::Skip, |s| grid_on(case, &s, choice))
+    Subject::quad_dominant(case).map_or(Outcome::Skip, |s| grid_on(case, &s, choice))
 }
 
-/// `qzip-hybrid-reversal`.
+/// `qzip-quad-dominant-reversal`.
 pub(super) fn reversal(case: &Case, choice: PairChoice) -> Outcome {
-    Subject::hybrid(case).map_or(Outcome::Skip, |s| reversal_on(case, &s, choice))
+    Subject::quad_dominant(case).map_or(Outcome::Skip, |s| reversal_on(case, &s, choice))
 }
 
-/// `qzip-hybrid-homotopy`.
+/// `qzip-quad-dominant-homotopy`.
 pub(super) fn homotopy(case: &Case, choice: PairChoice) -> Outcome {
-    Subject::hybrid(case).map_or(Outcome::Skip, |s| homotopy_on(case, &s, choice))
+    Subject::quad_dominant(case).map_or(Outcome::Skip, |s| homotopy_on(case, &s, choice))
 }
 
 #[cfg(test)]

@@ -4,8 +4,8 @@
 
 use proptest::prelude::*;
 use std::collections::BTreeMap;
-use zipmesh_kernel::hybrid::{self, collide, Collision, Move};
 use zipmesh_kernel::ops::Refusal;
+use zipmesh_kernel::quad_dominant::{self, collide, Collision, Move};
 use zipmesh_kernel::{gen, is_isomorphic, Dart, Map, Mesh, Vert};
 
 fn cases(n: u32) -> ProptestConfig {
@@ -35,12 +35,12 @@ fn mesh_strategy() -> impl Strategy<Value = (Mesh, Vec<Dart>)> {
 /// Every vertex's effective valence.
 fn effective(map: &Map, tips: &[Dart]) -> BTreeMap<Vert, i64> {
     map.vertices()
-        .map(|v| (v, hybrid::effective_valence(map, tips, v)))
+        .map(|v| (v, quad_dominant::effective_valence(map, tips, v)))
         .collect()
 }
 
 /// The tip darts after a move of triangle `i`: its new one, the others followed.
-fn with_tip(tips: &[Dart], i: usize, rec: &hybrid::TriangleMove) -> Vec<Dart> {
+fn with_tip(tips: &[Dart], i: usize, rec: &quad_dominant::TriangleMove) -> Vec<Dart> {
     let mut out: Vec<Dart> = tips.iter().map(|&d| rec.follow(d)).collect();
     out[i] = rec.tip();
     out
@@ -52,9 +52,9 @@ fn with_tip(tips: &[Dart], i: usize, rec: &hybrid::TriangleMove) -> Vec<Dart> {
 fn check_move(map: &Map, tips: &[Dart], i: usize, mv: Move) -> Result<bool, TestCaseError> {
     let t = tips[i];
     let mut m = map.clone();
-    let can = hybrid::can_move_triangle(map, t, mv);
+    let can = quad_dominant::can_move_triangle(map, t, mv);
     let effect = mv.effect(map, t);
-    match hybrid::move_triangle(&mut m, t, mv) {
+    match quad_dominant::move_triangle(&mut m, t, mv) {
         Err(r) => {
             prop_assert_eq!(Err(r), can);
             prop_assert_eq!(effect.err(), Some(r));
@@ -87,8 +87,8 @@ fn check_move(map: &Map, tips: &[Dart], i: usize, mv: Move) -> Result<bool, Test
                         == 1
                     {
                         prop_assert_eq!(
-                            hybrid::irregular_effective(map, tips),
-                            hybrid::irregular_effective(&m, &after)
+                            quad_dominant::irregular_effective(map, tips),
+                            quad_dominant::irregular_effective(&m, &after)
                         );
                     }
                 }
@@ -96,8 +96,8 @@ fn check_move(map: &Map, tips: &[Dart], i: usize, mv: Move) -> Result<bool, Test
                     let (a, b) = (map.dest(t), map.dest(map.next(t)));
                     if eb[&a] == 4 || eb[&b] == 4 {
                         prop_assert_eq!(
-                            hybrid::irregular_effective(map, tips),
-                            hybrid::irregular_effective(&m, &after)
+                            quad_dominant::irregular_effective(map, tips),
+                            quad_dominant::irregular_effective(&m, &after)
                         );
                     }
                 }
@@ -116,14 +116,14 @@ fn check_reverse(
     before: &Map,
     after: &Map,
     t: Dart,
-    rec: &hybrid::TriangleMove,
+    rec: &quad_dominant::TriangleMove,
 ) -> Result<(), TestCaseError> {
     let mv = rec.kind();
     if mv == Move::EV && before.valence(before.dest(t)) != 4 {
         return Ok(());
     }
     let mut back = after.clone();
-    let r = hybrid::move_triangle(&mut back, rec.tip(), mv.reverse());
+    let r = quad_dominant::move_triangle(&mut back, rec.tip(), mv.reverse());
     prop_assert!(
         r.is_ok(),
         "{} back from {}: {:?}",
@@ -161,7 +161,7 @@ proptest! {
         for (i, k) in seq {
             let i = i % tips.len();
             if check_move(&m.map, &tips, i, Move::ALL[k])? {
-                let e = hybrid::mesh_move_triangle(&mut m, tips[i], Move::ALL[k]).unwrap();
+                let e = quad_dominant::mesh_move_triangle(&mut m, tips[i], Move::ALL[k]).unwrap();
                 prop_assert_eq!(m.positions.len(), m.map.vertex_slots());
                 tips = with_tip(&tips, i, e.record());
                 done.push(e);
@@ -183,13 +183,13 @@ fn generator_makes_paper_triangles() {
         let m = &mesh.map;
         assert_eq!(m.check(), Ok(()));
         assert_eq!(tips.len(), 4, "seed {seed}");
-        assert_eq!(hybrid::triangles(m).len(), 4);
+        assert_eq!(quad_dominant::triangles(m).len(), 4);
         for &t in &tips {
             let c = [m.origin(t), m.dest(t), m.dest(m.next(t))].map(|v| m.valence(v));
             assert_eq!(c, [5, 4, 4], "seed {seed}");
-            assert_eq!(hybrid::default_tip(m, m.face(t).unwrap()), Some(t));
+            assert_eq!(quad_dominant::default_tip(m, m.face(t).unwrap()), Some(t));
         }
-        assert!(hybrid::irregular_effective(m, &tips).is_empty());
+        assert!(quad_dominant::irregular_effective(m, &tips).is_empty());
         let irregular = m.vertices().filter(|&v| m.valence(v) != 4).count();
         assert_eq!(irregular, 4, "only the four tips, seed {seed}");
     }
@@ -203,7 +203,7 @@ fn paper_triangle_moves_one_edge() {
         let mut m = mesh.map.clone();
         let t = tips[0];
         let tip = m.origin(t);
-        let r = hybrid::move_triangle(&mut m, t, mv).unwrap();
+        let r = quad_dominant::move_triangle(&mut m, t, mv).unwrap();
         let nt = r.tip();
         let c = [m.origin(nt), m.dest(nt), m.dest(m.next(nt))].map(|v| m.valence(v));
         assert_eq!(c, [5, 4, 4], "{mv}");
@@ -220,25 +220,27 @@ fn paper_triangle_moves_one_edge() {
 fn refusals() {
     let map = gen::torus_grid(4, 4).map;
     assert_eq!(
-        hybrid::can_move_triangle(&map, Dart::new(0), Move::VE),
+        quad_dominant::can_move_triangle(&map, Dart::new(0), Move::VE),
         Err(Refusal::WrongDegree)
     );
     // A grid with a split quad at the corner: the tips are on the boundary.
     let mut g = gen::grid(3, 3).map;
-    let s = hybrid::split_quad(&mut g, Dart::new(0)).unwrap();
+    let s = quad_dominant::split_quad(&mut g, Dart::new(0)).unwrap();
     assert_eq!(
-        hybrid::can_move_triangle(&g, s.tips()[0], Move::VE),
+        quad_dominant::can_move_triangle(&g, s.tips()[0], Move::VE),
         Err(Refusal::Boundary)
     );
     // The two halves of a split quad: each side flip runs into the other triangle.
     let mut t = gen::torus_grid(6, 6).map;
-    let [a, b] = hybrid::split_quad(&mut t, Dart::new(0)).unwrap().tips();
+    let [a, b] = quad_dominant::split_quad(&mut t, Dart::new(0))
+        .unwrap()
+        .tips();
     assert_eq!(
-        hybrid::can_move_triangle(&t, a, Move::RE),
+        quad_dominant::can_move_triangle(&t, a, Move::RE),
         Err(Refusal::WrongDegree)
     );
     assert_eq!(
-        hybrid::can_move_triangle(&t, b, Move::RE),
+        quad_dominant::can_move_triangle(&t, b, Move::RE),
         Err(Refusal::WrongDegree)
     );
 }
@@ -253,13 +255,13 @@ fn collide_by_walking(seed: u64) -> Option<(Map, Vec<Dart>, [usize; 2], Collisio
     for _ in 0..600 {
         for i in 0..tips.len() {
             for j in i + 1..tips.len() {
-                if let Some((kind, _)) = hybrid::collision(&m, tips[i], tips[j]) {
+                if let Some((kind, _)) = quad_dominant::collision(&m, tips[i], tips[j]) {
                     return Some((m, tips, [i, j], kind));
                 }
             }
         }
         let i = rng.below(tips.len());
-        if let Ok(r) = hybrid::move_triangle(&mut m, tips[i], Move::ALL[rng.below(4)]) {
+        if let Ok(r) = quad_dominant::move_triangle(&mut m, tips[i], Move::ALL[rng.below(4)]) {
             tips = with_tip(&tips, i, &r);
         }
     }
@@ -288,7 +290,7 @@ fn collisions() {
             .collect();
         let (t1, t2) = (tips[i], tips[j]);
         let (want, removed) = collide::effective_changes(&m, t1, t2, &others).unwrap();
-        let Ok(rec) = hybrid::merge_collision(&mut m, t1, t2) else {
+        let Ok(rec) = quad_dominant::merge_collision(&mut m, t1, t2) else {
             continue;
         };
         assert_eq!(m.check(), Ok(()));
@@ -311,7 +313,7 @@ fn collisions() {
         if regular_before {
             let irregular: Vec<Vert> = m
                 .vertices()
-                .filter(|&v| hybrid::effective_valence(&m, &rest, v) != 4)
+                .filter(|&v| quad_dominant::effective_valence(&m, &rest, v) != 4)
                 .collect();
             match kind {
                 Collision::Opposite | Collision::BaseToBase => {
@@ -321,7 +323,7 @@ fn collisions() {
                     let [p, q] = irregular[..] else {
                         panic!("seed {seed}: {kind:?} {irregular:?}");
                     };
-                    let e = |v| hybrid::effective_valence(&m, &rest, v);
+                    let e = |v| quad_dominant::effective_valence(&m, &rest, v);
                     let mut vals = [e(p), e(q)];
                     vals.sort();
                     assert_eq!(vals, [3, 5], "seed {seed}");
@@ -367,13 +369,13 @@ fn split_and_merge_are_inverse() {
     let grid = gen::torus_grid(5, 5).map;
     for d in grid.darts() {
         let mut m = grid.clone();
-        let s = hybrid::split_quad(&mut m, d).unwrap();
+        let s = quad_dominant::split_quad(&mut m, d).unwrap();
         assert_eq!(m.check(), Ok(()));
         let [a, b] = s.tips();
-        let (kind, e) = hybrid::collision(&m, a, b).unwrap();
+        let (kind, e) = quad_dominant::collision(&m, a, b).unwrap();
         assert_eq!(kind, Collision::Opposite);
         let mut merged = m.clone();
-        hybrid::merge_triangles(&mut merged, e).unwrap();
+        quad_dominant::merge_triangles(&mut merged, e).unwrap();
         assert!(is_isomorphic(&merged, &grid));
         s.undo(&mut m).unwrap();
         assert_eq!(m, grid);
@@ -386,8 +388,8 @@ fn stale_records_are_refused() {
     let (mesh, tips) = gen::quad_dominant(10, 10, 1, 2);
     for mv in Move::ALL {
         let mut m = mesh.map.clone();
-        let first = hybrid::move_triangle(&mut m, tips[0], mv).unwrap();
-        let second = hybrid::move_triangle(&mut m, first.tip(), mv).unwrap();
+        let first = quad_dominant::move_triangle(&mut m, tips[0], mv).unwrap();
+        let second = quad_dominant::move_triangle(&mut m, first.tip(), mv).unwrap();
         let snapshot = m.clone();
         assert_eq!(first.undo(&mut m), Err(Refusal::StaleRecord), "{mv}");
         assert_eq!(m, snapshot);

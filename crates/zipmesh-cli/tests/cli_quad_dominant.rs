@@ -9,8 +9,8 @@ use run::{s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Output;
-use zipmesh::hybrid::{self, compass, Move};
 use zipmesh::invariants::canonical::canonical_hash;
+use zipmesh::quad_dominant::{self, compass, Move};
 use zipmesh::{gen, io, is_isomorphic, Dart, Face, Mesh, Vert};
 
 fn json(o: &Output) -> Value {
@@ -30,7 +30,7 @@ fn input(dir: &Path, seed: u64) -> (PathBuf, Mesh) {
 
 /// The tip dart of face `f` (the corner of highest valence).
 fn tip(mesh: &Mesh, f: u32) -> Dart {
-    hybrid::default_tip(&mesh.map, Face::new(f)).unwrap()
+    quad_dominant::default_tip(&mesh.map, Face::new(f)).unwrap()
 }
 
 fn num(v: &Value) -> String {
@@ -41,7 +41,7 @@ fn num(v: &Value) -> String {
 fn walk_and_undo(name: &str, extra: &[&str], lib: impl Fn(&mut Mesh, Dart) -> Dart) {
     let dir = temp_dir(name);
     let (inp, mesh) = input(&dir, 3);
-    let f = hybrid::triangles(&mesh.map)[0].index() as u32;
+    let f = quad_dominant::triangles(&mesh.map)[0].index() as u32;
     let out = dir.join("out.obj");
     let mut args = vec!["tri-walk", s(&inp), "--triangle"];
     let fs = f.to_string();
@@ -105,7 +105,10 @@ fn each_move_and_its_undo() {
             let k = steps.to_string();
             walk_and_undo(&name, &["--move", mv.name(), "--steps", &k], |m, t| {
                 (0..steps).fold(t, |t, _| {
-                    hybrid::mesh_move_triangle(m, t, mv).unwrap().record().tip()
+                    quad_dominant::mesh_move_triangle(m, t, mv)
+                        .unwrap()
+                        .record()
+                        .tip()
                 })
             });
         }
@@ -117,7 +120,10 @@ fn a_sequence_of_moves() {
     let seq = [Move::VE, Move::LE, Move::LE, Move::EV, Move::RE];
     walk_and_undo("tri-walk-seq", &["--move", "VE,LE,le,EV,RE"], |m, t| {
         seq.iter().fold(t, |t, &mv| {
-            hybrid::mesh_move_triangle(m, t, mv).unwrap().record().tip()
+            quad_dominant::mesh_move_triangle(m, t, mv)
+                .unwrap()
+                .record()
+                .tip()
         })
     });
 }
@@ -126,7 +132,7 @@ fn a_sequence_of_moves() {
 fn compass_walk_to_a_vertex() {
     let dir = temp_dir("tri-walk-to-probe");
     let (_, mesh) = input(&dir, 3);
-    let f = hybrid::triangles(&mesh.map)[0].index() as u32;
+    let f = quad_dominant::triangles(&mesh.map)[0].index() as u32;
     let m = &mesh.map;
     // Four edges from the tip: VE direction, then a turn.
     let t = tip(&mesh, f);
@@ -146,7 +152,7 @@ fn bad_input_exits_2_without_output() {
     let dir = temp_dir("tri-walk-bad");
     let (inp, mesh) = input(&dir, 3);
     let quad = mesh.map.faces().find(|&f| mesh.map.degree(f) == 4).unwrap();
-    let tri = hybrid::triangles(&mesh.map)[0];
+    let tri = quad_dominant::triangles(&mesh.map)[0];
     let far = mesh
         .map
         .vertices()
@@ -158,7 +164,7 @@ fn bad_input_exits_2_without_output() {
         .map
         .face_darts(Face::new(0))
         .find(|&d| g.map.origin(d) == Vert::new(0));
-    hybrid::split_quad(&mut g.map, d0.unwrap()).unwrap();
+    quad_dominant::split_quad(&mut g.map, d0.unwrap()).unwrap();
     let gp = dir.join("grid.obj");
     io::write_mesh(&gp, &g).unwrap();
     let (q, t, fv) = (
@@ -232,8 +238,8 @@ fn zip_and_moves_on_a_quad_dominant_mesh() {
     ]));
     let (edited, _) = io::read_mesh(&out).unwrap();
     assert_eq!(
-        hybrid::triangles(&edited.map).len(),
-        hybrid::triangles(m).len()
+        quad_dominant::triangles(&edited.map).len(),
+        quad_dominant::triangles(m).len()
     );
     let u = &r["undo"];
     let path: Vec<String> = u["path"]

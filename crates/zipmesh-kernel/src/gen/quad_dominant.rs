@@ -2,9 +2,9 @@
 //! pairs of triangles inserted by splitting a quad along a diagonal and walking the two
 //! halves apart.
 
-use crate::hybrid::{self, Move};
 use crate::map::{Dart, Face, Map, Vert};
 use crate::mesh::Mesh;
+use crate::quad_dominant::{self, Move};
 use crate::rng::Rng;
 use alloc::vec::Vec;
 
@@ -38,7 +38,7 @@ fn pick_quad(map: &Map, rng: &mut Rng) -> Option<Dart> {
             && corners.iter().all(|&v| {
                 !map.is_boundary_vertex(v) && map.valence(v) == 4 && !near_triangle(map, v)
             });
-        if fits && hybrid::can_split_quad(map, d).is_ok() {
+        if fits && quad_dominant::can_split_quad(map, d).is_ok() {
             return Some(d);
         }
     }
@@ -47,18 +47,18 @@ fn pick_quad(map: &Map, rng: &mut Rng) -> Option<Dart> {
 
 /// `mesh` with up to `pairs` triangle pairs, and the tip darts of all its triangles (two per
 /// pair, in insertion order). Each pair: a quad with four regular interior corners, away
-/// from the other triangles, is split along a diagonal ([`hybrid::split_quad`]); each half
+/// from the other triangles, is split along a diagonal ([`quad_dominant::split_quad`]); each half
 /// makes one VE away from the other, so both are the paper's triangles (tip of valence 5,
 /// two corners of valence 4, effective valences all kept); then `steps` random moves of
 /// the pair's triangles follow, each kept only if no two triangles share a vertex after
 /// it. Fewer pairs are made when no such quad is found in 64 tries. Deterministic in `seed`.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, tips) = gen::with_triangle_pairs(gen::random_quad(300, 2, 0, 5), 2, 10, 9);
 /// assert_eq!(mesh.map.check(), Ok(()));
 /// assert_eq!(tips.len(), 4);
-/// assert_eq!(hybrid::triangles(&mesh.map).len(), 4);
+/// assert_eq!(quad_dominant::triangles(&mesh.map).len(), 4);
 /// ```
 pub fn with_triangle_pairs(
     mut mesh: Mesh,
@@ -72,12 +72,12 @@ pub fn with_triangle_pairs(
         let Some(d) = pick_quad(&mesh.map, &mut rng) else {
             break;
         };
-        let Ok(split) = hybrid::split_quad(&mut mesh.map, d) else {
+        let Ok(split) = quad_dominant::split_quad(&mut mesh.map, d) else {
             break;
         };
         let mut pair = split.tips();
         for t in &mut pair {
-            if let Ok(e) = hybrid::mesh_move_triangle(&mut mesh, *t, Move::VE) {
+            if let Ok(e) = quad_dominant::mesh_move_triangle(&mut mesh, *t, Move::VE) {
                 *t = e.record().tip();
             }
         }
@@ -85,7 +85,7 @@ pub fn with_triangle_pairs(
         for _ in 0..steps {
             let i = tips.len() - 2 + rng.below(2);
             let mv = Move::ALL[rng.below(4)];
-            if let Ok(e) = hybrid::mesh_move_triangle(&mut mesh, tips[i], mv) {
+            if let Ok(e) = quad_dominant::mesh_move_triangle(&mut mesh, tips[i], mv) {
                 let old = tips.clone();
                 tips = tips.iter().map(|&d| e.record().follow(d)).collect();
                 tips[i] = e.record().tip();
@@ -103,7 +103,7 @@ pub fn with_triangle_pairs(
 /// walked apart by `nx + ny` random moves each: [`with_triangle_pairs`].
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
 /// for &t in &tips {
 ///     let m = &mesh.map;

@@ -16,12 +16,12 @@
 //! irregular valences of the quad vertices ([`irregular_effective`]) never change.
 //!
 //! ```
-//! use zipmesh_kernel::{gen, hybrid::{self, Move}};
+//! use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
 //! let (mut mesh, tips) = gen::quad_dominant(8, 8, 1, 3);
-//! let before = hybrid::irregular_effective(&mesh.map, &tips);
+//! let before = quad_dominant::irregular_effective(&mesh.map, &tips);
 //! assert!(before.is_empty()); // a torus grid with one triangle pair: nothing irregular
-//! let r = hybrid::move_triangle(&mut mesh.map, tips[0], Move::VE).unwrap();
-//! assert_eq!(hybrid::irregular_effective(&mesh.map, &[r.tip(), tips[1]]), before);
+//! let r = quad_dominant::move_triangle(&mut mesh.map, tips[0], Move::VE).unwrap();
+//! assert_eq!(quad_dominant::irregular_effective(&mesh.map, &[r.tip(), tips[1]]), before);
 //! ```
 
 use crate::map::{Dart, Face, Map, Vert};
@@ -47,10 +47,10 @@ pub use walk::{can_move_triangle, move_triangle, probe_move, Move, TriangleMove,
 /// corner's valence is the highest alone.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let f = mesh.map.face(tips[0]).unwrap();
-/// assert_eq!(hybrid::default_tip(&mesh.map, f), Some(tips[0]));
+/// assert_eq!(quad_dominant::default_tip(&mesh.map, f), Some(tips[0]));
 /// ```
 pub fn default_tip(map: &Map, f: Face) -> Option<Dart> {
     if !map.is_live_face(f) || map.degree(f) != 3 {
@@ -75,11 +75,11 @@ fn tip_count(map: &Map, tips: &[Dart], v: Vert) -> usize {
 /// darts) whose tip it is. See the [module docs](self).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
 /// let tip = mesh.map.origin(tips[0]);
 /// assert_eq!(mesh.map.valence(tip), 5);
-/// assert_eq!(hybrid::effective_valence(&mesh.map, &tips, tip), 4);
+/// assert_eq!(quad_dominant::effective_valence(&mesh.map, &tips, tip), 4);
 /// ```
 pub fn effective_valence(map: &Map, tips: &[Dart], v: Vert) -> i64 {
     map.valence(v) as i64 - tip_count(map, tips, v) as i64
@@ -101,9 +101,9 @@ pub fn irregular_effective(map: &Map, tips: &[Dart]) -> Vec<(i64, bool)> {
 /// Every triangle of the map, as its face, in face order.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, _) = gen::quad_dominant(6, 6, 2, 7);
-/// assert_eq!(hybrid::triangles(&mesh.map).len(), 4);
+/// assert_eq!(quad_dominant::triangles(&mesh.map).len(), 4);
 /// ```
 pub fn triangles(map: &Map) -> Vec<Face> {
     map.faces().filter(|&f| map.degree(f) == 3).collect()
@@ -113,9 +113,9 @@ pub fn triangles(map: &Map) -> Vec<Face> {
 /// Q-zip's `avoid_triangles` keeps every path off.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid};
+/// use zipmesh_kernel::{gen, quad_dominant};
 /// let (mesh, tips) = gen::quad_dominant(12, 12, 1, 3);
-/// let near = hybrid::near_triangles(&mesh.map);
+/// let near = quad_dominant::near_triangles(&mesh.map);
 /// assert!(near.contains(&mesh.map.origin(tips[0])));
 /// ```
 pub fn near_triangles(map: &Map) -> Vec<Vert> {

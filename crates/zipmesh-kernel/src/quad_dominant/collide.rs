@@ -45,11 +45,11 @@ pub enum Collision {
 /// not a triangle.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid::{self, Collision}, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant::{self, Collision}, Dart};
 /// let mut map = gen::torus_grid(4, 4).map;
-/// let s = hybrid::split_quad(&mut map, Dart::new(0)).unwrap();
+/// let s = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap();
 /// let [t1, t2] = s.tips();
-/// assert_eq!(hybrid::collision(&map, t1, t2).map(|c| c.0), Some(Collision::Opposite));
+/// assert_eq!(quad_dominant::collision(&map, t1, t2).map(|c| c.0), Some(Collision::Opposite));
 /// ```
 pub fn collision(map: &Map, t1: Dart, t2: Dart) -> Option<(Collision, Dart)> {
     let (a, b) = (triangle(map, t1).ok()?, triangle(map, t2).ok()?);
@@ -82,10 +82,10 @@ pub type EffectiveChanges = (Vec<(Vert, i64)>, Option<Vert>);
 /// change, and the vertex deleted (BaseToBase).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, Dart};
 /// let mut map = gen::torus_grid(4, 4).map;
-/// let [t1, t2] = hybrid::split_quad(&mut map, Dart::new(0)).unwrap().tips();
-/// assert_eq!(hybrid::collide::effective_changes(&map, t1, t2, &[]), Some((vec![], None)));
+/// let [t1, t2] = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap().tips();
+/// assert_eq!(quad_dominant::collide::effective_changes(&map, t1, t2, &[]), Some((vec![], None)));
 /// ```
 pub fn effective_changes(
     map: &Map,
@@ -134,11 +134,11 @@ pub fn effective_changes(
 /// operation, or [`Refusal::BadArguments`] if they share no edge.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, Dart};
 /// let mut map = gen::torus_grid(4, 4).map;
 /// let grid = map.clone();
-/// let [t1, t2] = hybrid::split_quad(&mut map, Dart::new(0)).unwrap().tips();
-/// hybrid::merge_collision(&mut map, t1, t2).unwrap();
+/// let [t1, t2] = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap().tips();
+/// quad_dominant::merge_collision(&mut map, t1, t2).unwrap();
 /// assert!(zipmesh_kernel::is_isomorphic(&map, &grid));
 /// ```
 pub fn merge_collision(map: &mut Map, t1: Dart, t2: Dart) -> Result<TriangleMerge, Refusal> {
@@ -157,10 +157,10 @@ pub fn merge_collision(map: &mut Map, t1: Dart, t2: Dart) -> Result<TriangleMerg
 /// joined).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, ops::Refusal, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, ops::Refusal, Dart};
 /// let map = gen::torus_grid(4, 4).map;
-/// assert_eq!(hybrid::can_split_quad(&map, Dart::new(0)), Ok(()));
-/// assert_eq!(hybrid::can_split_quad(&gen::grid(1, 1).map, Dart::new(1)), Err(Refusal::Boundary));
+/// assert_eq!(quad_dominant::can_split_quad(&map, Dart::new(0)), Ok(()));
+/// assert_eq!(quad_dominant::can_split_quad(&gen::grid(1, 1).map, Dart::new(1)), Err(Refusal::Boundary));
 /// ```
 pub fn can_split_quad(map: &Map, d: Dart) -> Result<(), Refusal> {
     plan_split(map, d).map(|_| ())
@@ -192,10 +192,10 @@ fn plan_split(map: &Map, d: Dart) -> Result<[Dart; 4], Refusal> {
 /// E +1, F +1; the diagonal's ends gain one each, and their effective valences are kept.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, Dart};
 /// let mut map = gen::torus_grid(4, 4).map;
 /// let before = map.clone();
-/// let s = hybrid::split_quad(&mut map, Dart::new(0)).unwrap();
+/// let s = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap();
 /// assert_eq!(map.check(), Ok(()));
 /// assert_eq!(s.tips()[0], Dart::new(0));
 /// s.undo(&mut map).unwrap();
@@ -271,9 +271,9 @@ fn plan_merge(map: &Map, d: Dart) -> Result<[Dart; 5], Refusal> {
 /// corners are one vertex), [`Refusal::ValenceTooLow`] (an end of the edge has valence 2).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, ops::Refusal, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, ops::Refusal, Dart};
 /// let map = gen::torus_grid(4, 4).map;
-/// assert_eq!(hybrid::can_merge_triangles(&map, Dart::new(0)), Err(Refusal::WrongDegree));
+/// assert_eq!(quad_dominant::can_merge_triangles(&map, Dart::new(0)), Err(Refusal::WrongDegree));
 /// ```
 pub fn can_merge_triangles(map: &Map, d: Dart) -> Result<(), Refusal> {
     plan_merge(map, d).map(|_| ())
@@ -284,13 +284,13 @@ pub fn can_merge_triangles(map: &Map, d: Dart) -> Result<(), Refusal> {
 /// lose one each; effective valences change by the [`Collision`] kind (module docs).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, Dart};
 /// let mut map = gen::torus_grid(4, 4).map;
 /// let grid = map.clone();
-/// let s = hybrid::split_quad(&mut map, Dart::new(0)).unwrap();
+/// let s = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap();
 /// let split = map.clone();
-/// let (_, d) = hybrid::collision(&map, s.tips()[0], s.tips()[1]).unwrap();
-/// let m = hybrid::merge_triangles(&mut map, d).unwrap();
+/// let (_, d) = quad_dominant::collision(&map, s.tips()[0], s.tips()[1]).unwrap();
+/// let m = quad_dominant::merge_triangles(&mut map, d).unwrap();
 /// assert!(zipmesh_kernel::is_isomorphic(&map, &grid));
 /// m.undo(&mut map).unwrap();
 /// assert_eq!(map, split);
@@ -343,11 +343,11 @@ impl TriangleMerge {
     /// ([`collapse_shared_base`]).
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid, Dart};
+    /// use zipmesh_kernel::{gen, quad_dominant, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
-    /// let s = hybrid::split_quad(&mut map, Dart::new(0)).unwrap();
-    /// let (_, d) = hybrid::collision(&map, s.tips()[0], s.tips()[1]).unwrap();
-    /// let m = hybrid::merge_triangles(&mut map, d).unwrap();
+    /// let s = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap();
+    /// let (_, d) = quad_dominant::collision(&map, s.tips()[0], s.tips()[1]).unwrap();
+    /// let m = quad_dominant::merge_triangles(&mut map, d).unwrap();
     /// assert_eq!(map.degree(map.face(m.quad()).unwrap()), 4);
     /// ```
     pub fn quad(&self) -> Dart {
@@ -359,10 +359,10 @@ impl TriangleMerge {
     /// the two triangles.
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, hybrid, Dart};
+    /// use zipmesh_kernel::{gen, quad_dominant, Dart};
     /// let mut map = gen::torus_grid(4, 4).map;
-    /// let [t1, t2] = hybrid::split_quad(&mut map, Dart::new(0)).unwrap().tips();
-    /// let m = hybrid::merge_collision(&mut map, t1, t2).unwrap();
+    /// let [t1, t2] = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap().tips();
+    /// let m = quad_dominant::merge_collision(&mut map, t1, t2).unwrap();
     /// assert_eq!(m.follow(Dart::new(5)), Dart::new(5));
     /// ```
     pub fn follow(&self, d: Dart) -> Dart {
@@ -433,9 +433,9 @@ fn plan_collapse_base(map: &Map, d: Dart) -> Result<(Tri, Tri), Refusal> {
 /// neighbour besides the two third corners).
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, ops::Refusal, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, ops::Refusal, Dart};
 /// let map = gen::torus_grid(4, 4).map;
-/// assert_eq!(hybrid::can_collapse_shared_base(&map, Dart::new(0)), Err(Refusal::WrongDegree));
+/// assert_eq!(quad_dominant::can_collapse_shared_base(&map, Dart::new(0)), Err(Refusal::WrongDegree));
 /// ```
 pub fn can_collapse_shared_base(map: &Map, d: Dart) -> Result<(), Refusal> {
     plan_collapse_base(map, d).map(|_| ())
@@ -449,15 +449,15 @@ pub fn can_collapse_shared_base(map: &Map, d: Dart) -> Result<(), Refusal> {
 /// the two minus 4: regular from regular.
 ///
 /// ```
-/// use zipmesh_kernel::{gen, hybrid, Dart};
+/// use zipmesh_kernel::{gen, quad_dominant, Dart};
 /// // A quad split along a diagonal, then split across the other half: build two
 /// // triangles on one base by splitting a quad and flipping the diagonal.
 /// let mut map = gen::torus_grid(6, 6).map;
 /// let before = map.clone();
-/// let [t1, _] = hybrid::split_quad(&mut map, Dart::new(0)).unwrap().tips();
+/// let [t1, _] = quad_dominant::split_quad(&mut map, Dart::new(0)).unwrap().tips();
 /// let d = map.next(map.next(t1)); // the diagonal, a base for both as seen from the third corners
 /// let split = map.clone();
-/// let r = hybrid::collapse_shared_base(&mut map, d).unwrap();
+/// let r = quad_dominant::collapse_shared_base(&mut map, d).unwrap();
 /// assert_eq!(map.check(), Ok(()));
 /// assert_eq!(map.num_vertices() + 1, split.num_vertices());
 /// r.undo(&mut map).unwrap();
