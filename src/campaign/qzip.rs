@@ -358,31 +358,26 @@ fn four_moves(case: &Case, choice: PairChoice) -> Outcome {
     tally(checks)
 }
 
+/// A property of a Q-zip check: its name, what it states, and the check with a pair choice.
+pub(super) type PairCheck = (&'static str, &'static str, fn(&Case, PairChoice) -> Outcome);
+
+/// The properties of `table`, each checking with `choice`.
+pub(super) fn with_choice(table: &[PairCheck], choice: PairChoice) -> Vec<Property> {
+    let property = |&(name, about, check): &PairCheck| {
+        Property::new(name, about.to_string(), move |c| check(c, choice))
+    };
+    table.iter().map(property).collect()
+}
+
 /// The Q-zip properties of quad cases (`qzip-grid` to `qzip-four-moves`), in order.
+#[rustfmt::skip]
 pub(super) fn quad_properties(choice: PairChoice) -> Vec<Property> {
-    let about = |s: &str| s.to_string();
-    std::vec![
-        Property::new(
-            "qzip-grid",
-            about("a Q-zip done keeps the grid (valid, pure quad, chi, boundary, irregular valences) and undoes exactly; a refusal changes nothing"),
-            move |c| grid(c, choice)
-        ),
-        Property::new(
-            "qzip-reversal",
-            about("the reverse Q-zip found from the moved terminal back to the moved initial singularity restores the original up to isomorphism"),
-            move |c| reversal(c, choice)
-        ),
-        Property::new(
-            "qzip-homotopy",
-            about("along paths one swept regular quad apart, each movement gives the same map (labels matched by the turn at the start)"),
-            move |c| homotopy(c, choice)
-        ),
-        Property::new(
-            "qzip-four-moves",
-            about("for a pair in a regular region, the movements done give pairwise non-isomorphic maps"),
-            move |c| four_moves(c, choice)
-        ),
-    ]
+    with_choice(&[
+        ("qzip-grid", "a Q-zip done keeps the grid (valid, pure quad, chi, boundary, irregular valences) and undoes exactly; a refusal changes nothing", grid),
+        ("qzip-reversal", "the reverse Q-zip found from the moved terminal back to the moved initial singularity restores the original up to isomorphism", reversal),
+        ("qzip-homotopy", "along paths one swept regular quad apart, each movement gives the same map (labels matched by the turn at the start)", homotopy),
+        ("qzip-four-moves", "for a pair in a regular region, the movements done give pairwise non-isomorphic maps", four_moves),
+    ], choice)
 }
 
 /// The triangles of `map`, each with its sorted corner valences.

@@ -5,10 +5,9 @@
 //! vertices are those of the input.
 
 use std::borrow::Cow;
-use std::string::ToString;
 use std::vec::Vec;
 
-use super::qzip::{grid_on, homotopy_on, quad_properties, reversal_on, Subject};
+use super::qzip::{grid_on, homotopy_on, quad_properties, reversal_on, with_choice, Subject};
 use super::{Case, Outcome, PairChoice, Property};
 use crate::qzip::{self, SketchOptions};
 use crate::{gen, quad_dominant, Map};
@@ -81,26 +80,14 @@ impl<'c> Subject<'c> {
 ///     assert!(!p.check(&case).is_fail(), "{}", p.name());
 /// }
 /// ```
+#[rustfmt::skip]
 pub fn qzip_properties(choice: PairChoice) -> Vec<Property> {
-    let about = |s: &str| s.to_string();
     let mut all = quad_properties(choice);
-    all.extend([
-        Property::new(
-            "qzip-quad-dominant-grid",
-            about("on a quad-dominant mesh (triangle pairs inserted into a quad case), a Q-zip winding around the triangles keeps the grid and every triangle (face, corner valences) and undoes exactly"),
-            move |c| grid(c, choice)
-        ),
-        Property::new(
-            "qzip-quad-dominant-reversal",
-            about("on a quad-dominant mesh, the reverse Q-zip found restores the original up to isomorphism"),
-            move |c| reversal(c, choice)
-        ),
-        Property::new(
-            "qzip-quad-dominant-homotopy",
-            about("on a quad-dominant mesh, paths one swept quad apart (both away from the triangles) give the same maps"),
-            move |c| homotopy(c, choice)
-        ),
-    ]);
+    all.extend(with_choice(&[
+        ("qzip-quad-dominant-grid", "on a quad-dominant mesh (triangle pairs inserted into a quad case), a Q-zip winding around the triangles keeps the grid and every triangle (face, corner valences) and undoes exactly", grid),
+        ("qzip-quad-dominant-reversal", "on a quad-dominant mesh, the reverse Q-zip found restores the original up to isomorphism", reversal),
+        ("qzip-quad-dominant-homotopy", "on a quad-dominant mesh, paths one swept quad apart (both away from the triangles) give the same maps", homotopy),
+    ], choice));
     all
 }
 

@@ -1,7 +1,5 @@
 //! The face budget: faces away from the input's count cost.
 
-use alloc::boxed::Box;
-
 use super::{Context, ScoreTerm};
 
 /// The face budget: `|F - F0| + steepness * max(0, |F - F0| - tolerance * F0)`, the change
@@ -37,12 +35,7 @@ impl Default for FaceBudget {
 }
 
 impl ScoreTerm for FaceBudget {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(*self))
-    }
-    fn name(&self) -> &str {
-        "faces"
-    }
+    builtin_term!("faces");
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let off = ctx.mesh.map.num_faces().abs_diff(ctx.target_faces) as f64;
         let band = self.tolerance * ctx.target_faces as f64;

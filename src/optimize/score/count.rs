@@ -1,7 +1,5 @@
 //! The singularity count, the score's first term.
 
-use alloc::boxed::Box;
-
 use super::{Context, ScoreTerm};
 
 /// The singularity count: the sum of |defect| over every vertex (interior valence against 4,
@@ -19,12 +17,7 @@ use super::{Context, ScoreTerm};
 pub struct Count;
 
 impl ScoreTerm for Count {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(*self))
-    }
-    fn name(&self) -> &str {
-        "count"
-    }
+    builtin_term!("count");
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         ctx.singularities
             .iter()

@@ -1,7 +1,5 @@
 //! Electric push and pull between singularities.
 
-use alloc::boxed::Box;
-
 use super::super::marks::Memo;
 use super::bfs::Bfs;
 use super::{Context, ScoreTerm};
@@ -86,12 +84,7 @@ impl Default for Electric {
 }
 
 impl ScoreTerm for Electric {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(self.clone()))
-    }
-    fn name(&self) -> &str {
-        "electric"
-    }
+    builtin_term!("electric");
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         let map = &ctx.mesh.map;
         let mut total = 0.0;

@@ -1,7 +1,5 @@
 //! Isotropy: quads close to squares.
 
-use alloc::boxed::Box;
-
 use glam::DVec3;
 
 use super::{Context, QuadValue, ScoreTerm};
@@ -20,32 +18,14 @@ use super::{Context, QuadValue, ScoreTerm};
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Isotropy;
 
+/// `ln(a / b)^2`, the log capped at 2 (a zero or infinite ratio counts as the cap).
 pub(super) fn log_ratio_sq(a: f64, b: f64) -> f64 {
     let r = libm::log(a / b);
     let r = if r.is_finite() { r.abs().min(2.0) } else { 2.0 };
     r * r
 }
 
-impl ScoreTerm for Isotropy {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(*self))
-    }
-    fn name(&self) -> &str {
-        "isotropy"
-    }
-    fn score(&mut self, ctx: &Context<'_>) -> f64 {
-        let mut total = 0.0;
-        for f in ctx.scored_faces() {
-            if let Some(c) = ctx.corners(f) {
-                total += isotropy(&c, ctx.target_area);
-            }
-        }
-        total
-    }
-    fn quad_value(&self) -> Option<QuadValue> {
-        Some(isotropy)
-    }
-}
+quad_term!(Isotropy, "isotropy", isotropy);
 
 /// One quad's [`Isotropy`].
 fn isotropy(&[p0, p1, p2, p3]: &[DVec3; 4], _target_area: f64) -> f64 {

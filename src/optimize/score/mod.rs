@@ -14,6 +14,34 @@ use super::defect::{singularities, Singularity};
 use super::marks::Marks;
 use crate::{Mesh, Vert};
 
+/// A built-in term's `name` and `fork` (a clone for another thread), written once.
+macro_rules! builtin_term {
+    ($name:literal) => {
+        fn name(&self) -> &str {
+            $name
+        }
+        fn fork(&self) -> Option<alloc::boxed::Box<dyn super::ScoreTerm + Send>> {
+            Some(alloc::boxed::Box::new(self.clone()))
+        }
+    };
+}
+
+/// The impl of a built-in quad term: the sum of `$value` over the scored quads, and the
+/// value the scorer keeps per quad.
+macro_rules! quad_term {
+    ($term:ty, $name:literal, $value:path) => {
+        impl ScoreTerm for $term {
+            builtin_term!($name);
+            fn score(&mut self, ctx: &Context<'_>) -> f64 {
+                ctx.quad_sum($value)
+            }
+            fn quad_value(&self) -> Option<QuadValue> {
+                Some($value)
+            }
+        }
+    };
+}
+
 mod bfs;
 mod budget;
 mod count;
@@ -73,6 +101,16 @@ impl Context<'_> {
             Some(f) => alloc::boxed::Box::new(f.iter().copied()),
             None => alloc::boxed::Box::new(self.mesh.map.faces()),
         }
+    }
+    /// The sum of a quad term's `value` over the scored quads.
+    fn quad_sum(&self, value: QuadValue) -> f64 {
+        let mut total = 0.0;
+        for f in self.scored_faces() {
+            if let Some(c) = self.corners(f) {
+                total += value(&c, self.target_area);
+            }
+        }
+        total
     }
 
     fn corners(&self, f: crate::Face) -> Option<[DVec3; 4]> {

@@ -1,7 +1,5 @@
 //! Separatrix alignment: singularities on each other's separatrices.
 
-use alloc::boxed::Box;
-
 use super::super::marks::Memo;
 use super::bfs::Bfs;
 use super::{Context, ScoreTerm};
@@ -73,12 +71,7 @@ impl Separatrix {
 }
 
 impl ScoreTerm for Separatrix {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(self.clone()))
-    }
-    fn name(&self) -> &str {
-        "separatrix"
-    }
+    builtin_term!("separatrix");
     fn score(&mut self, ctx: &Context<'_>) -> f64 {
         // Stamped, not cleared: a window's call touches a few vertices of a large mesh.
         let slots = ctx.mesh.map.vertex_slots();

@@ -1,7 +1,5 @@
 //! Uniform sizing: quads close to the target area.
 
-use alloc::boxed::Box;
-
 use glam::DVec3;
 
 use super::isotropy::log_ratio_sq;
@@ -21,26 +19,7 @@ use super::{Context, QuadValue, ScoreTerm};
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Sizing;
 
-impl ScoreTerm for Sizing {
-    fn fork(&self) -> Option<Box<dyn ScoreTerm + Send>> {
-        Some(Box::new(*self))
-    }
-    fn name(&self) -> &str {
-        "sizing"
-    }
-    fn score(&mut self, ctx: &Context<'_>) -> f64 {
-        let mut total = 0.0;
-        for f in ctx.scored_faces() {
-            if let Some(c) = ctx.corners(f) {
-                total += sizing(&c, ctx.target_area);
-            }
-        }
-        total
-    }
-    fn quad_value(&self) -> Option<QuadValue> {
-        Some(sizing)
-    }
-}
+quad_term!(Sizing, "sizing", sizing);
 
 /// One quad's [`Sizing`].
 fn sizing(&[p0, p1, p2, p3]: &[DVec3; 4], target_area: f64) -> f64 {
