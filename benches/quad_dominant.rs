@@ -33,7 +33,7 @@ fn moves(c: &mut Criterion) {
             );
             g.bench_function(format!("{mv}, torus {n}"), |b| {
                 b.iter(|| {
-                    let e = quad_dominant::mesh_move_triangle(&mut mesh, t, mv).expect("applies");
+                    let e = mv.apply(&mut mesh, t).expect("applies");
                     e.undo(&mut mesh).expect("undo")
                 })
             });

@@ -13,6 +13,7 @@ mod qzip_torus;
 use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use zipmesh::mesh::Edited;
 use zipmesh::qzip::{self, SketchOptions, Tag};
 use zipmesh::Map;
 
@@ -113,7 +114,7 @@ fn qzip_torus(c: &mut Criterion) {
 fn timed_zips(
     iters: u64,
     map: &mut Map,
-    mut zip: impl FnMut(&mut Map, usize) -> Result<qzip::ZipReport, qzip::QzipError>,
+    mut zip: impl FnMut(&mut Map, usize) -> Result<Edited<qzip::ZipReport, ()>, qzip::QzipError>,
 ) -> Duration {
     let mut total = Duration::ZERO;
     for i in 0..iters as usize {

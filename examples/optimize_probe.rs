@@ -160,7 +160,7 @@ fn main() {
                 continue;
             };
             for tag in Tag::CCW {
-                let Ok(z) = qzip.zip_mesh_along(&mut mesh, &path, tag) else {
+                let Ok(z) = qzip.zip_along(&mut mesh, &path, tag) else {
                     refused += 1;
                     continue;
                 };

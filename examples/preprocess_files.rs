@@ -1,7 +1,7 @@
 //! Writes preprocessed copies of quad meshes, for `zipmesh check` on them:
 //! `cargo run --release --example preprocess_files -- DIR FILE...`.
 //!
-//! Each FILE is read, `qzip::mesh_preprocess`ed (no interior valence 2 or 6+ left), compacted
+//! Each FILE is read, `qzip::preprocess`ed (no interior valence 2 or 6+ left), compacted
 //! and written to `DIR/<its name>`; the number of operations goes to stderr. For example
 //! `docs/VERIFICATION.md` counts the reversal misses of `check DIR/*.obj` this way.
 
@@ -16,7 +16,7 @@ fn main() {
     };
     for file in args {
         let (mut mesh, _) = io::read_mesh(&file).unwrap_or_else(|e| panic!("{e}"));
-        let p = qzip::mesh_preprocess(&mut mesh).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let p = qzip::preprocess(&mut mesh).unwrap_or_else(|e| panic!("{file}: {e}"));
         mesh.compact();
         let name = Path::new(&file).file_name().expect("a file name");
         let out = Path::new(&dir).join(name);

@@ -280,7 +280,7 @@ fn measure_zips<C>(
     map: &mut Map,
     cases: &[C],
     rounds: usize,
-    mut op: impl FnMut(&mut Map, &C) -> qzip::ZipReport,
+    mut op: impl FnMut(&mut Map, &C) -> zipmesh::mesh::Edited<qzip::ZipReport, ()>,
 ) -> (f64, f64, f64) {
     let mut times: Vec<f64> = (0..reps.max(1))
         .map(|_| {

@@ -44,7 +44,7 @@ impl Op for QuadOp {
         }
     }
     fn apply(self, m: &mut Map, l: &mut Layers) -> Result<Edited<QuadRecord, Layers>, Refusal> {
-        self.apply_with(m, l)
+        self.apply(&mut (&mut *m, &mut *l))
     }
     fn placed(r: &QuadRecord) -> Option<Vert> {
         match r {
@@ -68,7 +68,7 @@ impl Op for TriOp {
         }
     }
     fn apply(self, m: &mut Map, l: &mut Layers) -> Result<Edited<TriRecord, Layers>, Refusal> {
-        self.apply_with(m, l)
+        self.apply(&mut (&mut *m, &mut *l))
     }
     fn placed(r: &TriRecord) -> Option<Vert> {
         match r {
@@ -115,7 +115,7 @@ fn run<O: Op>(mesh: &Mesh, seed: u64, steps: usize) -> usize {
                     assert!(layers.0.len() > v.index() && layers.1.len() > v.index());
                 }
                 // Every edit undoes exactly on its own; redo it to go on.
-                edit.undo_with(&mut map, &mut layers).unwrap();
+                edit.undo(&mut (&mut map, &mut layers)).unwrap();
                 assert_eq!((&map, &layers), (&before.0, &before.1), "{op:?} undo");
                 op.apply(&mut map, &mut layers).unwrap();
             }
@@ -270,7 +270,7 @@ fn qzip_keeps_both_layers_in_step() {
         };
         for tag in Tag::CCW {
             let before = (mesh.map.clone(), layers.clone());
-            let Ok(z) = Qzip::new().zip_along_with(&mut mesh.map, &mut layers, &path, tag) else {
+            let Ok(z) = Qzip::new().zip_along(&mut (&mut mesh.map, &mut layers), &path, tag) else {
                 assert_eq!((&mesh.map, &layers), (&before.0, &before.1));
                 continue;
             };
@@ -283,7 +283,7 @@ fn qzip_keeps_both_layers_in_step() {
             );
             reused += z.journal().overwritten();
             assert!(layers.0.len() >= mesh.map.vertex_slots());
-            z.undo_with(&mut mesh.map, &mut layers).unwrap();
+            z.undo(&mut (&mut mesh.map, &mut layers)).unwrap();
             assert_eq!((&mesh.map, &layers), (&before.0, &before.1), "{tag:?} undo");
         }
     }
@@ -300,7 +300,7 @@ fn qzip_keeps_both_layers_in_step() {
 #[test]
 fn preprocessing_undo_restores_positions() {
     use zipmesh::ops::quad;
-    use zipmesh::qzip::mesh_preprocess;
+    use zipmesh::qzip::preprocess;
     let mut found = 0;
     for seed in 0..40u64 {
         let mut mesh = gen::torus_grid(8, 8);
@@ -308,12 +308,12 @@ fn preprocessing_undo_restores_positions() {
         // A collapse frees a slot and makes a v6; a doublet takes the slot as a v2.
         for _ in 0..3 {
             let d = Dart::new(rng.below(mesh.map.dart_slots()) as u32);
-            let _ = quad::mesh_collapse_quad(&mut mesh, d);
+            let _ = quad::QuadOp::Collapse(d).apply(&mut mesh);
             let d = Dart::new(rng.below(mesh.map.dart_slots()) as u32);
-            let _ = quad::mesh_insert_doublet(&mut mesh, d);
+            let _ = quad::QuadOp::InsertDoublet(d).apply(&mut mesh);
         }
         let before = mesh.clone();
-        let Ok(p) = mesh_preprocess(&mut mesh) else {
+        let Ok(p) = preprocess(&mut mesh) else {
             assert_eq!(mesh, before);
             continue;
         };

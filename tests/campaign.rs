@@ -382,7 +382,7 @@ fn reversal_misses_are_counted_as_unchecked() {
     let file =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/quad/osd_catmark_toroidal_tet.obj");
     let (mut mesh, _) = io::read_mesh(&file).unwrap();
-    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    zipmesh::qzip::preprocess(&mut mesh).unwrap();
     let cases = [Case::from_mesh(mesh, 0, 0, "toroidal tet, preprocessed")];
     let choice = campaign::PairChoice {
         max_distance: 2,

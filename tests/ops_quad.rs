@@ -95,7 +95,7 @@ fn run_sequence(original: &Mesh, seed: u64, steps: usize) -> Stats {
         let op = random_op(&mesh.map, &mut rng, &hot);
         let before = mesh.clone();
         let can = op.can(&mesh.map);
-        match op.apply_mesh(&mut mesh) {
+        match op.apply(&mut mesh) {
             Err(r) => {
                 assert_eq!(can, Err(r), "{op:?}");
                 assert!(
@@ -276,7 +276,7 @@ fn every_operator_applies_on_generated_meshes() {
     let mut hot = Vec::new();
     for _ in 0..3000 {
         let op = random_op(&m.map, &mut rng, &hot);
-        if op.apply_mesh(&mut m).is_ok() {
+        if op.apply(&mut m).is_ok() {
             let name = match op {
                 Op::Collapse(_) => "collapse",
                 Op::Split(..) => "split",

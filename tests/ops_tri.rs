@@ -21,7 +21,7 @@ use std::sync::OnceLock;
 use zipmesh::invariants::canonical::CanonicalCode;
 use zipmesh::invariants::Counts;
 use zipmesh::ops::tri;
-use zipmesh::ops::Refusal;
+use zipmesh::ops::{Refusal, VertexChanges};
 use zipmesh::rng::Rng;
 use zipmesh::{gen, Dart, Map, Mesh};
 
@@ -251,22 +251,22 @@ proptest! {
             let pos = |m: &Mesh, v: zipmesh::Vert| m.positions[v.index()];
             match op {
                 Op::Flip(h) => {
-                    if let Ok(p) = tri::mesh_flip_edge(&mut mesh, h) {
+                    if let Ok(p) = Op::Flip(h).apply(&mut mesh) {
                         prop_assert_eq!(&mesh.positions, &before.positions);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }
                 Op::Collapse(h) => {
-                    if let Ok(p) = tri::mesh_collapse_edge(&mut mesh, h) {
+                    if let Ok(p) = Op::Collapse(h).apply(&mut mesh) {
                         let (v, u) = (before.map.origin(h), before.map.dest(h));
                         prop_assert_eq!(pos(&mesh, u), (pos(&before, u) + pos(&before, v)) * 0.5);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }
                 Op::SplitVertex(d1, d2) => {
-                    if let Ok(p) = tri::mesh_split_vertex(&mut mesh, d1, d2) {
+                    if let Ok(p) = Op::SplitVertex(d1, d2).apply(&mut mesh) {
                         let w = before.map.origin(d1);
-                        let v = p.record().created();
+                        let v = p.created_vertex().unwrap();
                         prop_assert_eq!(pos(&mesh, w), pos(&before, w));
                         let ns: Vec<_> = mesh.map.vertex_darts(v).map(|d| mesh.map.dest(d)).filter(|&x| x != w).collect();
                         let avg = ns.iter().map(|&x| pos(&mesh, x)).sum::<glam::DVec3>() / ns.len() as f64;
@@ -276,9 +276,9 @@ proptest! {
                     }
                 }
                 Op::SplitEdge(h) => {
-                    if let Ok(p) = tri::mesh_split_edge(&mut mesh, h) {
+                    if let Ok(p) = Op::SplitEdge(h).apply(&mut mesh) {
                         let (a, b) = (before.map.origin(h), before.map.dest(h));
-                        prop_assert_eq!(pos(&mesh, p.record().created()), (pos(&before, a) + pos(&before, b)) * 0.5);
+                        prop_assert_eq!(pos(&mesh, p.created_vertex().unwrap()), (pos(&before, a) + pos(&before, b)) * 0.5);
                         undo.push(Box::new(move |m| p.undo(m)));
                     }
                 }

@@ -369,7 +369,7 @@ fn cancelling_qzips_are_valid_and_undo_exactly() {
     use zipmesh::invariants::irregular_vertices;
     use zipmesh::qzip::{Qzip, QzipError, Tag, ZipError};
     let mut mesh = subdivided(200, 2, 0, 3);
-    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    zipmesh::qzip::preprocess(&mut mesh).unwrap();
     let irr = irregular_vertices(&mesh.map, MeshKind::Quad);
     let (mut guarded, mut free) = (Qzip::new(), Qzip::new().allow_cancellation(true));
     let mut done = 0;
@@ -379,7 +379,7 @@ fn cancelling_qzips_are_valid_and_undo_exactly() {
                 continue;
             }
             for tag in [Tag::LS, Tag::RC, Tag::LC, Tag::RS] {
-                let refused = match guarded.zip_mesh(&mut mesh, a, b, tag) {
+                let refused = match guarded.zip(&mut mesh, a, b, tag) {
                     Ok(z) => {
                         z.undo(&mut mesh).unwrap();
                         false
@@ -391,7 +391,7 @@ fn cancelling_qzips_are_valid_and_undo_exactly() {
                 }
                 let before = mesh.clone();
                 let z = free
-                    .zip_mesh(&mut mesh, a, b, tag)
+                    .zip(&mut mesh, a, b, tag)
                     .expect("no guard, no refusal");
                 mesh.map.check().unwrap();
                 assert!(mesh.map.faces().all(|f| mesh.map.degree(f) == 4));

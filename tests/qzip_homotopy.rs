@@ -123,7 +123,7 @@ fn homotopic_paths_give_isomorphic_maps_on_subdivided_cages() {
         for pre in [false, true] {
             let mut mesh = mesh.clone();
             if pre {
-                zipmesh::qzip::mesh_preprocess(&mut mesh).expect("preprocess");
+                zipmesh::qzip::preprocess(&mut mesh).expect("preprocess");
                 mesh.compact();
             }
             let t = sweep(&mesh.map, 8);

@@ -10,9 +10,9 @@ use zipmesh::gen::{geodesic_sphere, subdivided_bipyramid, subdivided_tetrahedron
 use zipmesh::ops::tri;
 use zipmesh::tri_edit::{
     aggregate_type, can_aggregate_type, can_generate_pair, can_generate_quadruple, can_move_pair,
-    can_remove_pair, can_remove_quadruple, can_split_type, generate_pair, generate_pair_with,
-    generate_quadruple, move_pair, move_pair_with, remove_pair, remove_pair_with, remove_quadruple,
-    split_type, Direction, Moved, PairMove, Quadruple, TriEditError, Via,
+    can_remove_pair, can_remove_quadruple, can_split_type, generate_pair, generate_quadruple,
+    move_pair, remove_pair, remove_quadruple, split_type, Direction, Moved, PairMove, Quadruple,
+    TriEditError, Via,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -140,10 +140,10 @@ fn attributes_follow_and_come_back() {
     let marks: Vec<f64> = (0..map.vertex_slots()).map(|i| i as f64).collect();
     for dir in Direction::ALL {
         let (mut m, mut a) = (map.clone(), marks.clone());
-        let e = move_pair_with(&mut m, &mut a, p, q, dir).unwrap();
+        let e = move_pair(&mut (&mut m, &mut a), p, q, dir).unwrap();
         assert_moved(&map, &m, e.record());
         assert!(a.len() >= m.vertex_slots());
-        e.undo_with(&mut m, &mut a).unwrap();
+        e.undo(&mut (&mut m, &mut a)).unwrap();
         assert_eq!((m, a), (map.clone(), marks.clone()));
     }
 }
@@ -275,12 +275,12 @@ fn generation_with_attributes_comes_back() {
     let before = (map.clone(), marks.clone());
     for via in [Via::Flip, Via::Collapse, Via::Split] {
         let d = map.vertex_dart(vert(0));
-        let e = generate_pair_with(&mut map, &mut marks, d, via, Moved::First).unwrap();
+        let e = generate_pair(&mut (&mut map, &mut marks), d, via, Moved::First).unwrap();
         let (p, q) = e.record().pair().unwrap();
         let moved = e.record().moved();
-        let r = remove_pair_with(&mut map, &mut marks, moved, p, q).unwrap();
-        r.undo_with(&mut map, &mut marks).unwrap();
-        e.undo_with(&mut map, &mut marks).unwrap();
+        let r = remove_pair(&mut (&mut map, &mut marks), moved, p, q).unwrap();
+        r.undo(&mut (&mut map, &mut marks)).unwrap();
+        e.undo(&mut (&mut map, &mut marks)).unwrap();
         assert_eq!((&map, &marks), (&before.0, &before.1));
     }
 }

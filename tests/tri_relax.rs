@@ -16,7 +16,7 @@ use zipmesh::ops::tri;
 use zipmesh::optimize::Surface;
 use zipmesh::rng::Rng;
 use zipmesh::tri_edit::{
-    mean_edge_length, move_pair_with, relax_energy, relax_global, relax_local, relax_region,
+    mean_edge_length, move_pair, relax_energy, relax_global, relax_local, relax_region,
     touched_vertices, Direction, RelaxError, Relaxed,
 };
 use zipmesh::{Map, Mesh, Vert};
@@ -46,7 +46,7 @@ fn edited(seed: u64) -> (Mesh, Mesh) {
     let (mut p, mut q) = (c, q.expect("the flip leaves a v7 next to the centre"));
     let dir = Direction::ALL[rng.below(6)];
     for _ in 0..rng.below(4) {
-        match move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) {
+        match move_pair(&mut mesh, p, q, dir) {
             Ok(e) => (p, q) = (e.record().p(), e.record().q()),
             Err(_) => break,
         }

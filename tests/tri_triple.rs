@@ -9,8 +9,8 @@ use zipmesh::gen::{cone_disk, geodesic_sphere};
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::tri_edit::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
-    cancel_triple_along, cancel_triple_with, generate_pair, generate_pair_v7,
-    generate_pair_v7_with, remove_pair_v7, Moved, TripleEdit, Via, Via7,
+    cancel_triple_along, generate_pair, generate_pair_v7, remove_pair_v7, Moved, TripleEdit, Via,
+    Via7,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -78,7 +78,7 @@ fn check_v7_generations(map: &Map) -> usize {
                     for three in [[g.moved(), p, q], [p, q, g.moved()]] {
                         let mut c = generated.clone();
                         let t = cancel_triple(&mut c, &three).unwrap();
-                        assert!(matches!(t, TripleEdit::Seven(_)));
+                        assert!(matches!(*t, TripleEdit::Seven(_)));
                         assert_eq!(c.valence(t.remaining()), 7);
                         assert!(is_isomorphic(&c, map));
                         t.undo(&mut c).unwrap();
@@ -113,7 +113,7 @@ fn five_five_seven_triples_cancel_into_one_v5() {
                 let generated = m.clone();
                 assert_eq!(can_cancel_triple(&m, &[q, p, g.moved()]), Ok(()));
                 let t = cancel_triple(&mut m, &[q, p, g.moved()]).unwrap();
-                assert!(matches!(t, TripleEdit::Five(_)));
+                assert!(matches!(*t, TripleEdit::Five(_)));
                 m.check().unwrap();
                 assert_eq!(m.valence(t.remaining()), 5);
                 assert_eq!(irregular(&m), irregular(&sphere));
@@ -133,14 +133,14 @@ fn layers_follow_v7_generation_and_triple_cancellation() {
     let mut marks: Vec<f64> = (0..map.vertex_slots()).map(|i| i as f64).collect();
     let before = (map.clone(), marks.clone());
     let d = map.vertex_dart(Vert::new(0));
-    let g = generate_pair_v7_with(&mut map, &mut marks, d, Via7::Split, Moved::First).unwrap();
+    let g = generate_pair_v7(&mut (&mut map, &mut marks), d, Via7::Split, Moved::First).unwrap();
     assert_eq!(marks.len(), map.vertex_slots());
     let (p, q) = g.record().pair().unwrap();
     let mid = (map.clone(), marks.clone());
-    let c = cancel_triple_with(&mut map, &mut marks, &[g.record().moved(), p, q]).unwrap();
-    c.undo_with(&mut map, &mut marks).unwrap();
+    let c = cancel_triple(&mut (&mut map, &mut marks), &[g.record().moved(), p, q]).unwrap();
+    c.undo(&mut (&mut map, &mut marks)).unwrap();
     assert_eq!((map.clone(), marks.clone()), mid);
-    g.undo_with(&mut map, &mut marks).unwrap();
+    g.undo(&mut (&mut map, &mut marks)).unwrap();
     assert_eq!((map, marks), before);
 }
 

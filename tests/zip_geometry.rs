@@ -99,7 +99,7 @@ const MESHES: [&str; 8] = [
 ];
 
 fn raw(m: &mut Mesh, p: &Path, t: Tag) -> bool {
-    Qzip::new().zip_mesh_along(m, p, t).is_ok()
+    Qzip::new().zip_along(m, p, t).is_ok()
 }
 
 /// A zip, then its footprint relaxed on the input surface (what `zipmesh zip` does).
@@ -109,7 +109,7 @@ fn relaxed(
 ) -> impl Fn(&mut Mesh, &Path, Tag) -> bool + '_ {
     move |m, p, t| {
         let before = m.clone();
-        if Qzip::new().zip_mesh_along(m, p, t).is_err() {
+        if Qzip::new().zip_along(m, p, t).is_err() {
             return false;
         }
         let seeds = edited_vertices(&before, m);
@@ -173,7 +173,7 @@ fn raw_placement_stays_near_the_input_surface() {
 fn the_check_catches_vertices_placed_at_the_origin() {
     use zipmesh::ops::quad::QuadRecord;
     let at_origin = |m: &mut Mesh, p: &Path, t: Tag| {
-        let Ok(z) = Qzip::new().zip_mesh_along(m, p, t) else {
+        let Ok(z) = Qzip::new().zip_along(m, p, t) else {
             return false;
         };
         for r in z.record().records() {
@@ -223,7 +223,7 @@ fn measure_cause() {
         for path in pairs(&mesh, PAIRS) {
             for tag in Tag::CCW {
                 let mut m = mesh.clone();
-                let Ok(z) = Qzip::new().zip_mesh_along(&mut m, &path, tag) else {
+                let Ok(z) = Qzip::new().zip_along(&mut m, &path, tag) else {
                     continue;
                 };
                 let created: Vec<_> = z

@@ -55,7 +55,7 @@ fn quadruple_apart(map: &mut Map, pick: usize, sel: usize, done: &mut Vec<Done>)
             want.extend([5, 5, 7, 7]);
             want.sort_unstable();
             assert_eq!(irregular(map), want, "generation apart: multiset");
-            done.push(Done::Quadruple(g));
+            done.push(Done::Quadruple(g.into_record()));
         }
     }
 }
@@ -83,13 +83,13 @@ fn split_and_aggregate(map: &mut Map, pick: usize, done: &mut Vec<Done>) {
         Err(e) => {
             assert_eq!(can, Err(e));
             assert!(*map == split, "a refused aggregation changed the map");
-            done.push(Done::Type(s));
+            done.push(Done::Type(s.into_record()));
         }
         Ok(a) => {
             assert_eq!(can, Ok(()));
             assert_eq!(map.valence(a.vertices()[0]), k);
             assert_eq!(irregular(map), multiset, "aggregation: multiset");
-            done.extend([Done::Type(s), Done::Type(a)]);
+            done.extend([Done::Type(s.into_record()), Done::Type(a.into_record())]);
         }
     }
 }
@@ -149,7 +149,7 @@ fuzz_target!(|data: &[u8]| {
                 Ok(m) => {
                     assert_eq!(can, Ok(()));
                     assert_eq!((map.valence(m.p()), map.valence(m.q())), (5, 7));
-                    done.push(Done::Atomic(Box::new(m)));
+                    done.push(Done::Atomic(Box::new(m.into_record())));
                 }
             }
         } else {
@@ -174,7 +174,7 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(can, Ok(()));
                     let (x, y) = m.pair();
                     assert_eq!((map.valence(x), map.valence(y)), want);
-                    done.push(Done::Composite(Box::new(m)));
+                    done.push(Done::Composite(Box::new(m.into_record())));
                 }
             }
         }

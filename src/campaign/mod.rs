@@ -72,7 +72,8 @@ pub use optimize::{
     TRI_OPTIMIZE_MAX_FACES,
 };
 pub use property::{
-    builtin, builtin_with, kernel, operators, undo_property, CheckFn, Outcome, Property,
+    builtin, builtin_with, kernel, operators, quad_dominant, undo_property, CheckFn, Outcome,
+    Property,
 };
 pub use qzip::PairChoice;
 pub use qzip_quad_dominant::qzip_properties;

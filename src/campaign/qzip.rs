@@ -152,7 +152,7 @@ pub(super) fn checked_zip(
     let map = &*s.map;
     let mut m = map.clone();
     let r = match Qzip::new().zip_along(&mut m, path, tag) {
-        Ok(r) => r,
+        Ok(r) => r.into_record(),
         Err(_) if &m == map => return Ok(None),
         Err(e) => return Err(format!("{tag} refused ({e}) but changed the map")),
     };

@@ -169,7 +169,7 @@ fn pair_move(case: &Case) -> Outcome {
         let (p, q) = (before.origin(d), before.dest(d));
         let dir = Direction::ALL[rng.below(6)];
         let can = can_move_pair(before, p, q, dir);
-        let result = move_pair(work, p, q, dir);
+        let result = move_pair(work, p, q, dir).map(|e| e.into_record());
         settle(before, work, can, result, |after, m| {
             op_effect(before, after, m.op(), m.record())?;
             if vals(after, &[m.p(), m.q()]) != [5, 7] || after.dart_between(m.p(), m.q()).is_none()
@@ -204,14 +204,14 @@ fn pair_generate(case: &Case) -> Outcome {
         if five {
             let via = [Via::Flip, Via::Collapse, Via::Split][rng.below(3)];
             let can = can_generate_pair(before, d, via);
-            let result = generate_pair(work, d, via, moved);
+            let result = generate_pair(work, d, via, moved).map(|e| e.into_record());
             settle(before, work, can, result, |after, g| {
                 check(after, g.op(), g.record(), g.moved(), g.pair())
             })
         } else {
             let via = Via7::ALL[rng.below(2)];
             let can = can_generate_pair_v7(before, d, via);
-            let result = generate_pair_v7(work, d, via, moved);
+            let result = generate_pair_v7(work, d, via, moved).map(|e| e.into_record());
             settle(before, work, can, result, |after, g| {
                 check(after, g.op(), g.record(), g.moved(), g.pair())
             })
@@ -226,7 +226,7 @@ fn triple_cancel(case: &Case) -> Outcome {
         let other = cw(before, d, 1 + rng.below(before.valence(x).max(2) - 1));
         let three = [before.dest(d), x, before.dest(other)];
         let can = can_cancel_triple(before, &three);
-        let result = cancel_triple(work, &three);
+        let result = cancel_triple(work, &three).map(|e| e.into_record());
         settle(before, work, can, result, |after, t| {
             let rec = match t {
                 TripleEdit::Five(m) => *m.record(),
@@ -250,7 +250,7 @@ fn quadruple(case: &Case) -> Outcome {
             return quadruple_apart(before, work, d, how, rng);
         }
         let can = can_generate_quadruple(before, d, how);
-        let result = generate_quadruple(work, d, how);
+        let result = generate_quadruple(work, d, how).map(|e| e.into_record());
         settle(before, work, can, result, |after, g| {
             let mut v = vals(after, g.vertices());
             v.sort_unstable();
@@ -274,7 +274,7 @@ fn quadruple_apart(
     let dir = Direction::ALL[rng.below(6)];
     let k = 1 + rng.below(4);
     let can = can_generate_quadruple_apart(before, d, how, dir, k);
-    let result = generate_quadruple_apart(work, d, how, dir, k);
+    let result = generate_quadruple_apart(work, d, how, dir, k).map(|e| e.into_record());
     settle(before, work, can, result, |after, g| {
         let v = vals(after, g.vertices());
         if v != [5, 7, 5, 7] {
@@ -317,7 +317,7 @@ fn type_split(case: &Case) -> Outcome {
         let v = before.origin(d);
         let k = before.valence(v);
         let can = can_split_type(before, v);
-        let result = split_type(work, v);
+        let result = split_type(work, v).map(|e| e.into_record());
         settle(before, work, can, result, |after, s| {
             let (kind, n) = if k > 7 { (7, k - 6) } else { (5, 6 - k) };
             let want: Vec<usize> = (0..n).map(|_| kind).collect();
@@ -361,7 +361,7 @@ fn far_pair_move(case: &Case) -> Outcome {
         };
         let want = vals(before, &[s, o]);
         let can = can_move_far_pair(before, d, start, moved, o, FAR_STEPS);
-        let result = move_far_pair(work, d, start, moved, o, FAR_STEPS);
+        let result = move_far_pair(work, d, start, moved, o, FAR_STEPS).map(|e| e.into_record());
         settle(before, work, can, result, |after, m| {
             let (a, b) = m.pair();
             if vals(after, &[a, b]) != want {

@@ -14,7 +14,7 @@
 //! let input = zipmesh::gen::cube(4);
 //! let mut mesh = input.clone();
 //! let (a, b) = (zipmesh::Vert::new(0), zipmesh::Vert::new(4));
-//! Qzip::new().zip_mesh(&mut mesh, a, b, Tag::LS).unwrap();
+//! Qzip::new().zip(&mut mesh, a, b, Tag::LS).unwrap();
 //! let seeds = edited_vertices(&input, &mesh);
 //! let r = relax_footprint(&mut mesh, &Surface::new(&input), &seeds, RelaxOptions::default());
 //! assert!(r.region >= seeds.len());

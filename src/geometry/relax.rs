@@ -2,7 +2,7 @@
 //! preprocessing) created or moved, and a ring or two around them, each moved towards the
 //! mean of its neighbours and put back on the surface, never into an inverted element.
 //!
-//! Placement ([`crate::qzip::Qzip::zip_mesh_along`]) puts a created vertex at the mean of its
+//! Placement ([`crate::qzip::Qzip::zip_along`]) puts a created vertex at the mean of its
 //! neighbours: near them, but off a curved surface and, where the chain turned, often
 //! inside a neighbouring quad. Relaxation is tangential smoothing with projection (as in
 //! pmp-library's remeshing, QuadWild's and Instant Meshes' final smoothing): each sweep
@@ -108,7 +108,7 @@ impl Fan {
 /// use zipmesh::{gen, Vert};
 /// let input = gen::subdivided_icosahedron(2);
 /// let mut mesh = input.clone();
-/// Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+/// Qzip::new().zip(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
 /// let seeds = edited_vertices(&input, &mesh);
 /// let r = relax_footprint(&mut mesh, &Surface::new(&input), &seeds, RelaxOptions::default());
 /// assert!(r.projected >= seeds.len() && r.region > 0);
@@ -268,7 +268,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
 /// let input = gen::subdivided_icosahedron(2);
 /// let mut mesh = input.clone();
 /// assert!(edited_vertices(&input, &mesh).is_empty());
-/// Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+/// Qzip::new().zip(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
 /// assert!(!edited_vertices(&input, &mesh).is_empty());
 /// ```
 pub fn edited_vertices(before: &Mesh, after: &Mesh) -> Vec<Vert> {

@@ -239,7 +239,7 @@ impl<'q> Batcher<'q> {
         path: &Path,
         tag: Tag,
     ) -> Option<crate::mesh::Edited<ZipReport>> {
-        let z = self.qzip.zip_mesh_along(mesh, path, tag).ok()?;
+        let z = self.qzip.zip_along(mesh, path, tag).ok()?;
         if self.constraints.holds(mesh) {
             Some(z)
         } else {
@@ -713,7 +713,7 @@ pub(super) fn touched_region(mesh: &Mesh, path: &Path, r: &ZipReport) -> Vec<Ver
 mod tests {
     use super::*;
     use crate::optimize::score::{Count, FaceBudget, Isotropy, ScoreTerm, Sizing};
-    use crate::qzip::{mesh_preprocess, SketchOptions};
+    use crate::qzip::{preprocess, SketchOptions};
     use alloc::boxed::Box;
 
     /// A batcher with the default terms on `mesh`.
@@ -762,7 +762,7 @@ mod tests {
     #[test]
     fn touched_region_is_the_core_and_its_rings() {
         let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
-        mesh_preprocess(&mut mesh).unwrap();
+        preprocess(&mut mesh).unwrap();
         let mut b = batcher(&mesh);
         let sing = singularities(&mesh);
         let mut checked = 0;
@@ -804,7 +804,7 @@ mod tests {
     #[test]
     fn copies_score_as_edits_do() {
         let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
-        mesh_preprocess(&mut mesh).unwrap();
+        preprocess(&mut mesh).unwrap();
         let (mut a, mut b) = (batcher(&mesh), batcher(&mesh));
         let sing = singularities(&mesh);
         let mut defects = vec![0i64; mesh.map.vertex_slots()];
@@ -836,7 +836,7 @@ mod tests {
     #[test]
     fn kept_window_score_is_the_fresh_one() {
         let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(80, 1, 1, 7));
-        mesh_preprocess(&mut mesh).unwrap();
+        preprocess(&mut mesh).unwrap();
         let mut kept = batcher(&mesh);
         let fresh = |mesh: &Mesh, w: &[Vert]| batcher(mesh).scorer.local(mesh, w);
         let verts: Vec<Vert> = mesh.map.vertices().collect();
@@ -882,7 +882,7 @@ mod tests {
         let (mut tried, mut kept) = (0, 0);
         for seed in 0..4 {
             let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(40, 0, 0, seed));
-            mesh_preprocess(&mut mesh).unwrap();
+            preprocess(&mut mesh).unwrap();
             let mut edited = mesh.clone();
             let (mut a, mut b) = (batcher(&mesh), batcher(&mesh));
             b.copy_darts = 0;
@@ -904,7 +904,7 @@ mod tests {
     #[test]
     fn window_estimate_is_exact_for_local_terms() {
         let mut mesh = crate::gen::catmull_clark(&crate::gen::random_triangle(120, 1, 0, 5));
-        mesh_preprocess(&mut mesh).unwrap();
+        preprocess(&mut mesh).unwrap();
         let terms: Vec<(f64, Box<dyn ScoreTerm + Send>)> = alloc::vec![
             (1.0, Box::new(Count)),
             (0.3, Box::new(Isotropy)),

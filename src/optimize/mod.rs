@@ -46,7 +46,7 @@ pub use tri::{
 };
 
 use crate::invariants::{Counts, MeshKind};
-use crate::qzip::{mesh_preprocess, Qzip, SketchOptions};
+use crate::qzip::{preprocess, Qzip, SketchOptions};
 use crate::rng::Rng;
 use crate::{Mesh, Vert};
 
@@ -549,7 +549,7 @@ pub fn optimize(
     let minimal = quad && at_defect_minimum(mesh);
     if options.preprocess && quad && !minimal {
         let before = mesh.clone();
-        if let Ok(p) = mesh_preprocess(mesh) {
+        if let Ok(p) = preprocess(mesh) {
             preprocessed = constraints.holds(mesh);
             if !preprocessed {
                 let _ = p.undo(mesh);

@@ -172,7 +172,7 @@ fn crawl_and_merge(
             }
             uphill -= 1;
         }
-        let Ok(e) = quad_dominant::mesh_move_triangle(mesh, tips[k], mv) else {
+        let Ok(e) = mv.apply(mesh, tips[k]) else {
             break;
         };
         for t in tips.iter_mut() {

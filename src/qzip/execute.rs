@@ -1202,7 +1202,10 @@ mod tests {
             .into_iter()
             .filter_map(|tag| {
                 let mut m = before.clone();
-                let r = Qzip::new().zip_along(&mut m, &path, tag).ok()?;
+                let r = Qzip::new()
+                    .zip_along(&mut m, &path, tag)
+                    .ok()?
+                    .into_record();
                 let full = !r.footprint_faces.is_empty() && !r.scar_faces.is_empty();
                 (full && r.cleanup_counts() == (0, 0) && !r.scar_edges.is_empty()).then_some((m, r))
             })
@@ -1236,7 +1239,10 @@ mod tests {
             .into_iter()
             .filter_map(|tag| {
                 let mut m = before.clone();
-                let r = Qzip::new().zip_along(&mut m, &path, tag).ok()?;
+                let r = Qzip::new()
+                    .zip_along(&mut m, &path, tag)
+                    .ok()?
+                    .into_record();
                 (r.cleanup_counts().0 > 0 && !r.footprint_faces.is_empty()).then_some((m, r))
             })
             .next()

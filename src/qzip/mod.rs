@@ -43,7 +43,7 @@ pub use compass::{plan, Plan, PlanError, PlanStep, Side, Tag, TagParseError, Tur
 pub use execute::{execute, ZipError, ZipReport};
 pub use homotopy::{one_quad_sweeps, start_turn, wraps};
 pub use prepare::{prepare, EndRule, PrepareError, StartRule, Surgery, SurgeryStep};
-pub use preprocess::{mesh_preprocess, preprocess, preprocess_with, Preprocessed};
+pub use preprocess::{preprocess, Preprocessed};
 pub use quad_dominant::avoid_triangles;
 pub use reverse::{derive_reverse, find_reverse, ReverseRun, ReverseWay};
 pub use sketch::{

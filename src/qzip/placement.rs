@@ -78,7 +78,7 @@ mod tests {
             .iter()
             .fold((DVec3::MAX, DVec3::MIN), |(a, b), &p| (a.min(p), b.max(p)));
         let z = Qzip::new()
-            .zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS)
+            .zip(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS)
             .unwrap();
         let created: alloc::vec::Vec<Vert> = z
             .record()

@@ -5,54 +5,10 @@ use alloc::vec::Vec;
 use core::cmp::Reverse;
 
 use super::placement::place_created;
-use crate::mesh::{Edited, Journal, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Journal, VertexAttributes};
 use crate::ops::quad::{remove_valence2, split_high_valence, QuadRecord};
 use crate::ops::Refusal;
-use crate::{Dart, Map, Mesh, Vert};
-
-/// [`preprocess`] on a mesh: the vertices its splits create are placed as a Q-zip places
-/// them (the value of the vertex split, then the mean of their neighbours; see
-/// [`super::Qzip::zip_along_with`]), and the undo restores the positions too.
-///
-/// ```
-/// use zipmesh::{gen, ops::quad, Dart};
-/// use zipmesh::qzip::mesh_preprocess;
-/// let mut mesh = gen::torus_grid(8, 8);
-/// quad::collapse_quad(&mut mesh.map, Dart::new(0)).unwrap();
-/// let before = mesh.clone();
-/// let p = mesh_preprocess(&mut mesh).unwrap();
-/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
-/// p.undo(&mut mesh).unwrap();
-/// assert_eq!(mesh, before);
-/// ```
-pub fn mesh_preprocess(mesh: &mut Mesh) -> Result<Edited<Preprocessed>, Refusal> {
-    preprocess_with(&mut mesh.map, &mut mesh.positions)
-}
-
-/// [`preprocess`] keeping any per-vertex data in step, as [`super::Qzip::zip_along_with`]
-/// does: created vertices take the value of the vertex split, then the mean of their
-/// neighbours' values.
-///
-/// ```
-/// use zipmesh::{gen, ops::quad, Dart};
-/// use zipmesh::qzip::preprocess_with;
-/// let mut map = gen::torus_grid(8, 8).map;
-/// quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
-/// let mut marks = vec![true; map.vertex_slots()];
-/// let p = preprocess_with(&mut map, &mut marks).unwrap();
-/// assert_eq!(marks.len(), map.vertex_slots());
-/// assert!(marks.iter().all(|&m| m)); // a mark spreads to the vertices made from it
-/// p.undo_with(&mut map, &mut marks).unwrap();
-/// ```
-pub fn preprocess_with<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-) -> Result<Edited<Preprocessed, A>, Refusal> {
-    let mut journal = Journal::start(attrs);
-    let p = preprocess(map)?;
-    place_created(map, attrs, &mut journal, p.records());
-    Ok(Edited::new(p, journal))
-}
+use crate::{Dart, Map, Vert};
 
 /// What [`preprocess`] did, with the records for an exact undo.
 ///
@@ -102,8 +58,42 @@ impl Preprocessed {
 /// p.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn preprocess(map: &mut Map) -> Result<Preprocessed, Refusal> {
-    preprocess_counted(map, &mut 0)
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values ([`EditTarget`]):
+/// the vertices the splits create are placed as a Q-zip places them (the value of the
+/// vertex split, then the mean of their neighbours; see [`super::Qzip::zip_along`]), and
+/// the undo restores the values too.
+///
+/// ```
+/// use zipmesh::{gen, ops::quad, Dart};
+/// use zipmesh::qzip::preprocess;
+/// let mut mesh = gen::torus_grid(8, 8);
+/// quad::collapse_quad(&mut mesh.map, Dart::new(0)).unwrap();
+/// let before = mesh.clone();
+/// let p = preprocess(&mut mesh).unwrap();
+/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+/// p.undo(&mut mesh).unwrap();
+/// assert_eq!(mesh, before);
+/// // Marks spread to the vertices made from a marked one.
+/// let mut map = gen::torus_grid(8, 8).map;
+/// quad::collapse_quad(&mut map, Dart::new(0)).unwrap();
+/// let mut marks = vec![true; map.vertex_slots()];
+/// let p = preprocess(&mut (&mut map, &mut marks)).unwrap();
+/// assert_eq!(marks.len(), map.vertex_slots());
+/// assert!(marks.iter().all(|&m| m));
+/// ```
+pub fn preprocess<T: EditTarget>(
+    target: &mut T,
+) -> Result<Edited<Preprocessed, T::Values>, Refusal> {
+    target.with_parts(|map, values| {
+        let mut journal = Journal::start(values);
+        let p = preprocess_counted(map, &mut 0)?;
+        // Values of no size (a bare map's `()`) carry nothing to place.
+        if core::mem::size_of::<<T::Values as VertexAttributes>::Value>() != 0 {
+            place_created(map, values, &mut journal, p.records());
+        }
+        Ok(Edited::new(p, journal))
+    })
 }
 
 /// [`preprocess`], adding to `work` the vertices and darts its own searches visit (the

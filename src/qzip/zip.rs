@@ -7,8 +7,8 @@ use super::execute::{execute_owned, Guard, ZipError, ZipReport};
 use super::placement::place_created;
 use super::prepare::{prepare, PrepareError};
 use super::sketch::{Path, SketchError, SketchOptions, SketchWorkspace};
-use crate::mesh::{Edited, Journal, VertexAttributes};
-use crate::{Map, Mesh, Vert};
+use crate::mesh::{EditTarget, Edited, Journal, VertexAttributes};
+use crate::{Map, Vert};
 
 /// Why a Q-zip was refused, by stage; the map is unchanged in every case.
 ///
@@ -75,7 +75,7 @@ fn zip_along_guarded(
 }
 
 /// The Q-zip entry point: the sketch options and a reusable [`SketchWorkspace`], and the four
-/// stages run at once on a [`Map`] or, keeping positions, on a [`Mesh`].
+/// stages run at once on a [`Map`] or, keeping positions, on a [`crate::Mesh`].
 ///
 /// Every Q-zip is all or nothing: on an error the map (and the positions) are unchanged. One
 /// value serves any number of Q-zips on any maps; its workspace makes repeated sketches on a
@@ -209,7 +209,10 @@ impl<'a> Qzip<'a> {
     }
 
     /// The four stages: the path from `from` to `to` sketched under the options, then
-    /// [`Qzip::zip_along`] it with the initial operation `initial`.
+    /// [`Qzip::zip_along`] it with the initial operation `initial`, on a bare map, a
+    /// [`crate::Mesh`] or a map with any per-vertex values ([`EditTarget`]). A [`super::Guide`] in
+    /// the options cannot borrow the positions being edited: guide with a copy of the
+    /// points, or zip the bare map.
     ///
     /// ```
     /// use zipmesh::{gen, Vert};
@@ -218,110 +221,70 @@ impl<'a> Qzip<'a> {
     /// let (v5, v3) = (Vert::new(0), Vert::new(42)); // four edges apart
     /// let r = Qzip::new().zip(&mut map, v3, v5, Tag::LC).unwrap();
     /// assert_eq!(map.valence(r.moved_from()), 3);
+    /// // On a mesh, positions are kept in step and undo restores both.
+    /// let mut mesh = gen::subdivided_icosahedron(2);
+    /// let before = mesh.clone();
+    /// let z = Qzip::new().zip(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
+    /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+    /// z.undo(&mut mesh).unwrap();
+    /// assert_eq!((mesh.map, mesh.positions), (before.map, before.positions));
     /// ```
-    pub fn zip(
+    pub fn zip<T: EditTarget>(
         &mut self,
-        map: &mut Map,
+        target: &mut T,
         from: Vert,
         to: Vert,
         initial: Tag,
-    ) -> Result<ZipReport, QzipError> {
-        let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
-        zip_along_guarded(map, &path, initial, self.guard())
+    ) -> Result<Edited<ZipReport, T::Values>, QzipError> {
+        target.with_parts(|map, values| {
+            let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
+            self.along(map, values, &path, initial)
+        })
     }
 
     /// Stages 2 to 4 along a given path (from [`super::sketch()`], [`super::validate_path`] or
     /// [`Qzip::sketch`]) with the initial operation `initial`; the options play no part.
     ///
+    /// Per-vertex values are kept in step (positions, marks, or a pair of layers, see
+    /// [`EditTarget`]): each vertex a split creates first takes the value of the vertex it
+    /// was split from (read in the order the splits ran, so at the time of its split), then
+    /// the mean of its neighbours' values on the edited map, in the order created. The first
+    /// pass is why no neighbour read holds the default value or the value of a vertex a
+    /// collapse removed (a mean of those puts vertices far off the surface). Merged vertices
+    /// keep the value of the vertex that keeps the handle; every other vertex keeps its
+    /// value. The undo restores map and values `==`. [`crate::geometry::relax_footprint`]
+    /// then puts the edit on the input surface, as `zipmesh zip` does.
+    ///
     /// ```
     /// use zipmesh::{gen, Vert};
-    /// use zipmesh::qzip::{Qzip, Tag};
+    /// use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
     /// let mut map = gen::subdivided_icosahedron(2).map;
     /// let mut q = Qzip::new();
     /// let path = q.sketch(&map, Vert::new(42), Vert::new(0)).unwrap(); // v3 to v5
     /// let r = q.zip_along(&mut map, &path, Tag::RS).unwrap();
     /// assert_eq!(map.valence(r.moved_to()), 5);
-    /// ```
-    pub fn zip_along(
-        &self,
-        map: &mut Map,
-        path: &Path,
-        initial: Tag,
-    ) -> Result<ZipReport, QzipError> {
-        zip_along_guarded(map, path, initial, self.guard())
-    }
-
-    /// [`Qzip::zip`] on a mesh, keeping positions: each vertex a split creates is placed
-    /// near its neighbours (see [`Qzip::zip_along_with`]); [`crate::geometry::relax_footprint`] then
-    /// puts the edit on the input surface, as `zipmesh zip` does. A [`super::Guide`] in the
-    /// options cannot borrow this mesh's positions (they are edited): guide with
-    /// [`Qzip::zip`] on `mesh.map` instead, or with a copy of the points.
-    ///
-    /// ```
-    /// use zipmesh::{gen, Vert};
-    /// use zipmesh::qzip::{Qzip, Tag};
-    /// let mut mesh = gen::subdivided_icosahedron(2);
-    /// let before = mesh.clone();
-    /// let z = Qzip::new().zip_mesh(&mut mesh, Vert::new(42), Vert::new(0), Tag::LS).unwrap();
-    /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
-    /// z.undo(&mut mesh).unwrap();
-    /// assert_eq!((mesh.map, mesh.positions), (before.map, before.positions));
-    /// ```
-    pub fn zip_mesh(
-        &mut self,
-        mesh: &mut Mesh,
-        from: Vert,
-        to: Vert,
-        initial: Tag,
-    ) -> Result<Edited<ZipReport>, QzipError> {
-        let path = self
-            .sketch(&mesh.map, from, to)
-            .map_err(QzipError::Sketch)?;
-        self.zip_mesh_along(mesh, &path, initial)
-    }
-
-    /// [`Qzip::zip_along`] on a mesh, keeping positions (see [`Qzip::zip_mesh`]).
-    ///
-    /// ```
-    /// use zipmesh::{gen, Vert};
-    /// use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
-    /// let mut mesh = gen::subdivided_icosahedron(2);
-    /// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
-    /// let z = Qzip::new().zip_mesh_along(&mut mesh, &path, Tag::LS).unwrap();
-    /// assert!(z.record().splits() > 0);
-    /// ```
-    pub fn zip_mesh_along(
-        &self,
-        mesh: &mut Mesh,
-        path: &Path,
-        initial: Tag,
-    ) -> Result<Edited<ZipReport>, QzipError> {
-        self.zip_along_with(&mut mesh.map, &mut mesh.positions, path, initial)
-    }
-
-    /// [`Qzip::zip_along`] keeping any per-vertex data in step (positions, marks, or a pair
-    /// of layers): each vertex a split creates first takes the value of the vertex it was
-    /// split from (read in the order the splits ran, so at the time of its split), then the
-    /// mean of its neighbours' values on the edited map, in the order created. The first
-    /// pass is why no neighbour read holds the default value or the value of a vertex a
-    /// collapse removed (a mean of those puts vertices far off the surface). Merged
-    /// vertices keep the value of the vertex that keeps the handle; every other vertex
-    /// keeps its value. The undo restores map and data `==`.
-    ///
-    /// ```
-    /// use zipmesh::{gen, Vert};
-    /// use zipmesh::qzip::{sketch, Qzip, SketchOptions, Tag};
+    /// // A layer of marks: a mark spreads to the vertices split from it.
     /// let mut mesh = gen::subdivided_icosahedron(2);
     /// let mut marks = vec![false; mesh.map.vertex_slots()];
     /// marks[42] = true;
     /// let before = (mesh.map.clone(), marks.clone());
     /// let path = sketch(&mesh.map, Vert::new(42), Vert::new(0), &SketchOptions::default()).unwrap();
-    /// let z = Qzip::new().zip_along_with(&mut mesh.map, &mut marks, &path, Tag::LS).unwrap();
+    /// let z = Qzip::new().zip_along(&mut (&mut mesh.map, &mut marks), &path, Tag::LS).unwrap();
     /// assert_eq!(marks.len(), mesh.map.vertex_slots());
-    /// z.undo_with(&mut mesh.map, &mut marks).unwrap();
+    /// z.undo(&mut (&mut mesh.map, &mut marks)).unwrap();
     /// assert_eq!((mesh.map, marks), before);
     /// ```
-    pub fn zip_along_with<A: VertexAttributes>(
+    pub fn zip_along<T: EditTarget>(
+        &self,
+        target: &mut T,
+        path: &Path,
+        initial: Tag,
+    ) -> Result<Edited<ZipReport, T::Values>, QzipError> {
+        target.with_parts(|map, values| self.along(map, values, path, initial))
+    }
+
+    /// [`Qzip::zip_along`] on the parts of its target.
+    fn along<A: VertexAttributes>(
         &self,
         map: &mut Map,
         attrs: &mut A,
@@ -330,7 +293,10 @@ impl<'a> Qzip<'a> {
     ) -> Result<Edited<ZipReport, A>, QzipError> {
         let mut journal = Journal::start(attrs);
         let report = zip_along_guarded(map, path, initial, self.guard())?;
-        place_created(map, attrs, &mut journal, report.records());
+        // Values of no size (a bare map's `()`) carry nothing to place.
+        if core::mem::size_of::<A::Value>() != 0 {
+            place_created(map, attrs, &mut journal, report.records());
+        }
         Ok(Edited::new(report, journal))
     }
 }

@@ -24,11 +24,11 @@
 
 use super::pair::{plan, Direction};
 use super::quadruple::{check_start, first, Quadruple, QuadrupleEdit};
-use super::record::{map_only, turn};
+use super::record::turn;
 use super::types::run_with;
 use super::{apex, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, VertexAttributes};
 use crate::ops::tri::TriRecord;
 use crate::ops::Refusal;
 
@@ -107,34 +107,37 @@ pub fn can_generate_quadruple_apart(
 /// g.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn generate_quadruple_apart(
-    map: &mut Map,
-    d: Dart,
-    how: Quadruple,
-    dir: Direction,
-    steps: usize,
-) -> Result<QuadrupleEdit, TriEditError> {
-    map_only(|none| generate_quadruple_apart_with(map, none, d, how, dir, steps))
-}
-
-/// [`generate_quadruple_apart`] on a map and its per-vertex data (each step places its
-/// vertex by its operator's rule, see [`crate::ops::tri::TriOp::apply_with`]).
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
-/// use zipmesh::tri_edit::{generate_quadruple_apart_with, Direction, Quadruple};
+/// use zipmesh::tri_edit::{generate_quadruple_apart, Direction, Quadruple};
 /// use zipmesh::Vert;
 /// let mut map = geodesic_sphere(4);
 /// let mut marks = vec![1.0f64; map.vertex_slots()];
 /// let before = (map.clone(), marks.clone());
 /// let d = map.vertex_dart(Vert::new(400));
-/// let g = generate_quadruple_apart_with(&mut map, &mut marks, d, Quadruple::Split,
+/// let g = generate_quadruple_apart(&mut (&mut map, &mut marks), d, Quadruple::Split,
 ///     Direction::SplitLeft, 2).unwrap();
 /// assert_eq!(marks.len(), map.vertex_slots());
-/// g.undo_with(&mut map, &mut marks).unwrap();
+/// g.undo(&mut (&mut map, &mut marks)).unwrap();
 /// assert_eq!((map, marks), before);
 /// ```
-pub fn generate_quadruple_apart_with<A: VertexAttributes>(
+pub fn generate_quadruple_apart<T: EditTarget>(
+    target: &mut T,
+    d: Dart,
+    how: Quadruple,
+    dir: Direction,
+    steps: usize,
+) -> Result<Edited<QuadrupleEdit, T::Values>, TriEditError> {
+    target.with_parts(|map, values| generate_quadruple_apart_in(map, values, d, how, dir, steps))
+}
+
+/// [`generate_quadruple_apart`] on the parts of its target.
+pub(crate) fn generate_quadruple_apart_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     d: Dart,

@@ -20,15 +20,13 @@
 //!   s -> s' generates (p, q)     (p, q) walks to o, then o moves and (p, q) goes
 //! ```
 
-use super::generate::{generate_pair_with, Moved, Via};
-use super::record::{map_only, VertexMove};
-use super::triple::{
-    cancel_triple_along_with, distance, generate_pair_v7_with, TripleCancel, Via7,
-};
+use super::generate::{generate_pair_in, Moved, Via};
+use super::record::VertexMove;
+use super::triple::{cancel_triple_along_in, distance, generate_pair_v7_in, TripleCancel, Via7};
 use super::{interior_of_valence, TriEditError};
 use crate::invariants::canonical::{is_isomorphic, CanonicalWorkspace};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, VertexAttributes};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
 
@@ -118,7 +116,7 @@ pub fn can_move_far_pair(
 /// step closer or runs out of steps).
 ///
 /// ```
-/// use zipmesh::tri_edit::{generate_pair, move_far_pair, Moved, Start, Via};
+/// use zipmesh::tri_edit::{move_far_pair, Moved, Start, Via};
 /// use zipmesh::{gen, Vert};
 /// // A level-3 geodesic sphere: twelve lone v5, far apart; two of them are a 5-5 pair.
 /// let mut map = gen::geodesic_sphere(3);
@@ -133,23 +131,25 @@ pub fn can_move_far_pair(
 /// assert_eq!((map.valence(a), map.valence(b)), (5, 5));
 /// m.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
-/// # let _ = generate_pair;
 /// ```
-pub fn move_far_pair(
-    map: &mut Map,
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn move_far_pair<T: EditTarget>(
+    target: &mut T,
     d: Dart,
     start: Start,
     moved: Moved,
     other: Vert,
     max_steps: usize,
-) -> Result<FarPairMove, TriEditError> {
-    map_only(|none| move_far_pair_with(map, none, d, start, moved, other, max_steps))
+) -> Result<Edited<FarPairMove, T::Values>, TriEditError> {
+    target
+        .with_parts(|map, values| move_far_pair_in(map, values, d, start, moved, other, max_steps))
 }
 
-/// [`move_far_pair`] on a map and its per-vertex data (one journal for every step).
-///
-/// See [`move_far_pair`]; the undo of the result is `undo_with` (map and data `==`).
-pub fn move_far_pair_with<A: VertexAttributes>(
+/// [`move_far_pair`] on the parts of its target.
+pub(crate) fn move_far_pair_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     d: Dart,
@@ -163,12 +163,12 @@ pub fn move_far_pair_with<A: VertexAttributes>(
     }
     check_pair(map, map.origin(d), other, start)?;
     let first = match start {
-        Start::Five(via) => generate_pair_with(map, attrs, d, via, moved)?,
-        Start::Seven(via) => generate_pair_v7_with(map, attrs, d, via, moved)?,
+        Start::Five(via) => generate_pair_in(map, attrs, d, via, moved)?,
+        Start::Seven(via) => generate_pair_v7_in(map, attrs, d, via, moved)?,
     };
     let (generation, mut journal) = first.into_parts();
     let (p, q) = generation.pair().ok_or(TriEditError::NotAPair)?;
-    match cancel_triple_along_with(map, attrs, &[other, p, q], max_steps) {
+    match cancel_triple_along_in(map, attrs, &[other, p, q], max_steps) {
         Ok(e) => {
             let (walk, j) = e.into_parts();
             journal.absorb(j);

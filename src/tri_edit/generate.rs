@@ -15,10 +15,10 @@
 //! adjacent (gap 1), collapse `m-p` keeping `m`; one vertex `x` between them (gap 2), flip
 //! `q-x`; gap 3, split `q` with the new vertex on the side with two darts between them.
 
-use super::record::{apply_one, created, map_only, tri_apex, turn, VertexMove};
+use super::record::{apply_one, created, tri_apex, turn, VertexMove};
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
 
 /// The graph operation of a v5 movement with 5-7 generation (see the module table).
@@ -117,31 +117,35 @@ pub fn can_generate_pair(map: &Map, d: Dart, via: Via) -> Result<(), TriEditErro
 /// g.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn generate_pair(
-    map: &mut Map,
-    d: Dart,
-    via: Via,
-    moved: Moved,
-) -> Result<V5Move, TriEditError> {
-    map_only(|none| generate_pair_with(map, none, d, via, moved))
-}
-
-/// [`generate_pair`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
-/// use zipmesh::tri_edit::{generate_pair_with, Moved, Via};
+/// use zipmesh::tri_edit::{generate_pair, Moved, Via};
 /// use zipmesh::Vert;
 /// let mut map = geodesic_sphere(2);
 /// let mut marks = vec![1.0f64; map.vertex_slots()];
 /// let before = (map.clone(), marks.clone());
 /// let d = map.vertex_dart(Vert::new(0));
-/// let e = generate_pair_with(&mut map, &mut marks, d, Via::Split, Moved::Second).unwrap();
+/// let e = generate_pair(&mut (&mut map, &mut marks), d, Via::Split, Moved::Second).unwrap();
 /// assert_eq!(marks.len(), map.vertex_slots());
-/// e.undo_with(&mut map, &mut marks).unwrap();
+/// e.undo(&mut (&mut map, &mut marks)).unwrap();
 /// assert_eq!((map, marks), before);
 /// ```
-pub fn generate_pair_with<A: VertexAttributes>(
+pub fn generate_pair<T: EditTarget>(
+    target: &mut T,
+    d: Dart,
+    via: Via,
+    moved: Moved,
+) -> Result<Edited<V5Move, T::Values>, TriEditError> {
+    target.with_parts(|map, values| generate_pair_in(map, values, d, via, moved))
+}
+
+/// [`generate_pair`] on the parts of its target.
+pub(crate) fn generate_pair_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     d: Dart,
@@ -251,14 +255,21 @@ pub fn can_remove_pair(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEd
 /// assert_eq!(map.valence(r.moved()), 5);
 /// assert!(is_isomorphic(&map, &before));
 /// ```
-pub fn remove_pair(map: &mut Map, m: Vert, p: Vert, q: Vert) -> Result<V5Move, TriEditError> {
-    map_only(|none| remove_pair_with(map, none, m, p, q))
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn remove_pair<T: EditTarget>(
+    target: &mut T,
+    m: Vert,
+    p: Vert,
+    q: Vert,
+) -> Result<Edited<V5Move, T::Values>, TriEditError> {
+    target.with_parts(|map, values| remove_pair_in(map, values, m, p, q))
 }
 
-/// [`remove_pair`] on a map and its per-vertex data.
-///
-/// See [`generate_pair_with`] for an example of the same shape.
-pub fn remove_pair_with<A: VertexAttributes>(
+/// [`remove_pair`] on the parts of its target.
+pub(crate) fn remove_pair_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     m: Vert,

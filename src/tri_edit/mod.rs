@@ -75,22 +75,18 @@ mod triple;
 mod types;
 
 pub use crate::geometry::{relax_region, touched_vertices};
-pub use apart::{
-    can_generate_quadruple_apart, generate_quadruple_apart, generate_quadruple_apart_with,
-    quadruple_sides,
-};
+pub use apart::{can_generate_quadruple_apart, generate_quadruple_apart, quadruple_sides};
 pub use composite::{
     can_move_far_pair, far_pair_directions, far_pair_inverse, far_pair_start, move_far_pair,
-    move_far_pair_with, FarPairMove, FarStart, Start,
+    FarPairMove, FarStart, Start,
 };
 pub use generate::{
-    can_generate_pair, can_remove_pair, generate_pair, generate_pair_with, remove_pair,
-    remove_pair_with, Moved, V5Move, Via,
+    can_generate_pair, can_remove_pair, generate_pair, remove_pair, Moved, V5Move, Via,
 };
-pub use pair::{can_move_pair, move_pair, move_pair_with, pair_op, Direction, PairMove};
+pub use pair::{can_move_pair, move_pair, pair_op, Direction, PairMove};
 pub use quadruple::{
-    can_generate_quadruple, can_remove_quadruple, generate_quadruple, generate_quadruple_with,
-    remove_quadruple, remove_quadruple_with, Quadruple, QuadrupleEdit,
+    can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,
+    QuadrupleEdit,
 };
 pub use record::VertexMove;
 #[cfg(feature = "sparse")]
@@ -98,14 +94,9 @@ pub use relax::relax_global;
 pub use relax::{mean_edge_length, relax_energy, relax_local, RelaxError, Relaxed};
 pub use triple::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
-    cancel_triple_along, cancel_triple_along_with, cancel_triple_with, generate_pair_v7,
-    generate_pair_v7_with, remove_pair_v7, remove_pair_v7_with, TripleCancel, TripleEdit, V7Move,
-    Via7,
+    cancel_triple_along, generate_pair_v7, remove_pair_v7, TripleCancel, TripleEdit, V7Move, Via7,
 };
-pub use types::{
-    aggregate_type, aggregate_type_with, can_aggregate_type, can_split_type, split_type,
-    split_type_with, TypeEdit,
-};
+pub use types::{aggregate_type, can_aggregate_type, can_split_type, split_type, TypeEdit};
 
 /// Why a semantic edit refuses (the map is then unchanged).
 ///

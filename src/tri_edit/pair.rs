@@ -15,10 +15,10 @@
 //! ```
 //! Opposite directions (`d` and `d + 3 mod 6`) undo each other up to isomorphism.
 
-use super::record::{apply_one, map_only, one_operation, turn};
+use super::record::{apply_one, one_operation, turn};
 use super::{apex, interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::Refusal;
 
@@ -200,20 +200,13 @@ pub fn can_move_pair(map: &Map, p: Vert, q: Vert, dir: Direction) -> Result<(), 
 /// a collapse removes two triangles (and the vertex `p`), a split adds two.
 ///
 /// See the module example in [`crate::tri_edit`].
-pub fn move_pair(
-    map: &mut Map,
-    p: Vert,
-    q: Vert,
-    dir: Direction,
-) -> Result<PairMove, TriEditError> {
-    map_only(|none| move_pair_with(map, none, p, q, dir))
-}
-
-/// [`move_pair`] on a map and its per-vertex data (see [`TriOp::apply_with`]: a collapse
-/// places the kept vertex at the midpoint, a split places the new vertex inside its fan).
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
 ///
 /// ```
-/// use zipmesh::tri_edit::{move_pair_with, Direction};
+/// use zipmesh::tri_edit::{move_pair, Direction};
 /// use zipmesh::gen;
 /// let mut mesh = gen::random_triangle(400, 1, 0, 3);
 /// let before = mesh.clone();
@@ -225,12 +218,22 @@ pub fn move_pair(
 ///     }).map(|dir| (p, q, dir))
 /// });
 /// if let Some((p, q, dir)) = found {
-///     let e = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir).unwrap();
+///     let e = move_pair(&mut mesh, p, q, dir).unwrap();
 ///     e.undo(&mut mesh).unwrap();
 ///     assert_eq!(mesh, before);
 /// }
 /// ```
-pub fn move_pair_with<A: VertexAttributes>(
+pub fn move_pair<T: EditTarget>(
+    target: &mut T,
+    p: Vert,
+    q: Vert,
+    dir: Direction,
+) -> Result<Edited<PairMove, T::Values>, TriEditError> {
+    target.with_parts(|map, values| move_pair_in(map, values, p, q, dir))
+}
+
+/// [`move_pair`] on the parts of its target.
+pub(crate) fn move_pair_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     p: Vert,

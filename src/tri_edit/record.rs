@@ -1,10 +1,10 @@
-//! What the one-operation semantic edits share: the dart and apex helpers, the map-only
-//! data layer, the run of a planned graph operation (written once, with or without
-//! per-vertex data) and the record of a lone vertex's movement.
+//! What the one-operation semantic edits share: the dart and apex helpers, the run of a
+//! planned graph operation (written once for every kind of per-vertex data) and the record
+//! of a lone vertex's movement.
 
 use super::{apex, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, Rule, VertexAttributes};
+use crate::mesh::{Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::Refusal;
 
@@ -26,25 +26,6 @@ pub(super) fn created(record: &TriRecord) -> Option<Vert> {
     }
 }
 
-/// No per-vertex data: the map-only edits run through their `*_with` variant with it, so
-/// each edit's effect is written once.
-pub(super) struct NoData;
-
-impl VertexAttributes for NoData {
-    type Value = ();
-    type Extent = ();
-    fn extent(&self) {}
-    fn shrink_to(&mut self, _: ()) {}
-    fn cover(&mut self, _: usize) {}
-    fn value(&self, _: Vert) -> Option<()> {
-        None
-    }
-    fn set_value(&mut self, _: Vert, _: ()) {}
-    fn place(&self, _: &Map, _: Rule) -> Option<()> {
-        None
-    }
-}
-
 /// Applies a planned graph operation on the map and its data and builds the edit's record
 /// from the operator's (the one place a one-operation edit is applied).
 pub(super) fn apply_one<A: VertexAttributes, R>(
@@ -53,15 +34,8 @@ pub(super) fn apply_one<A: VertexAttributes, R>(
     op: TriOp,
     build: impl FnOnce(TriOp, TriRecord) -> R,
 ) -> Result<Edited<R, A>, TriEditError> {
-    let edit = op.apply_with(map, attrs)?;
+    let edit = op.apply(&mut (&mut *map, &mut *attrs))?;
     Ok(edit.map_record(|r| build(op, r)))
-}
-
-/// The map-only edit of a `*_with` variant: the record without the (empty) journal.
-pub(super) fn map_only<R>(
-    edit: impl FnOnce(&mut NoData) -> Result<Edited<R, NoData>, TriEditError>,
-) -> Result<R, TriEditError> {
-    edit(&mut NoData).map(|e| e.into_parts().0)
 }
 
 /// The accessors and the undo of a record made of one graph operation (fields `op` and

@@ -28,11 +28,11 @@
 //! `m` and `q` around `p`: 1 (`m-q` an edge), flip `m-q`, the v7 ends at the far apex;
 //! 2 (one vertex `x` between), collapse `p` into `x`, which becomes the v7 (5 + 6 - 4).
 
-use super::generate::{remove_pair_with, Moved};
-use super::record::{apply_one, created, map_only, tri_apex, turn, VertexMove};
+use super::generate::{remove_pair_in, Moved};
+use super::record::{apply_one, created, tri_apex, turn, VertexMove};
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, VertexAttributes};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
@@ -114,19 +114,21 @@ pub fn can_generate_pair_v7(map: &Map, d: Dart, via: Via7) -> Result<(), TriEdit
 /// g.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn generate_pair_v7(
-    map: &mut Map,
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn generate_pair_v7<T: EditTarget>(
+    target: &mut T,
     d: Dart,
     via: Via7,
     moved: Moved,
-) -> Result<V7Move, TriEditError> {
-    map_only(|none| generate_pair_v7_with(map, none, d, via, moved))
+) -> Result<Edited<V7Move, T::Values>, TriEditError> {
+    target.with_parts(|map, values| generate_pair_v7_in(map, values, d, via, moved))
 }
 
-/// [`generate_pair_v7`] on a map and its per-vertex data (see [`TriOp::apply_with`]).
-///
-/// See [`generate_pair_v7`]; the undo of the result is `undo_with` (map and data `==`).
-pub fn generate_pair_v7_with<A: VertexAttributes>(
+/// [`generate_pair_v7`] on the parts of its target.
+pub(crate) fn generate_pair_v7_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     d: Dart,
@@ -219,14 +221,21 @@ pub fn can_remove_pair_v7(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), Tr
 /// assert_eq!(map.valence(r.moved()), 7);
 /// assert!(is_isomorphic(&map, &before));
 /// ```
-pub fn remove_pair_v7(map: &mut Map, m: Vert, p: Vert, q: Vert) -> Result<V7Move, TriEditError> {
-    map_only(|none| remove_pair_v7_with(map, none, m, p, q))
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn remove_pair_v7<T: EditTarget>(
+    target: &mut T,
+    m: Vert,
+    p: Vert,
+    q: Vert,
+) -> Result<Edited<V7Move, T::Values>, TriEditError> {
+    target.with_parts(|map, values| remove_pair_v7_in(map, values, m, p, q))
 }
 
-/// [`remove_pair_v7`] on a map and its per-vertex data.
-///
-/// See [`remove_pair_v7`]; the undo of the result is `undo_with`.
-pub fn remove_pair_v7_with<A: VertexAttributes>(
+/// [`remove_pair_v7`] on the parts of its target.
+pub(crate) fn remove_pair_v7_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     m: Vert,
@@ -361,23 +370,28 @@ pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> 
 /// assert_eq!(map.valence(c.remaining()), 5);
 /// assert!(is_isomorphic(&map, &before));
 /// ```
-pub fn cancel_triple(map: &mut Map, three: &[Vert]) -> Result<TripleEdit, TriEditError> {
-    map_only(|none| cancel_triple_with(map, none, three))
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn cancel_triple<T: EditTarget>(
+    target: &mut T,
+    three: &[Vert],
+) -> Result<Edited<TripleEdit, T::Values>, TriEditError> {
+    target.with_parts(|map, values| cancel_triple_in(map, values, three))
 }
 
-/// [`cancel_triple`] on a map and its per-vertex data.
-///
-/// See [`cancel_triple`]; the undo of the result is `undo_with` (map and data `==`).
-pub fn cancel_triple_with<A: VertexAttributes>(
+/// [`cancel_triple`] on the parts of its target.
+pub(crate) fn cancel_triple_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     three: &[Vert],
 ) -> Result<Edited<TripleEdit, A>, TriEditError> {
     let t = triple_plan(map, three)?;
     Ok(if t.kind == 5 {
-        remove_pair_with(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Five)
+        remove_pair_in(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Five)
     } else {
-        remove_pair_v7_with(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Seven)
+        remove_pair_v7_in(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Seven)
     })
 }
 
@@ -560,18 +574,20 @@ impl Search {
 /// c.undo(&mut map).unwrap();
 /// assert_eq!(map, before);
 /// ```
-pub fn cancel_triple_along(
-    map: &mut Map,
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+pub fn cancel_triple_along<T: EditTarget>(
+    target: &mut T,
     three: &[Vert],
     max_steps: usize,
-) -> Result<TripleCancel, TriEditError> {
-    map_only(|none| cancel_triple_along_with(map, none, three, max_steps))
+) -> Result<Edited<TripleCancel, T::Values>, TriEditError> {
+    target.with_parts(|map, values| cancel_triple_along_in(map, values, three, max_steps))
 }
 
-/// [`cancel_triple_along`] on a map and its per-vertex data (one journal for every step).
-///
-/// See [`cancel_triple_along`]; the undo of the result is `undo_with` (map and data `==`).
-pub fn cancel_triple_along_with<A: VertexAttributes>(
+/// [`cancel_triple_along`] on the parts of its target.
+pub(crate) fn cancel_triple_along_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     three: &[Vert],
@@ -620,7 +636,7 @@ fn walk_and_cancel<A: VertexAttributes>(
                 }
             }
             let dir = step.ok_or(TriEditError::Irregular)?;
-            let e = super::move_pair_with(map, attrs, p, q, dir)?;
+            let e = super::pair::move_pair_in(map, attrs, p, q, dir)?;
             let (m, j) = e.into_parts();
             journal.absorb(j);
             (p, q) = (m.p(), m.q());
@@ -641,7 +657,7 @@ fn cancel_step<A: VertexAttributes>(
     journal: &mut crate::mesh::Journal<A>,
     three: &[Vert],
 ) -> Result<TripleEdit, TriEditError> {
-    let (t, j) = cancel_triple_with(map, attrs, three)?.into_parts();
+    let (t, j) = cancel_triple_in(map, attrs, three)?.into_parts();
     journal.absorb(j);
     Ok(t)
 }

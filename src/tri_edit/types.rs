@@ -16,10 +16,10 @@
 //! * Aggregation of m v7: collapses whose apexes are two of the v7 gather them into one
 //!   vertex (`gather`).
 
-use super::record::{map_only, turn};
+use super::record::turn;
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Map, Vert};
-use crate::mesh::{Edited, Journal, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Journal, VertexAttributes};
 use crate::ops::tri::{can_split_vertex, TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
@@ -62,7 +62,7 @@ pub(super) fn run_with<A: VertexAttributes>(
         let step = next(map, &done).and_then(|op| match op {
             Some(op) => {
                 let vs = involved(map, op);
-                let (r, j) = op.apply_with(map, attrs)?.into_parts();
+                let (r, j) = op.apply(&mut (&mut *map, &mut *attrs))?.into_parts();
                 journal.absorb(j);
                 seen.extend(vs.into_iter().flatten());
                 if let TriRecord::SplitVertex(s) = r {
@@ -168,27 +168,33 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 /// assert!(split_type(&mut map, Vert::new(20)).is_err()); // a regular vertex
 /// assert_eq!(map, before);
 /// ```
-pub fn split_type(map: &mut Map, v: Vert) -> Result<TypeEdit, TriEditError> {
-    map_only(|none| split_type_with(map, none, v))
-}
-
-/// [`split_type`] on a map and its per-vertex data: each step places its vertex by its
-/// operator's rule (see [`TriOp::apply_with`]); the undo restores map and data.
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
-/// use zipmesh::tri_edit::split_type_with;
+/// use zipmesh::tri_edit::split_type;
 /// use zipmesh::Vert;
 /// let mut map = subdivided_bipyramid(9, 2);
 /// let mut marks = vec![0.5f64; map.vertex_slots()];
 /// let before = (map.clone(), marks.clone());
-/// let e = split_type_with(&mut map, &mut marks, Vert::new(0)).unwrap(); // a v9 into three v7
+/// let e = split_type(&mut (&mut map, &mut marks), Vert::new(0)).unwrap(); // a v9 into three v7
 /// assert_eq!(e.record().vertices().len(), 3);
 /// assert_eq!(marks.len(), map.vertex_slots());
-/// e.undo_with(&mut map, &mut marks).unwrap();
+/// e.undo(&mut (&mut map, &mut marks)).unwrap();
 /// assert_eq!((map, marks), before);
 /// ```
-pub fn split_type_with<A: VertexAttributes>(
+pub fn split_type<T: EditTarget>(
+    target: &mut T,
+    v: Vert,
+) -> Result<Edited<TypeEdit, T::Values>, TriEditError> {
+    target.with_parts(|map, values| split_type_in(map, values, v))
+}
+
+/// [`split_type`] on the parts of its target.
+pub(crate) fn split_type_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     v: Vert,
@@ -244,27 +250,33 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// assert_eq!(map.valence(a.vertices()[0]), 11);
 /// assert!(is_isomorphic(&map, &before));
 /// ```
-pub fn aggregate_type(map: &mut Map, vs: &[Vert]) -> Result<TypeEdit, TriEditError> {
-    map_only(|none| aggregate_type_with(map, none, vs))
-}
-
-/// [`aggregate_type`] on a map and its per-vertex data (a new vertex placed inside its
-/// fan, a gathered one where collapses put it, see [`TriOp::apply_with`]).
+///
+/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
+/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
-/// use zipmesh::tri_edit::{aggregate_type_with, split_type};
+/// use zipmesh::tri_edit::{aggregate_type, split_type};
 /// use zipmesh::Vert;
 /// let mut map = subdivided_bipyramid(8, 2);
 /// let s = split_type(&mut map, Vert::new(2)).unwrap(); // a v4 into two v5
 /// let mut marks = vec![1.0f64; map.vertex_slots()];
 /// let before = (map.clone(), marks.clone());
-/// let a = aggregate_type_with(&mut map, &mut marks, s.vertices()).unwrap();
+/// let a = aggregate_type(&mut (&mut map, &mut marks), s.vertices()).unwrap();
 /// assert_eq!(map.valence(a.record().vertices()[0]), 4);
-/// a.undo_with(&mut map, &mut marks).unwrap();
+/// a.undo(&mut (&mut map, &mut marks)).unwrap();
 /// assert_eq!((map, marks), before);
 /// ```
-pub fn aggregate_type_with<A: VertexAttributes>(
+pub fn aggregate_type<T: EditTarget>(
+    target: &mut T,
+    vs: &[Vert],
+) -> Result<Edited<TypeEdit, T::Values>, TriEditError> {
+    target.with_parts(|map, values| aggregate_type_in(map, values, vs))
+}
+
+/// [`aggregate_type`] on the parts of its target.
+pub(crate) fn aggregate_type_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     vs: &[Vert],

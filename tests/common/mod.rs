@@ -72,7 +72,7 @@ pub fn pairs_within(map: &Map, max_len: usize) -> Vec<Path> {
 pub fn check_zip(map: &Map, path: &Path, tag: Tag) -> Result<(Map, ZipReport), QzipError> {
     let mut m = map.clone();
     let r = match Qzip::new().zip_along(&mut m, path, tag) {
-        Ok(r) => r,
+        Ok(r) => r.into_record(),
         Err(e) => {
             assert_eq!(&m, map, "a refusal changed the map: {e}");
             return Err(e);

@@ -119,7 +119,7 @@ fn walk(
     let mut tip = t;
     for _ in 0..a.steps {
         for &mv in seq {
-            let e = quad_dominant::mesh_move_triangle(mesh, tip, mv).map_err(|r| {
+            let e = mv.apply(mesh, tip).map_err(|r| {
                 InputError(format!(
                     "{name}: move {} ({mv}) was refused: {r}",
                     done.len() + 1

@@ -9,8 +9,7 @@ use zipmesh::io::{self, MeshFileError};
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
 use zipmesh::qzip::{
-    find_reverse, mesh_preprocess, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag,
-    ZipReport,
+    find_reverse, moves, sketch, validate_path, Path, Qzip, SketchOptions, Tag, ZipReport,
 };
 use zipmesh::{Compaction, Map, Mesh, Vert};
 
@@ -140,7 +139,7 @@ fn load_mesh(
     let mut mesh = input.clone();
     let name = file.display();
     if preprocess {
-        mesh_preprocess(&mut mesh)
+        zipmesh::qzip::preprocess(&mut mesh)
             .map_err(|e| InputError(format!("{name}: the preprocessing was refused: {e}")))?;
     }
     let map = &mesh.map;
@@ -377,7 +376,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
     let (input, original, path) = load(&args.pair)?;
     let mut mesh = original.clone();
     let z = Qzip::new()
-        .zip_mesh_along(&mut mesh, &path, args.tag)
+        .zip_along(&mut mesh, &path, args.tag)
         .map_err(|e| {
             InputError(format!(
                 "{}: the {} movement is not realizable: {e}",

@@ -19,13 +19,12 @@ use zipmesh::ops::tri::TriRecord;
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
 use zipmesh::tri_edit::{
-    aggregate_type, aggregate_type_with, can_generate_pair, can_generate_pair_v7,
-    can_generate_quadruple, can_generate_quadruple_apart, cancel_triple_along_with,
-    far_pair_inverse, far_pair_start, generate_pair, generate_pair_v7, generate_pair_v7_with,
-    generate_pair_with, generate_quadruple_apart_with, generate_quadruple_with, move_far_pair_with,
-    move_pair_with, quadruple_sides, relax_global, relax_local, relax_region,
-    remove_quadruple_with, split_type, split_type_with, touched_vertices, Direction, FarStart,
-    Moved, Quadruple, Relaxed, TriEditError, TripleEdit, Via, Via7,
+    aggregate_type, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
+    can_generate_quadruple_apart, cancel_triple_along, far_pair_inverse, far_pair_start,
+    generate_pair, generate_pair_v7, generate_quadruple, generate_quadruple_apart, move_far_pair,
+    move_pair, quadruple_sides, relax_global, relax_local, relax_region, remove_quadruple,
+    split_type, touched_vertices, Direction, FarStart, Moved, Quadruple, Relaxed, TriEditError,
+    TripleEdit, Via, Via7,
 };
 use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
 
@@ -505,8 +504,7 @@ fn move_adjacent(
     let dir = Direction::from_index(args.direction.into()).unwrap_or(Direction::SplitLeft);
     let mut ops = Ops::default();
     for step in 1..=args.steps {
-        let e = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir)
-            .map_err(|e| step_refused(args, step, why(e)))?;
+        let e = move_pair(&mut mesh, p, q, dir).map_err(|e| step_refused(args, step, why(e)))?;
         ops.add(e.record().record());
         (p, q) = (e.record().p(), e.record().q());
     }
@@ -527,16 +525,8 @@ fn move_far(args: &MoveArgs, mut mesh: Mesh, a: Vert, b: Vert) -> Result<ExitCod
         let start = far_start(&mesh.map, s, o, args.direction.into())
             .map_err(|e| step_refused(args, step, e))?;
         let (d, how, moved) = start;
-        let e = move_far_pair_with(
-            &mut mesh.map,
-            &mut mesh.positions,
-            d,
-            how,
-            moved,
-            o,
-            MAX_WALK,
-        )
-        .map_err(|e| step_refused(args, step, why(e)))?;
+        let e = move_far_pair(&mut mesh, d, how, moved, o, MAX_WALK)
+            .map_err(|e| step_refused(args, step, why(e)))?;
         let r = e.record();
         ops.add(r.generation().record());
         r.walk().moves().iter().for_each(|m| ops.add(m.record()));
@@ -697,7 +687,7 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
     };
     let (made, steps): (Made, Vec<TriRecord>) = match (how, args.walk_apart()) {
         (Generation::Quadruple(q), Some((k, dir))) => {
-            let g = generate_quadruple_apart_with(m, pos, d, q, dir, k)
+            let g = generate_quadruple_apart(&mut (&mut *m, &mut *pos), d, q, dir, k)
                 .map_err(refused)?
                 .into_parts()
                 .0;
@@ -711,7 +701,7 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
         }
         (_, Some(_)) => return Err(refused(TriEditError::WrongValence)),
         (Generation::Quadruple(q), None) => {
-            let g = generate_quadruple_with(m, pos, d, q)
+            let g = generate_quadruple(&mut (&mut *m, &mut *pos), d, q)
                 .map_err(refused)?
                 .into_parts()
                 .0;
@@ -722,12 +712,14 @@ pub fn run_generate(args: GenerateArgs) -> Result<ExitCode, InputError> {
             )
         }
         (Generation::Five(via), None) => {
-            let g = generate_pair_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let g =
+                generate_pair(&mut (&mut *m, &mut *pos), d, via, Moved::First).map_err(refused)?;
             let r = g.record();
             (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
         }
         (Generation::Seven(via), None) => {
-            let g = generate_pair_v7_with(m, pos, d, via, Moved::First).map_err(refused)?;
+            let g = generate_pair_v7(&mut (&mut *m, &mut *pos), d, via, Moved::First)
+                .map_err(refused)?;
             let r = g.record();
             (Made::Three(triple(r.moved(), r.pair())), vec![*r.record()])
         }
@@ -865,7 +857,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
     let (edit, what) = match (&args.split, &args.aggregate) {
         (Some(v), _) => {
             let x = verts(f, &mesh.map, "--split", &[*v], None)?[0];
-            let e = split_type_with(&mut mesh.map, &mut mesh.positions, x).map_err(|e| {
+            let e = split_type(&mut mesh, x).map_err(|e| {
                 err(format_args!(
                     "{name}: --split {v}: {}",
                     type_why(e, &mesh.map, x)
@@ -875,7 +867,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
         }
         (None, Some(vs)) => {
             let xs = verts(f, &mesh.map, "--aggregate", vs, None)?;
-            let e = aggregate_type_with(&mut mesh.map, &mut mesh.positions, &xs).map_err(|e| {
+            let e = aggregate_type(&mut mesh, &xs).map_err(|e| {
                 err(format_args!(
                     "{name}: --aggregate {}: {}",
                     list(&vs.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
@@ -999,26 +991,24 @@ fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
     let mut mesh = load(f)?;
     let original = mesh.map.clone();
     let three = verts(f, &mesh.map, "--triple", given, Some(3))?;
-    let t = cancel_triple_along_with(&mut mesh.map, &mut mesh.positions, &three, MAX_WALK)
-        .map_err(|e| {
-            err(format_args!(
-                "{}: --triple {}: {}",
-                f.file.display(),
-                list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
-                match e {
-                    TriEditError::NotAPair =>
-                        "not a 5-5-7 triple (two v5 and a v7, the v7 next to \
+    let t = cancel_triple_along(&mut mesh, &three, MAX_WALK).map_err(|e| {
+        err(format_args!(
+            "{}: --triple {}: {}",
+            f.file.display(),
+            list(&given.iter().map(|&v| Some(v)).collect::<Vec<_>>()),
+            match e {
+                TriEditError::NotAPair => "not a 5-5-7 triple (two v5 and a v7, the v7 next to \
                      one of them) nor a 5-7-7 triple (a v5, two v7, the v5 next to one of them)"
-                            .to_string(),
-                    TriEditError::Irregular => format!(
-                        "the pair cannot be brought next to the third vertex through a regular \
+                    .to_string(),
+                TriEditError::Irregular => format!(
+                    "the pair cannot be brought next to the third vertex through a regular \
                      neighbourhood within {MAX_WALK} steps (or the cancellation needs a \
                      vertex regular that is not)"
-                    ),
-                    e => why(e),
-                }
-            ))
-        })?;
+                ),
+                e => why(e),
+            }
+        ))
+    })?;
     let t = t.into_parts().0;
     let left = t.remaining();
     let walked = t.moves().len();
@@ -1073,7 +1063,7 @@ fn cancel_quadruple(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
         .copied()
         .filter(|&v| mesh.map.valence(v) == 5)
         .collect();
-    let e = remove_quadruple_with(&mut mesh.map, &mut mesh.positions, &four).map_err(|e| {
+    let e = remove_quadruple(&mut mesh, &four).map_err(|e| {
         err(format_args!(
             "{}: --quadruple {}: {}",
             f.file.display(),

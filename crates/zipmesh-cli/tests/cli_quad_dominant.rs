@@ -104,12 +104,7 @@ fn each_move_and_its_undo() {
             let name = format!("tri-walk-{mv}-{steps}");
             let k = steps.to_string();
             walk_and_undo(&name, &["--move", mv.name(), "--steps", &k], |m, t| {
-                (0..steps).fold(t, |t, _| {
-                    quad_dominant::mesh_move_triangle(m, t, mv)
-                        .unwrap()
-                        .record()
-                        .tip()
-                })
+                (0..steps).fold(t, |t, _| mv.apply(m, t).unwrap().record().tip())
             });
         }
     }
@@ -119,12 +114,8 @@ fn each_move_and_its_undo() {
 fn a_sequence_of_moves() {
     let seq = [Move::VE, Move::LE, Move::LE, Move::EV, Move::RE];
     walk_and_undo("tri-walk-seq", &["--move", "VE,LE,le,EV,RE"], |m, t| {
-        seq.iter().fold(t, |t, &mv| {
-            quad_dominant::mesh_move_triangle(m, t, mv)
-                .unwrap()
-                .record()
-                .tip()
-        })
+        seq.iter()
+            .fold(t, |t, &mv| mv.apply(m, t).unwrap().record().tip())
     });
 }
 

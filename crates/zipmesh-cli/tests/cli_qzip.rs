@@ -214,7 +214,7 @@ fn zip_without_a_reverse_run_gives_undo_null() {
         .to_string();
     // The premise, from the library: the movement is done and find_reverse finds nothing.
     let (mut mesh, _) = io::read_mesh(&file).unwrap();
-    zipmesh::qzip::mesh_preprocess(&mut mesh).unwrap();
+    zipmesh::qzip::preprocess(&mut mesh).unwrap();
     let path = default_path(&mesh.map, 0, 1);
     let mut edited = mesh.map.clone();
     let r = zipmesh::qzip::Qzip::new()

@@ -310,7 +310,7 @@ pub fn try_op(m: &Map, op: Op, tally: &mut Tally, inverse: bool) -> Option<(Map,
         "{op:?}: can_ disagrees with the rules on {m:?}"
     );
     let mut after = m.clone();
-    let res = op.apply(&mut after);
+    let res = op.apply(&mut after).map(|e| e.into_record());
     tally.add(op, &res.as_ref().map(|_| ()).map_err(|e| *e));
     match res {
         Err(r) => {

@@ -161,7 +161,7 @@ proptest! {
         for (i, k) in seq {
             let i = i % tips.len();
             if check_move(&m.map, &tips, i, Move::ALL[k])? {
-                let e = quad_dominant::mesh_move_triangle(&mut m, tips[i], Move::ALL[k]).unwrap();
+                let e = Move::ALL[k].apply(&mut m, tips[i]).unwrap();
                 prop_assert_eq!(m.positions.len(), m.map.vertex_slots());
                 tips = with_tip(&tips, i, e.record());
                 done.push(e);

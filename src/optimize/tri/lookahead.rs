@@ -303,8 +303,8 @@ fn keep_best_near(mesh: &mut Mesh, v: Vert, budget: &Budget) -> Option<Vec<Vert>
     }
     let before = cost(&mesh.map, &zone);
     let reference = region_normal(mesh, &region);
-    let first = op.apply_mesh(mesh).ok()?;
-    let second = match then.map(|op2| op2.apply_mesh(mesh)) {
+    let first = op.apply(mesh).ok()?;
+    let second = match then.map(|op2| op2.apply(mesh)) {
         Some(Ok(e)) => Some(e),
         Some(Err(_)) => {
             let _ = first.undo(mesh);

@@ -33,10 +33,9 @@ mod guard;
 mod lookahead;
 
 use crate::geometry::Surface;
-use crate::ops::tri::{can_collapse_edge, can_flip_edge, mesh_collapse_edge, mesh_flip_edge};
+use crate::ops::tri::{can_collapse_edge, can_flip_edge, TriOp};
 use crate::tri_edit::{
-    can_cancel_triple, cancel_triple_with, move_far_pair_with, move_pair_with, Direction, FarStart,
-    Moved, Start,
+    can_cancel_triple, cancel_triple, move_far_pair, move_pair, Direction, FarStart, Moved, Start,
 };
 use crate::{Dart, Map, Mesh, Vert};
 use guard::{face_normal, fan, folds, region_normal, Budget};
@@ -427,7 +426,7 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
             (Some(x), Some(y)) => (x + y).normalize_or_zero(),
             _ => continue,
         };
-        let Ok(edit) = mesh_flip_edge(mesh, d) else {
+        let Ok(edit) = TriOp::Flip(d).apply(mesh) else {
             continue;
         };
         if turned_over(mesh, d, old) {
@@ -485,7 +484,8 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
                 .chain(fan(map, map.origin(d)))
                 .filter_map(|x| face_normal(mesh, x).map(|n| (x, n))),
         );
-        let Ok(edit) = mesh_collapse_edge(mesh, d) else {
+        let k = mesh.map.dest(d); // the collapse keeps the edge's end
+        let Ok(edit) = TriOp::Collapse(d).apply(mesh) else {
             continue;
         };
         let turned = normals.iter().any(|&(x, n)| {
@@ -498,7 +498,6 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
             continue;
         }
         let m = &mesh.map;
-        let k = edit.record().kept();
         let start = touched.len();
         touched.push(k);
         touched.extend(m.vertex_darts(k).map(|x| m.dest(x)));
@@ -525,7 +524,7 @@ fn cancel_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usi
         };
         let before: Cost = three.iter().map(|&x| vertex_cost(map, x)).sum();
         let reference = region_normal(mesh, &three);
-        let Ok(edit) = cancel_triple_with(&mut mesh.map, &mut mesh.positions, &three) else {
+        let Ok(edit) = cancel_triple(mesh, &three) else {
             continue;
         };
         let map = &mesh.map;
@@ -625,7 +624,7 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
         let now = lead(kind, dist.at(p), dist.at(q));
         let mut best: Option<(usize, Direction)> = None;
         for dir in Direction::ALL {
-            let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) else {
+            let Ok(e) = move_pair(mesh, p, q, dir) else {
                 continue;
             };
             // Distances from the target as they were: a move changes the graph next to the
@@ -647,7 +646,7 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
         }
         let reference = region_normal(mesh, &[p, q]);
         if let Some((_, dir)) = best {
-            if let Ok(e) = move_pair_with(&mut mesh.map, &mut mesh.positions, p, q, dir) {
+            if let Ok(e) = move_pair(mesh, p, q, dir) {
                 let four = [p, q, e.record().p(), e.record().q()];
                 if folds(mesh, &four, reference) || !budget.holds(&mesh.map) {
                     let _ = e.undo(mesh);
@@ -771,9 +770,14 @@ fn best_far_move(
         for &start in Start::all(5) {
             for moved in [Moved::First, Moved::Second] {
                 let map = &mut mesh.map;
-                let Ok(e) =
-                    move_far_pair_with(map, &mut mesh.positions, d, start, moved, q, FAR_STEPS)
-                else {
+                let Ok(e) = move_far_pair(
+                    &mut (map, &mut mesh.positions),
+                    d,
+                    start,
+                    moved,
+                    q,
+                    FAR_STEPS,
+                ) else {
                     continue;
                 };
                 let (np, nq) = e.record().pair();
@@ -793,7 +797,7 @@ fn best_far_move(
 }
 
 /// Each far 5-7 pair ([`far_five_seven_pairs`]) makes the far pair move (Sec. 7.1.1, the
-/// generation, the walk and the removal of [`move_far_pair_with`]) that brings it nearest to the closest
+/// generation, the walk and the removal of [`move_far_pair`]) that brings it nearest to the closest
 /// other irregular vertex within `radius`, as [`move_pass`] does for adjacent pairs; undone
 /// when it folds a triangle or leaves `budget`.
 fn far_move_pass(
@@ -816,15 +820,7 @@ fn far_move_pass(
             continue;
         };
         let reference = region_normal(mesh, &[p, q]);
-        let Ok(e) = move_far_pair_with(
-            &mut mesh.map,
-            &mut mesh.positions,
-            d,
-            start,
-            m,
-            q,
-            FAR_STEPS,
-        ) else {
+        let Ok(e) = move_far_pair(mesh, d, start, m, q, FAR_STEPS) else {
             continue;
         };
         let (np, nq) = e.record().pair();
@@ -891,7 +887,9 @@ mod tests {
         let w = crate::Vert::new(14);
         let d1 = mesh.map.vertex_dart(w);
         let d2 = (0..3).fold(d1, |d, _| mesh.map.rotate_cw(d));
-        crate::ops::tri::mesh_split_vertex(&mut mesh, d1, d2).unwrap();
+        crate::ops::tri::TriOp::SplitVertex(d1, d2)
+            .apply(&mut mesh)
+            .unwrap();
         assert_eq!(irregular_valences(&mesh.map), [5, 5, 7, 7]);
         let budget = Budget { min: 0, max: 1000 };
         let mut touched = Vec::new();
@@ -899,7 +897,9 @@ mod tests {
         assert!(irregular_valences(&mesh.map).is_empty());
         // Within the budget only: one face fewer than now is refused.
         let faces = mesh.map.num_faces();
-        crate::ops::tri::mesh_split_vertex(&mut mesh, d1, d2).unwrap();
+        crate::ops::tri::TriOp::SplitVertex(d1, d2)
+            .apply(&mut mesh)
+            .unwrap();
         let tight = Budget {
             min: faces + 1,
             max: 1000,
@@ -934,7 +934,8 @@ mod tests {
                 let near = Near::from(&mesh.map, &[target], 12);
                 let was = lead(kind, near.at(p), near.at(q));
                 let (map, pos) = (&mut mesh.map, &mut mesh.positions);
-                let e = move_far_pair_with(map, pos, d, start, m, q, FAR_STEPS).unwrap();
+                let e =
+                    move_far_pair(&mut (&mut *map, &mut *pos), d, start, m, q, FAR_STEPS).unwrap();
                 let (np, nq) = e.record().pair();
                 let map = &mesh.map;
                 assert_eq!(map.check(), Ok(()));

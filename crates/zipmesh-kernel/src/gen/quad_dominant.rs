@@ -77,7 +77,7 @@ pub fn with_triangle_pairs(
         };
         let mut pair = split.tips();
         for t in &mut pair {
-            if let Ok(e) = quad_dominant::mesh_move_triangle(&mut mesh, *t, Move::VE) {
+            if let Ok(e) = Move::VE.apply(&mut mesh, *t) {
                 *t = e.record().tip();
             }
         }
@@ -85,7 +85,7 @@ pub fn with_triangle_pairs(
         for _ in 0..steps {
             let i = tips.len() - 2 + rng.below(2);
             let mv = Move::ALL[rng.below(4)];
-            if let Ok(e) = quad_dominant::mesh_move_triangle(&mut mesh, tips[i], mv) {
+            if let Ok(e) = mv.apply(&mut mesh, tips[i]) {
                 let old = tips.clone();
                 tips = tips.iter().map(|&d| e.record().follow(d)).collect();
                 tips[i] = e.record().tip();

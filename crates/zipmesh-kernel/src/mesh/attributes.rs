@@ -173,5 +173,29 @@ impl<A: VertexAttributes, B: VertexAttributes> VertexAttributes for (A, B) {
     }
 }
 
+/// No per-vertex values: the policy of an edit on a bare [`Map`] (see
+/// [`super::EditTarget`]). Nothing is saved or placed.
+///
+/// ```
+/// use zipmesh_kernel::{mesh::VertexAttributes, Vert};
+/// let mut none = ();
+/// none.set_value(Vert::new(3), ());
+/// assert_eq!(none.value(Vert::new(3)), None);
+/// ```
+impl VertexAttributes for () {
+    type Value = ();
+    type Extent = ();
+    fn extent(&self) {}
+    fn shrink_to(&mut self, _: ()) {}
+    fn cover(&mut self, _: usize) {}
+    fn value(&self, _: Vert) -> Option<()> {
+        None
+    }
+    fn set_value(&mut self, _: Vert, _: ()) {}
+    fn place(&self, _: &Map, _: Rule) -> Option<()> {
+        None
+    }
+}
+
 /// Positions are the layer every [`crate::Mesh`] has.
 pub type Positions = Vec<DVec3>;

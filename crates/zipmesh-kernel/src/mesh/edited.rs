@@ -7,7 +7,7 @@
 //! the layer back to its old extent, so map and data both come back `==`.
 
 use super::attributes::{Blend, Positions, VertexAttributes};
-use super::Mesh;
+use super::EditTarget;
 use crate::edit::{Refusal, Undo};
 use crate::map::{Map, Vert};
 use alloc::vec::Vec;
@@ -212,7 +212,7 @@ impl<A: VertexAttributes> Journal<A> {
     }
 }
 
-/// An edit applied to a map with per-vertex data `A` (by default a [`Mesh`]'s positions):
+/// An edit applied to a map with per-vertex data `A` (by default a [`crate::Mesh`]'s positions):
 /// the edit's record `R` and the journal of values it overwrote. The one wrapper of every
 /// position-keeping edit: quad and triangle operators, Q-zip, preprocessing.
 ///
@@ -266,9 +266,11 @@ impl<R, A: VertexAttributes> Edited<R, A> {
     /// The same edit with its record converted (an operator's record into its family's).
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, ops::quad::{self, QuadRecord}, Dart};
+    /// use zipmesh_kernel::{gen, mesh::{Edited, Rule}, ops::quad::{self, QuadRecord}, Dart};
     /// let mut mesh = gen::torus_grid(4, 4);
-    /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
+    /// let e = Edited::run(&mut mesh.map, &mut mesh.positions,
+    ///     |m| quad::collapse_quad(m, Dart::new(0)),
+    ///     |_, r| Some((r.kept(), Rule::Midpoint(r.kept(), r.removed())))).unwrap();
     /// let e = e.map_record(QuadRecord::from);
     /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
     /// ```
@@ -289,10 +291,10 @@ impl<R, A: VertexAttributes> Edited<R, A> {
     /// The edit's own record (for a Q-zip, its report).
     ///
     /// ```
-    /// use zipmesh_kernel::{gen, ops::quad, Dart};
+    /// use zipmesh_kernel::{gen, ops::quad::{QuadOp, QuadRecord}, Dart};
     /// let mut mesh = gen::torus_grid(4, 4);
-    /// let e = quad::mesh_collapse_quad(&mut mesh, Dart::new(0)).unwrap();
-    /// assert!(!mesh.map.is_live_vertex(e.record().removed()));
+    /// let e = QuadOp::Collapse(Dart::new(0)).apply(&mut mesh).unwrap();
+    /// assert!(matches!(e.record(), QuadRecord::Collapse(_)));
     /// ```
     pub fn record(&self) -> &R {
         &self.record
@@ -305,6 +307,19 @@ impl<R, A: VertexAttributes> Edited<R, A> {
         &self.journal
     }
 
+    /// The edit's record, its journal dropped (an edit on a bare map keeps no values).
+    ///
+    /// ```
+    /// use zipmesh_kernel::{gen, ops::quad::{QuadOp, QuadRecord}, Dart};
+    /// let mut map = gen::torus_grid(4, 4).map;
+    /// let r: QuadRecord = QuadOp::Collapse(Dart::new(0)).apply(&mut map).unwrap().into_record();
+    /// r.undo(&mut map).unwrap();
+    /// assert_eq!(map, gen::torus_grid(4, 4).map);
+    /// ```
+    pub fn into_record(self) -> R {
+        self.record
+    }
+
     /// Splits the edit into its record and journal.
     ///
     /// See [`Edited`] for an example.
@@ -314,8 +329,9 @@ impl<R, A: VertexAttributes> Edited<R, A> {
 }
 
 impl<R: Undo, A: VertexAttributes> Edited<R, A> {
-    /// Undoes the edit on a map and its data layer: the record's undo, then the journal.
-    /// On a refusal (a stale record) neither changes.
+    /// Undoes the edit on the target it was made on (a map, a [`crate::Mesh`], or a map with its
+    /// values, see [`EditTarget`]): the record's undo, then the journal, so map and values
+    /// come back `==`. On a refusal (a stale record) neither changes.
     ///
     /// ```
     /// use zipmesh_kernel::{gen, mesh::{Edited, Journal, Rule}, ops::quad, Dart};
@@ -325,21 +341,29 @@ impl<R: Undo, A: VertexAttributes> Edited<R, A> {
     /// let mut journal = Journal::start(&marks);
     /// let record = quad::insert_doublet(&mut mesh.map, Dart::new(0)).unwrap();
     /// journal.set(&mut marks, record.vertex(), true);
-    /// Edited::new(record, journal).undo_with(&mut mesh.map, &mut marks).unwrap();
+    /// Edited::new(record, journal).undo(&mut (&mut mesh.map, &mut marks)).unwrap();
     /// assert_eq!((mesh.map, marks), before);
     /// ```
-    pub fn undo_with(&self, map: &mut Map, attrs: &mut A) -> Result<(), Refusal> {
-        self.record.undo(map)?;
-        self.journal.rewind(attrs);
-        Ok(())
+    pub fn undo<T: EditTarget<Values = A>>(&self, target: &mut T) -> Result<(), Refusal> {
+        target.with_parts(|map, values| {
+            self.record.undo(map)?;
+            self.journal.rewind(values);
+            Ok(())
+        })
     }
 }
 
-impl<R: Undo> Edited<R, Positions> {
-    /// Undoes the edit on a [`Mesh`]: connectivity `==` and positions exactly as before.
-    ///
-    /// See [`Edited`] for an example.
-    pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
-        self.undo_with(&mut mesh.map, &mut mesh.positions)
+/// An edit on a bare map undoes as its record does (undo stacks of [`Undo`] records).
+impl<R: Undo> Undo for Edited<R, ()> {
+    fn undo(&self, map: &mut Map) -> Result<(), Refusal> {
+        self.record.undo(map)
+    }
+}
+
+/// An edit reads as its record (`e.removed()` for `e.record().removed()`).
+impl<R, A: VertexAttributes> core::ops::Deref for Edited<R, A> {
+    type Target = R;
+    fn deref(&self) -> &R {
+        &self.record
     }
 }

@@ -5,9 +5,11 @@
 
 mod attributes;
 mod edited;
+mod target;
 
 pub use attributes::{Blend, Positions, VertexAttributes};
 pub use edited::{Edited, Journal, Rule};
+pub use target::EditTarget;
 
 use crate::map::{BuildError, BuildReport, Map};
 use alloc::vec::Vec;

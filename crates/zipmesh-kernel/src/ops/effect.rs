@@ -263,6 +263,18 @@ pub trait VertexChanges {
     fn removed_vertex(&self) -> Option<Vert>;
 }
 
+/// An edit with values changes the vertices its record does.
+impl<R: VertexChanges, A: crate::mesh::VertexAttributes> VertexChanges
+    for crate::mesh::Edited<R, A>
+{
+    fn created_vertex(&self) -> Option<Vert> {
+        self.record().created_vertex()
+    }
+    fn removed_vertex(&self) -> Option<Vert> {
+        self.record().removed_vertex()
+    }
+}
+
 /// How an application differs from its [`Effect`]: the first difference
 /// [`Effect::check`] finds.
 ///

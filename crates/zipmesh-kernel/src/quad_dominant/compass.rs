@@ -11,10 +11,9 @@
 //! target (breadth-first distances on the current map, ties in the order VE, EV, LE, RE)
 //! and must bring it strictly nearer; the walk is all or nothing.
 
-use super::mesh::move_triangle_with;
 use super::walk::{can_move_triangle, Move, TriangleMove};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, Mesh, Positions, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Positions, VertexAttributes};
 use crate::ops::{Refusal, VertexChanges};
 use alloc::collections::VecDeque;
 use alloc::vec;
@@ -83,24 +82,13 @@ impl<A: VertexAttributes> Walk<A> {
         self.tip
     }
 
-    /// Undoes every move, last first: map and layer `==` as before the walk; on a stale
-    /// record the moves undone so far stay undone and the error is returned.
+    /// Undoes every move, last first, on the target walked on: map and values `==` as
+    /// before the walk; on a stale record the moves undone so far stay undone and the
+    /// error is returned.
     ///
     /// See [`walk_to`] for an example.
-    pub fn undo_with(&self, map: &mut Map, attrs: &mut A) -> Result<(), Refusal> {
-        for e in self.steps.iter().rev() {
-            e.undo_with(map, attrs)?;
-        }
-        Ok(())
-    }
-}
-
-impl Walk<Positions> {
-    /// [`Walk::undo_with`] on a mesh's positions.
-    ///
-    /// See [`walk_to`] for an example.
-    pub fn undo(&self, mesh: &mut Mesh) -> Result<(), Refusal> {
-        self.undo_with(&mut mesh.map, &mut mesh.positions)
+    pub fn undo<T: EditTarget<Values = A>>(&self, target: &mut T) -> Result<(), Refusal> {
+        self.steps.iter().rev().try_for_each(|e| e.undo(target))
     }
 }
 
@@ -170,7 +158,7 @@ fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
 
 /// Walks the triangle of tip dart `t` until its tip is `target` (or `target` was merged
 /// into the tip by an EV), one compass move at a time (see the [module docs](self)), on a
-/// map and a per-vertex layer. All or nothing: on an error every move made is undone.
+/// map and the values kept in step with it (see [`EditTarget`]). All or nothing: on an error every move made is undone.
 ///
 /// ```
 /// use zipmesh_kernel::{gen, quad_dominant::{self, compass}};
@@ -187,7 +175,16 @@ fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
 /// walk.undo(&mut mesh).unwrap();
 /// assert_eq!(mesh, before);
 /// ```
-pub fn walk_to_with<A: VertexAttributes>(
+pub fn walk_to<T: EditTarget>(
+    on: &mut T,
+    t: Dart,
+    target: Vert,
+) -> Result<Walk<T::Values>, WalkError> {
+    on.with_parts(|map, values| walk_in(map, values, t, target))
+}
+
+/// [`walk_to`] on the parts of its target.
+fn walk_in<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     t: Dart,
@@ -208,7 +205,7 @@ pub fn walk_to_with<A: VertexAttributes>(
             Some(WalkError::Unreachable)
         } else {
             match next_move_by(map, walk.tip, &dist) {
-                Some(mv) => match move_triangle_with(map, attrs, walk.tip, mv) {
+                Some(mv) => match mv.apply(&mut (&mut *map, &mut *attrs), walk.tip) {
                     Ok(e) => {
                         walk.tip = e.record().tip();
                         walk.steps.push(e);
@@ -224,18 +221,11 @@ pub fn walk_to_with<A: VertexAttributes>(
         };
         if let Some(e) = stop {
             // The moves were just made, so their undo fits.
-            let _ = walk.undo_with(map, attrs);
+            let _ = walk.undo(&mut (&mut *map, &mut *attrs));
             return Err(e);
         }
     }
     Ok(walk)
-}
-
-/// [`walk_to_with`] on a mesh's positions.
-///
-/// See [`walk_to_with`] for an example.
-pub fn walk_to(mesh: &mut Mesh, t: Dart, target: Vert) -> Result<Walk, WalkError> {
-    walk_to_with(&mut mesh.map, &mut mesh.positions, t, target)
 }
 
 /// Whether the walk's last move merged `target` away (EV onto it).

@@ -4,22 +4,36 @@
 
 use super::walk::{move_triangle, Move, TriangleMove};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{Edited, Mesh, Rule, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Rule, VertexAttributes};
 use crate::ops::{Refusal, VertexChanges};
 
-/// [`move_triangle`] on a map and a per-vertex layer (positions, marks, or a pair of
-/// layers), placing the vertex VE creates or EV merges; undo gives back map and layer `==`.
-///
-/// ```
-/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
-/// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
-/// let before = mesh.clone();
-/// let e = quad_dominant::move_triangle_with(&mut mesh.map, &mut mesh.positions, tips[0], Move::VE).unwrap();
-/// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
-/// e.undo(&mut mesh).unwrap();
-/// assert_eq!(mesh, before);
-/// ```
-pub fn move_triangle_with<A: VertexAttributes>(
+impl Move {
+    /// Makes this move of the triangle of tip dart `t` on a map and the values kept in
+    /// step with it (a bare map, a [`crate::Mesh`]'s positions, or a map with any layer:
+    /// see [`EditTarget`]), placing the vertex VE creates (halfway between the split tip
+    /// and its new neighbours' centroid) or EV merges (the midpoint of the two base
+    /// corners); undo gives back map and values `==`.
+    ///
+    /// ```
+    /// use zipmesh_kernel::{gen, quad_dominant::Move};
+    /// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
+    /// let before = mesh.clone();
+    /// let e = Move::VE.apply(&mut mesh, tips[0]).unwrap();
+    /// assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+    /// e.undo(&mut mesh).unwrap();
+    /// assert_eq!(mesh, before);
+    /// ```
+    pub fn apply<T: EditTarget>(
+        self,
+        target: &mut T,
+        t: Dart,
+    ) -> Result<Edited<TriangleMove, T::Values>, Refusal> {
+        target.with_parts(|map, values| placed_move(map, values, t, self))
+    }
+}
+
+/// [`move_triangle`] with the moved vertex placed by its rule.
+fn placed_move<A: VertexAttributes>(
     map: &mut Map,
     attrs: &mut A,
     t: Dart,
@@ -42,22 +56,4 @@ pub fn move_triangle_with<A: VertexAttributes>(
         }
     };
     Edited::run(map, attrs, |m| move_triangle(m, t, mv), rule)
-}
-
-/// [`move_triangle_with`] on a [`Mesh`]'s positions.
-///
-/// ```
-/// use zipmesh_kernel::{gen, quad_dominant::{self, Move}};
-/// let (mut mesh, tips) = gen::quad_dominant(6, 6, 1, 7);
-/// let before = mesh.clone();
-/// let e = quad_dominant::mesh_move_triangle(&mut mesh, tips[0], Move::EV).unwrap();
-/// e.undo(&mut mesh).unwrap();
-/// assert_eq!(mesh, before);
-/// ```
-pub fn mesh_move_triangle(
-    mesh: &mut Mesh,
-    t: Dart,
-    mv: Move,
-) -> Result<Edited<TriangleMove>, Refusal> {
-    move_triangle_with(&mut mesh.map, &mut mesh.positions, t, mv)
 }

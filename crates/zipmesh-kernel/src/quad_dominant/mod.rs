@@ -39,7 +39,6 @@ pub use collide::{
     merge_collision, merge_triangles, split_quad, Collision, QuadSplit, TriangleMerge,
 };
 pub use compass::{walk_to, Walk, WalkError};
-pub use mesh::{mesh_move_triangle, move_triangle_with};
 pub use walk::{can_move_triangle, move_triangle, probe_move, Move, TriangleMove, UnknownMove};
 
 /// The tip dart of triangle `f` by valence: the dart of `f` leaving its corner of strictly

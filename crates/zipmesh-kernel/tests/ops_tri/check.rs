@@ -18,7 +18,7 @@ pub fn can(map: &Map, op: Op) -> Result<(), Refusal> {
 }
 
 pub fn run(map: &mut Map, op: Op) -> Result<Rec, Refusal> {
-    op.apply(map)
+    op.apply(map).map(|e| e.into_record())
 }
 
 /// The third corner of the face of `d` (a triangle), from the public accessors.

@@ -63,10 +63,6 @@ pub use doublet::{
     can_insert_doublet, can_remove_valence2, insert_doublet, remove_valence2, DoubletInsertion,
     Valence2Removal,
 };
-pub use mesh::{
-    mesh_collapse_quad, mesh_insert_doublet, mesh_remove_valence2, mesh_rotate_edge,
-    mesh_split_high_valence, mesh_split_vertex,
-};
 pub use rotate::{can_rotate_edge, rotate_edge, EdgeRotation, Rotation};
 
 /// Any quad operator with its arguments, as a value: for drivers that pick operators at
@@ -127,38 +123,6 @@ impl QuadOp {
             QuadOp::InsertDoublet(d) => can_insert_doublet(m, d),
             QuadOp::Rotate(d, r) => can_rotate_edge(m, d, r),
         }
-    }
-
-    /// Applies the operator to a map.
-    ///
-    /// See [`QuadOp`] for an example.
-    pub fn apply(self, m: &mut Map) -> Result<QuadRecord, Refusal> {
-        Ok(match self {
-            QuadOp::Collapse(d) => collapse_quad(m, d)?.into(),
-            QuadOp::Split(a, b) => split_vertex(m, a, b)?.into(),
-            QuadOp::HighValence(d) => split_high_valence(m, m.origin(d), d)?.into(),
-            QuadOp::RemoveValence2(d) => remove_valence2(m, d)?.into(),
-            QuadOp::InsertDoublet(d) => insert_doublet(m, d)?.into(),
-            QuadOp::Rotate(d, r) => rotate_edge(m, d, r)?.into(),
-        })
-    }
-
-    /// Applies the operator to a mesh, placing new vertices (the `mesh_*` wrappers).
-    ///
-    /// ```
-    /// use zipmesh_kernel::{gen, ops::quad::QuadOp, Dart};
-    /// let mut mesh = gen::torus_grid(5, 5);
-    /// let before = mesh.clone();
-    /// let e = QuadOp::Collapse(Dart::new(0)).apply_mesh(&mut mesh).unwrap();
-    /// assert_eq!(mesh.map.num_faces(), before.map.num_faces() - 1);
-    /// e.undo(&mut mesh).unwrap();
-    /// assert_eq!(mesh.map, before.map);
-    /// ```
-    pub fn apply_mesh(
-        self,
-        mesh: &mut crate::Mesh,
-    ) -> Result<crate::mesh::Edited<QuadRecord>, Refusal> {
-        self.apply_with(&mut mesh.map, &mut mesh.positions)
     }
 }
 

@@ -636,8 +636,8 @@ fn mesh_wrappers_place_and_restore() {
     let mut m = mesh.clone();
     let d = m.map.face_dart(crate::map::Face(0));
     let (p, q) = (m.map.origin(d), m.map.origin(m.map.next(m.map.next(d))));
-    let e = mesh_insert_doublet(&mut m, d).unwrap();
-    let v = e.record().vertex();
+    let e = QuadOp::InsertDoublet(d).apply(&mut m).unwrap();
+    let v = crate::ops::VertexChanges::created_vertex(&e).unwrap();
     assert_eq!(
         m.positions[v.index()],
         (mesh.positions[p.index()] + mesh.positions[q.index()]) / 2.0
@@ -648,11 +648,11 @@ fn mesh_wrappers_place_and_restore() {
     // A split placing its new vertex into a reused slot: undo puts the old position back.
     let mut t = gen::torus_grid(4, 4);
     let t0 = t.clone();
-    let c = mesh_collapse_quad(&mut t, Dart(0)).unwrap();
+    let c = QuadOp::Collapse(Dart(0)).apply(&mut t).unwrap();
     let t1 = t.clone();
     let s1 = t.map.vertex_dart(Vert(9));
     let s2 = t.map.rotate_cw(t.map.rotate_cw(s1));
-    let s = mesh_split_vertex(&mut t, s1, s2).unwrap();
+    let s = QuadOp::Split(s1, s2).apply(&mut t).unwrap();
     assert_ne!(t.positions, t1.positions);
     assert!(t.positions.iter().all(|p| p.is_finite()));
     s.undo(&mut t).unwrap();

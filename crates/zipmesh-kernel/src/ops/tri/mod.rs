@@ -3,8 +3,9 @@
 //!
 //! Every operator comes as a pure check `can_*` and the operation itself, which refuses with
 //! the same [`Refusal`] and leaves the map untouched, or applies and returns a record whose
-//! `undo` restores the map exactly (`==`, free lists included). The `mesh_*` wrappers (see
-//! [`crate::mesh::Edited`]) apply each operator to a [`crate::Mesh`] and place new vertices.
+//! `undo` restores the map exactly (`==`, free lists included). [`TriOp::apply`] applies
+//! any of them to a map with per-vertex values ([`crate::mesh::EditTarget`]: a
+//! [`crate::Mesh`], say) and places new vertices.
 //!
 //! ```
 //! use zipmesh_kernel::{gen, ops::tri};
@@ -68,7 +69,6 @@ pub use collapse::{can_collapse_edge, can_split_vertex, collapse_edge, split_ver
 pub use collapse::{EdgeCollapse, VertexSplit};
 pub use edge_split::{can_split_edge, split_edge, EdgeSplit};
 pub use flip::{can_flip_edge, flip_edge, EdgeFlip};
-pub use mesh::{mesh_collapse_edge, mesh_flip_edge, mesh_split_edge, mesh_split_vertex};
 
 pub use super::Undo;
 
@@ -120,18 +120,6 @@ impl TriOp {
             TriOp::SplitVertex(a, b) => can_split_vertex(m, a, b),
             TriOp::SplitEdge(d) => can_split_edge(m, d),
         }
-    }
-
-    /// Applies the operator: the record, or the refusal with the map untouched.
-    ///
-    /// See [`TriOp`] for an example.
-    pub fn apply(self, m: &mut Map) -> Result<TriRecord, Refusal> {
-        Ok(match self {
-            TriOp::Flip(d) => TriRecord::Flip(flip_edge(m, d)?),
-            TriOp::Collapse(d) => TriRecord::Collapse(collapse_edge(m, d)?),
-            TriOp::SplitVertex(a, b) => TriRecord::SplitVertex(split_vertex(m, a, b)?),
-            TriOp::SplitEdge(d) => TriRecord::SplitEdge(split_edge(m, d)?),
-        })
     }
 }
 
