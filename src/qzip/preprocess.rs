@@ -241,6 +241,28 @@ mod tests {
         Map::from_polygons((1 + 2 * k) as usize, &faces).unwrap()
     }
 
+    /// On a mesh, the vertex a split creates is placed (the layer covers it, and a slot it
+    /// reuses no longer holds the stale far value), and the undo restores the positions.
+    #[test]
+    fn preprocessing_a_mesh_places_what_it_creates() {
+        let mut mesh = crate::gen::torus_grid(8, 8);
+        for p in &mut mesh.positions {
+            *p += glam::DVec3::splat(100.0);
+        }
+        let c = crate::ops::quad::collapse_quad(&mut mesh.map, Dart::new(0)).unwrap();
+        mesh.positions[c.removed().index()] = glam::DVec3::splat(-1e9);
+        let before = mesh.clone();
+        let p = preprocess(&mut mesh).unwrap();
+        assert!(!p.records().is_empty());
+        assert_eq!(mesh.positions.len(), mesh.map.vertex_slots());
+        let m = &mesh.map;
+        assert!(m
+            .vertices()
+            .all(|v| mesh.positions[v.index()].min_element() > 50.0));
+        p.undo(&mut mesh).unwrap();
+        assert_eq!(mesh, before);
+    }
+
     /// The searches' work is linear in the darts: a scan from the start after each step
     /// (about 10^8 vertex visits here) or k/2 steps per candidate would break the bound.
     #[test]

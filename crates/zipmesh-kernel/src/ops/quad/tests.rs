@@ -649,6 +649,10 @@ fn mesh_wrappers_place_and_restore() {
     let mut t = gen::torus_grid(4, 4);
     let t0 = t.clone();
     let c = QuadOp::Collapse(Dart(0)).apply(&mut t).unwrap();
+    // The edit changes the vertices its record does (the record's removed one is not 0).
+    let removed = crate::ops::VertexChanges::removed_vertex(c.record());
+    assert!(removed.is_some_and(|v| v != Vert(0)));
+    assert_eq!(crate::ops::VertexChanges::removed_vertex(&c), removed);
     let t1 = t.clone();
     let s1 = t.map.vertex_dart(Vert(9));
     let s2 = t.map.rotate_cw(t.map.rotate_cw(s1));
