@@ -85,15 +85,14 @@ impl Preprocessed {
 pub fn preprocess<T: EditTarget>(
     target: &mut T,
 ) -> Result<Edited<Preprocessed, T::Values>, Refusal> {
-    target.with_parts(|map, values| {
-        let mut journal = Journal::start(values);
-        let p = preprocess_counted(map, &mut 0)?;
-        // Values of no size (a bare map's `()`) carry nothing to place.
-        if core::mem::size_of::<<T::Values as VertexAttributes>::Value>() != 0 {
-            place_created(map, values, &mut journal, p.records());
-        }
-        Ok(Edited::new(p, journal))
-    })
+    let (map, values) = target.parts();
+    let mut journal = Journal::start(values);
+    let p = preprocess_counted(map, &mut 0)?;
+    // Values of no size (a bare map's `()`) carry nothing to place.
+    if core::mem::size_of::<<T::Values as VertexAttributes>::Value>() != 0 {
+        place_created(map, values, &mut journal, p.records());
+    }
+    Ok(Edited::new(p, journal))
 }
 
 /// [`preprocess`], adding to `work` the vertices and darts its own searches visit (the

@@ -236,10 +236,9 @@ impl<'a> Qzip<'a> {
         to: Vert,
         initial: Tag,
     ) -> Result<Edited<ZipReport, T::Values>, QzipError> {
-        target.with_parts(|map, values| {
-            let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
-            self.along(map, values, &path, initial)
-        })
+        let (map, values) = target.parts();
+        let path = self.sketch(map, from, to).map_err(QzipError::Sketch)?;
+        self.along(map, values, &path, initial)
     }
 
     /// Stages 2 to 4 along a given path (from [`super::sketch()`], [`super::validate_path`] or
@@ -280,7 +279,8 @@ impl<'a> Qzip<'a> {
         path: &Path,
         initial: Tag,
     ) -> Result<Edited<ZipReport, T::Values>, QzipError> {
-        target.with_parts(|map, values| self.along(map, values, path, initial))
+        let (map, values) = target.parts();
+        self.along(map, values, path, initial)
     }
 
     /// [`Qzip::zip_along`] on the parts of its target.

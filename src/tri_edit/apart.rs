@@ -28,7 +28,7 @@ use super::record::turn;
 use super::types::run_with;
 use super::{apex, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited};
 use crate::ops::tri::TriRecord;
 use crate::ops::Refusal;
 
@@ -133,18 +133,7 @@ pub fn generate_quadruple_apart<T: EditTarget>(
     dir: Direction,
     steps: usize,
 ) -> Result<Edited<QuadrupleEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| generate_quadruple_apart_in(map, values, d, how, dir, steps))
-}
-
-/// [`generate_quadruple_apart`] on the parts of its target.
-pub(crate) fn generate_quadruple_apart_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    d: Dart,
-    how: Quadruple,
-    dir: Direction,
-    steps: usize,
-) -> Result<Edited<QuadrupleEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     check_start(map, d)?;
     if how == Quadruple::CollapseFlip {
         return Err(TriEditError::WrongValence);

@@ -20,13 +20,13 @@
 //!   s -> s' generates (p, q)     (p, q) walks to o, then o moves and (p, q) goes
 //! ```
 
-use super::generate::{generate_pair_in, Moved, Via};
+use super::generate::{generate_pair, Moved, Via};
 use super::record::VertexMove;
-use super::triple::{cancel_triple_along_in, distance, generate_pair_v7_in, TripleCancel, Via7};
+use super::triple::{cancel_triple_along, distance, generate_pair_v7, TripleCancel, Via7};
 use super::{interior_of_valence, TriEditError};
 use crate::invariants::canonical::{is_isomorphic, CanonicalWorkspace};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
 
@@ -144,31 +144,18 @@ pub fn move_far_pair<T: EditTarget>(
     other: Vert,
     max_steps: usize,
 ) -> Result<Edited<FarPairMove, T::Values>, TriEditError> {
-    target
-        .with_parts(|map, values| move_far_pair_in(map, values, d, start, moved, other, max_steps))
-}
-
-/// [`move_far_pair`] on the parts of its target.
-pub(crate) fn move_far_pair_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    d: Dart,
-    start: Start,
-    moved: Moved,
-    other: Vert,
-    max_steps: usize,
-) -> Result<Edited<FarPairMove, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     if !map.is_live_dart(d) {
         return Err(TriEditError::DeadHandle);
     }
     check_pair(map, map.origin(d), other, start)?;
     let first = match start {
-        Start::Five(via) => generate_pair_in(map, attrs, d, via, moved)?,
-        Start::Seven(via) => generate_pair_v7_in(map, attrs, d, via, moved)?,
+        Start::Five(via) => generate_pair(&mut (&mut *map, &mut *attrs), d, via, moved)?,
+        Start::Seven(via) => generate_pair_v7(&mut (&mut *map, &mut *attrs), d, via, moved)?,
     };
     let (generation, mut journal) = first.into_parts();
     let (p, q) = generation.pair().ok_or(TriEditError::NotAPair)?;
-    match cancel_triple_along_in(map, attrs, &[other, p, q], max_steps) {
+    match cancel_triple_along(&mut (&mut *map, &mut *attrs), &[other, p, q], max_steps) {
         Ok(e) => {
             let (walk, j) = e.into_parts();
             journal.absorb(j);

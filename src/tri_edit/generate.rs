@@ -18,7 +18,7 @@
 use super::record::{apply_one, created, tri_apex, turn, VertexMove};
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited};
 use crate::ops::tri::{TriOp, TriRecord};
 
 /// The graph operation of a v5 movement with 5-7 generation (see the module table).
@@ -141,17 +141,7 @@ pub fn generate_pair<T: EditTarget>(
     via: Via,
     moved: Moved,
 ) -> Result<Edited<V5Move, T::Values>, TriEditError> {
-    target.with_parts(|map, values| generate_pair_in(map, values, d, via, moved))
-}
-
-/// [`generate_pair`] on the parts of its target.
-pub(crate) fn generate_pair_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    d: Dart,
-    via: Via,
-    moved: Moved,
-) -> Result<Edited<V5Move, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (op, fives, q) = plan_generation(map, d, via)?;
     apply_one(map, attrs, op, |op, r| {
         generation_record(op, r, fives, q, moved)
@@ -265,17 +255,7 @@ pub fn remove_pair<T: EditTarget>(
     p: Vert,
     q: Vert,
 ) -> Result<Edited<V5Move, T::Values>, TriEditError> {
-    target.with_parts(|map, values| remove_pair_in(map, values, m, p, q))
-}
-
-/// [`remove_pair`] on the parts of its target.
-pub(crate) fn remove_pair_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    m: Vert,
-    p: Vert,
-    q: Vert,
-) -> Result<Edited<V5Move, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (op, to) = plan_removal(map, m, p, q)?;
     apply_one(map, attrs, op, |op, r| removal_record(op, r, to))
 }

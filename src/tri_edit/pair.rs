@@ -18,7 +18,7 @@
 use super::record::{apply_one, one_operation, turn};
 use super::{apex, interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::Refusal;
 
@@ -229,17 +229,7 @@ pub fn move_pair<T: EditTarget>(
     q: Vert,
     dir: Direction,
 ) -> Result<Edited<PairMove, T::Values>, TriEditError> {
-    target.with_parts(|map, values| move_pair_in(map, values, p, q, dir))
-}
-
-/// [`move_pair`] on the parts of its target.
-pub(crate) fn move_pair_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    p: Vert,
-    q: Vert,
-    dir: Direction,
-) -> Result<Edited<PairMove, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (op, np, nq) = plan(map, p, q, dir)?;
     apply_one(map, attrs, op, |op, record| PairMove {
         from: (p, q),

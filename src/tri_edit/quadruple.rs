@@ -16,7 +16,7 @@ use super::record::turn;
 use super::types::{irregular_among, run_with};
 use super::{apex, interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, VertexAttributes};
+use crate::mesh::{EditTarget, Edited};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::{Refusal, Undo};
 use alloc::vec::Vec;
@@ -143,16 +143,7 @@ pub fn generate_quadruple<T: EditTarget>(
     d: Dart,
     how: Quadruple,
 ) -> Result<Edited<QuadrupleEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| generate_quadruple_in(map, values, d, how))
-}
-
-/// [`generate_quadruple`] on the parts of its target.
-pub(crate) fn generate_quadruple_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    d: Dart,
-    how: Quadruple,
-) -> Result<Edited<QuadrupleEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     check_start(map, d)?;
     let (op, need) = first(map, d, how)?;
     need.iter().try_for_each(|&w| regular(map, w))?;
@@ -208,15 +199,7 @@ pub fn remove_quadruple<T: EditTarget>(
     target: &mut T,
     four: &[Vert],
 ) -> Result<Edited<QuadrupleEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| remove_quadruple_in(map, values, four))
-}
-
-/// [`remove_quadruple`] on the parts of its target.
-pub(crate) fn remove_quadruple_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    four: &[Vert],
-) -> Result<Edited<QuadrupleEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let op = removal_op(map, four)?;
     let ((steps, seen), journal) =
         run_with(map, attrs, |_, done| Ok(done.is_empty().then_some(op)))?;

@@ -28,7 +28,7 @@
 //! `m` and `q` around `p`: 1 (`m-q` an edge), flip `m-q`, the v7 ends at the far apex;
 //! 2 (one vertex `x` between), collapse `p` into `x`, which becomes the v7 (5 + 6 - 4).
 
-use super::generate::{remove_pair_in, Moved};
+use super::generate::{remove_pair, Moved};
 use super::record::{apply_one, created, tri_apex, turn, VertexMove};
 use super::{interior_of_valence, regular, TriEditError};
 use crate::map::{Dart, Map, Vert};
@@ -124,17 +124,7 @@ pub fn generate_pair_v7<T: EditTarget>(
     via: Via7,
     moved: Moved,
 ) -> Result<Edited<V7Move, T::Values>, TriEditError> {
-    target.with_parts(|map, values| generate_pair_v7_in(map, values, d, via, moved))
-}
-
-/// [`generate_pair_v7`] on the parts of its target.
-pub(crate) fn generate_pair_v7_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    d: Dart,
-    via: Via7,
-    moved: Moved,
-) -> Result<Edited<V7Move, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (op, sevens, five) = plan_generation(map, d, via)?;
     apply_one(map, attrs, op, |op, r| {
         generation_record(op, r, sevens, five, moved)
@@ -231,17 +221,7 @@ pub fn remove_pair_v7<T: EditTarget>(
     p: Vert,
     q: Vert,
 ) -> Result<Edited<V7Move, T::Values>, TriEditError> {
-    target.with_parts(|map, values| remove_pair_v7_in(map, values, m, p, q))
-}
-
-/// [`remove_pair_v7`] on the parts of its target.
-pub(crate) fn remove_pair_v7_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    m: Vert,
-    p: Vert,
-    q: Vert,
-) -> Result<Edited<V7Move, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (op, to) = plan_removal(map, m, p, q)?;
     apply_one(map, attrs, op, |op, record| V7Move {
         moved: to,
@@ -378,20 +358,12 @@ pub fn cancel_triple<T: EditTarget>(
     target: &mut T,
     three: &[Vert],
 ) -> Result<Edited<TripleEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| cancel_triple_in(map, values, three))
-}
-
-/// [`cancel_triple`] on the parts of its target.
-pub(crate) fn cancel_triple_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    three: &[Vert],
-) -> Result<Edited<TripleEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let t = triple_plan(map, three)?;
     Ok(if t.kind == 5 {
-        remove_pair_in(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Five)
+        remove_pair(&mut (&mut *map, &mut *attrs), t.m, t.p, t.q)?.map_record(TripleEdit::Five)
     } else {
-        remove_pair_v7_in(map, attrs, t.m, t.p, t.q)?.map_record(TripleEdit::Seven)
+        remove_pair_v7(&mut (&mut *map, &mut *attrs), t.m, t.p, t.q)?.map_record(TripleEdit::Seven)
     })
 }
 
@@ -583,16 +555,7 @@ pub fn cancel_triple_along<T: EditTarget>(
     three: &[Vert],
     max_steps: usize,
 ) -> Result<Edited<TripleCancel, T::Values>, TriEditError> {
-    target.with_parts(|map, values| cancel_triple_along_in(map, values, three, max_steps))
-}
-
-/// [`cancel_triple_along`] on the parts of its target.
-pub(crate) fn cancel_triple_along_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    three: &[Vert],
-    max_steps: usize,
-) -> Result<Edited<TripleCancel, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let mut journal = crate::mesh::Journal::start(attrs);
     let mut moves: alloc::vec::Vec<super::PairMove> = alloc::vec::Vec::new();
     let result = walk_and_cancel(map, attrs, &mut journal, &mut moves, three, max_steps);
@@ -636,7 +599,7 @@ fn walk_and_cancel<A: VertexAttributes>(
                 }
             }
             let dir = step.ok_or(TriEditError::Irregular)?;
-            let e = super::pair::move_pair_in(map, attrs, p, q, dir)?;
+            let e = super::pair::move_pair(&mut (&mut *map, &mut *attrs), p, q, dir)?;
             let (m, j) = e.into_parts();
             journal.absorb(j);
             (p, q) = (m.p(), m.q());
@@ -657,7 +620,7 @@ fn cancel_step<A: VertexAttributes>(
     journal: &mut crate::mesh::Journal<A>,
     three: &[Vert],
 ) -> Result<TripleEdit, TriEditError> {
-    let (t, j) = cancel_triple_in(map, attrs, three)?.into_parts();
+    let (t, j) = cancel_triple(&mut (&mut *map, &mut *attrs), three)?.into_parts();
     journal.absorb(j);
     Ok(t)
 }

@@ -190,15 +190,7 @@ pub fn split_type<T: EditTarget>(
     target: &mut T,
     v: Vert,
 ) -> Result<Edited<TypeEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| split_type_in(map, values, v))
-}
-
-/// [`split_type`] on the parts of its target.
-pub(crate) fn split_type_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    v: Vert,
-) -> Result<Edited<TypeEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     if !map.is_live_vertex(v) {
         return Err(TriEditError::DeadHandle);
     }
@@ -272,15 +264,7 @@ pub fn aggregate_type<T: EditTarget>(
     target: &mut T,
     vs: &[Vert],
 ) -> Result<Edited<TypeEdit, T::Values>, TriEditError> {
-    target.with_parts(|map, values| aggregate_type_in(map, values, vs))
-}
-
-/// [`aggregate_type`] on the parts of its target.
-pub(crate) fn aggregate_type_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    vs: &[Vert],
-) -> Result<Edited<TypeEdit, A>, TriEditError> {
+    let (map, attrs) = target.parts();
     let (ops, gathered) = aggregation_plan(map, vs)?;
     let mut ops = ops.into_iter();
     let ((steps, _), journal) = run_with(map, attrs, |_, _| Ok(ops.next()))?;

@@ -345,11 +345,10 @@ impl<R: Undo, A: VertexAttributes> Edited<R, A> {
     /// assert_eq!((mesh.map, marks), before);
     /// ```
     pub fn undo<T: EditTarget<Values = A>>(&self, target: &mut T) -> Result<(), Refusal> {
-        target.with_parts(|map, values| {
-            self.record.undo(map)?;
-            self.journal.rewind(values);
-            Ok(())
-        })
+        let (map, values) = target.parts();
+        self.record.undo(map)?;
+        self.journal.rewind(values);
+        Ok(())
     }
 }
 

@@ -24,45 +24,46 @@ use crate::map::Map;
 pub trait EditTarget {
     /// The per-vertex values kept in step (`()` for none).
     type Values: VertexAttributes;
-    /// Runs `f` on the map and its values.
+    /// The map and its values, borrowed together.
     ///
     /// ```
     /// use zipmesh_kernel::{gen, mesh::EditTarget};
     /// let mut mesh = gen::grid(1, 1);
-    /// let n = mesh.with_parts(|map, positions| map.vertex_slots() + positions.len());
-    /// assert_eq!(n, 8);
+    /// let (map, positions) = mesh.parts();
+    /// assert_eq!(map.vertex_slots() + positions.len(), 8);
     /// ```
-    fn with_parts<R>(&mut self, f: impl FnOnce(&mut Map, &mut Self::Values) -> R) -> R;
+    fn parts(&mut self) -> (&mut Map, &mut Self::Values);
 }
 
 /// A bare map: no values.
 impl EditTarget for Map {
     type Values = ();
-    fn with_parts<R>(&mut self, f: impl FnOnce(&mut Map, &mut ()) -> R) -> R {
-        f(self, &mut ())
+    fn parts(&mut self) -> (&mut Map, &mut ()) {
+        // A unit box takes no memory (nothing is allocated or leaked).
+        (self, alloc::boxed::Box::leak(alloc::boxed::Box::new(())))
     }
 }
 
 /// A mesh: its positions.
 impl EditTarget for Mesh {
     type Values = Positions;
-    fn with_parts<R>(&mut self, f: impl FnOnce(&mut Map, &mut Positions) -> R) -> R {
-        f(&mut self.map, &mut self.positions)
+    fn parts(&mut self) -> (&mut Map, &mut Positions) {
+        (&mut self.map, &mut self.positions)
     }
 }
 
 /// A map and a layer of any values (marks, colours, positions with marks as a pair).
 impl<A: VertexAttributes> EditTarget for (&mut Map, &mut A) {
     type Values = A;
-    fn with_parts<R>(&mut self, f: impl FnOnce(&mut Map, &mut A) -> R) -> R {
-        f(self.0, self.1)
+    fn parts(&mut self) -> (&mut Map, &mut A) {
+        (&mut *self.0, &mut *self.1)
     }
 }
 
 /// A target borrowed again (`&mut mesh` where `mesh: &mut Mesh`).
 impl<T: EditTarget> EditTarget for &mut T {
     type Values = T::Values;
-    fn with_parts<R>(&mut self, f: impl FnOnce(&mut Map, &mut T::Values) -> R) -> R {
-        (**self).with_parts(f)
+    fn parts(&mut self) -> (&mut Map, &mut T::Values) {
+        (**self).parts()
     }
 }

@@ -158,7 +158,8 @@ fn next_move_by(map: &Map, t: Dart, dist: &[usize]) -> Option<Move> {
 
 /// Walks the triangle of tip dart `t` until its tip is `target` (or `target` was merged
 /// into the tip by an EV), one compass move at a time (see the [module docs](self)), on a
-/// map and the values kept in step with it (see [`EditTarget`]). All or nothing: on an error every move made is undone.
+/// map and the values kept in step with it (see [`EditTarget`]). All or nothing: on an
+/// error every move made is undone.
 ///
 /// ```
 /// use zipmesh_kernel::{gen, quad_dominant::{self, compass}};
@@ -180,16 +181,7 @@ pub fn walk_to<T: EditTarget>(
     t: Dart,
     target: Vert,
 ) -> Result<Walk<T::Values>, WalkError> {
-    on.with_parts(|map, values| walk_in(map, values, t, target))
-}
-
-/// [`walk_to`] on the parts of its target.
-fn walk_in<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    t: Dart,
-    target: Vert,
-) -> Result<Walk<A>, WalkError> {
+    let (map, values) = on.parts();
     super::walk::triangle(map, t).map_err(WalkError::BadArguments)?;
     if !map.is_live_vertex(target) {
         return Err(WalkError::BadArguments(Refusal::DeadHandle));
@@ -205,7 +197,7 @@ fn walk_in<A: VertexAttributes>(
             Some(WalkError::Unreachable)
         } else {
             match next_move_by(map, walk.tip, &dist) {
-                Some(mv) => match mv.apply(&mut (&mut *map, &mut *attrs), walk.tip) {
+                Some(mv) => match mv.apply(&mut (&mut *map, &mut *values), walk.tip) {
                     Ok(e) => {
                         walk.tip = e.record().tip();
                         walk.steps.push(e);
@@ -221,7 +213,7 @@ fn walk_in<A: VertexAttributes>(
         };
         if let Some(e) = stop {
             // The moves were just made, so their undo fits.
-            let _ = walk.undo(&mut (&mut *map, &mut *attrs));
+            let _ = walk.undo(&mut (&mut *map, &mut *values));
             return Err(e);
         }
     }

@@ -4,7 +4,7 @@
 
 use super::walk::{move_triangle, Move, TriangleMove};
 use crate::map::{Dart, Map, Vert};
-use crate::mesh::{EditTarget, Edited, Rule, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Rule};
 use crate::ops::{Refusal, VertexChanges};
 
 impl Move {
@@ -28,32 +28,23 @@ impl Move {
         target: &mut T,
         t: Dart,
     ) -> Result<Edited<TriangleMove, T::Values>, Refusal> {
-        target.with_parts(|map, values| placed_move(map, values, t, self))
+        let (map, values) = target.parts();
+        // Read before the move: the tip (VE's kept half) and EV's two base corners.
+        let (tip, base) = (map.origin(t), [map.dest(t), map.dest(map.next(t))]);
+        let rule = move |_: &Map, r: &TriangleMove| -> Option<(Vert, Rule)> {
+            match self {
+                Move::VE => r.created_vertex().map(|v| {
+                    let rule = Rule::TowardNeighbours {
+                        from: tip,
+                        of: v,
+                        skip_from: true,
+                    };
+                    (v, rule)
+                }),
+                Move::EV => Some((base[0], Rule::Midpoint(base[0], base[1]))),
+                Move::LE | Move::RE => None,
+            }
+        };
+        Edited::run(map, values, |m| move_triangle(m, t, self), rule)
     }
-}
-
-/// [`move_triangle`] with the moved vertex placed by its rule.
-fn placed_move<A: VertexAttributes>(
-    map: &mut Map,
-    attrs: &mut A,
-    t: Dart,
-    mv: Move,
-) -> Result<Edited<TriangleMove, A>, Refusal> {
-    // Read before the move: the tip (VE's kept half) and EV's two base corners.
-    let (tip, base) = (map.origin(t), [map.dest(t), map.dest(map.next(t))]);
-    let rule = move |_: &Map, r: &TriangleMove| -> Option<(Vert, Rule)> {
-        match mv {
-            Move::VE => r.created_vertex().map(|v| {
-                let rule = Rule::TowardNeighbours {
-                    from: tip,
-                    of: v,
-                    skip_from: true,
-                };
-                (v, rule)
-            }),
-            Move::EV => Some((base[0], Rule::Midpoint(base[0], base[1]))),
-            Move::LE | Move::RE => None,
-        }
-    };
-    Edited::run(map, attrs, |m| move_triangle(m, t, mv), rule)
 }

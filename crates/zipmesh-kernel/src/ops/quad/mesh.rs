@@ -63,34 +63,33 @@ impl QuadOp {
         self,
         target: &mut T,
     ) -> Result<Edited<QuadRecord, T::Values>, Refusal> {
-        target.with_parts(|m, a| {
-            Ok(match self {
-                QuadOp::Collapse(d) => {
-                    let op = |m: &mut Map| collapse_quad(m, d);
-                    Edited::run(m, a, op, collapse_rule)?.map_record(Into::into)
-                }
-                QuadOp::Split(s1, s2) => {
-                    let op = |m: &mut Map| split_vertex(m, s1, s2);
-                    Edited::run(m, a, op, split_rule)?.map_record(Into::into)
-                }
-                QuadOp::HighValence(d) => {
-                    let v = m.origin(d);
-                    let op = |m: &mut Map| split_high_valence(m, v, d);
-                    Edited::run(m, a, op, split_rule)?.map_record(Into::into)
-                }
-                QuadOp::RemoveValence2(x) => {
-                    let op = |m: &mut Map| remove_valence2(m, x);
-                    Edited::run(m, a, op, no_rule)?.map_record(Into::into)
-                }
-                QuadOp::InsertDoublet(d) => {
-                    let op = |m: &mut Map| insert_doublet(m, d);
-                    Edited::run(m, a, op, doublet_rule)?.map_record(Into::into)
-                }
-                QuadOp::Rotate(h, dir) => {
-                    let op = |m: &mut Map| rotate_edge(m, h, dir);
-                    Edited::run(m, a, op, no_rule)?.map_record(Into::into)
-                }
-            })
+        let (m, a) = target.parts();
+        Ok(match self {
+            QuadOp::Collapse(d) => {
+                let op = |m: &mut Map| collapse_quad(m, d);
+                Edited::run(m, a, op, collapse_rule)?.map_record(Into::into)
+            }
+            QuadOp::Split(s1, s2) => {
+                let op = |m: &mut Map| split_vertex(m, s1, s2);
+                Edited::run(m, a, op, split_rule)?.map_record(Into::into)
+            }
+            QuadOp::HighValence(d) => {
+                let v = m.origin(d);
+                let op = |m: &mut Map| split_high_valence(m, v, d);
+                Edited::run(m, a, op, split_rule)?.map_record(Into::into)
+            }
+            QuadOp::RemoveValence2(x) => {
+                let op = |m: &mut Map| remove_valence2(m, x);
+                Edited::run(m, a, op, no_rule)?.map_record(Into::into)
+            }
+            QuadOp::InsertDoublet(d) => {
+                let op = |m: &mut Map| insert_doublet(m, d);
+                Edited::run(m, a, op, doublet_rule)?.map_record(Into::into)
+            }
+            QuadOp::Rotate(h, dir) => {
+                let op = |m: &mut Map| rotate_edge(m, h, dir);
+                Edited::run(m, a, op, no_rule)?.map_record(Into::into)
+            }
         })
     }
 }

@@ -65,21 +65,20 @@ impl TriOp {
         self,
         target: &mut T,
     ) -> Result<Edited<TriRecord, T::Values>, Refusal> {
-        target.with_parts(|m, a| {
-            Ok(match self {
-                TriOp::Flip(h) => {
-                    Edited::run(m, a, |m| flip_edge(m, h), flip_rule)?.map_record(Into::into)
-                }
-                TriOp::Collapse(h) => {
-                    let op = |m: &mut Map| collapse_edge(m, h);
-                    Edited::run(m, a, op, collapse_rule)?.map_record(Into::into)
-                }
-                TriOp::SplitVertex(d1, d2) => {
-                    let op = |m: &mut Map| split_vertex(m, d1, d2);
-                    Edited::run(m, a, op, split_vertex_rule)?.map_record(Into::into)
-                }
-                TriOp::SplitEdge(h) => split_edge_with(m, a, h)?.map_record(Into::into),
-            })
+        let (m, a) = target.parts();
+        Ok(match self {
+            TriOp::Flip(h) => {
+                Edited::run(m, a, |m| flip_edge(m, h), flip_rule)?.map_record(Into::into)
+            }
+            TriOp::Collapse(h) => {
+                let op = |m: &mut Map| collapse_edge(m, h);
+                Edited::run(m, a, op, collapse_rule)?.map_record(Into::into)
+            }
+            TriOp::SplitVertex(d1, d2) => {
+                let op = |m: &mut Map| split_vertex(m, d1, d2);
+                Edited::run(m, a, op, split_vertex_rule)?.map_record(Into::into)
+            }
+            TriOp::SplitEdge(h) => split_edge_with(m, a, h)?.map_record(Into::into),
         })
     }
 }
