@@ -1074,18 +1074,9 @@ fn ply_files_are_read_and_written_by_the_commands() {
     assert!(a.status.success() && b.status.success(), "{}", stderr(&b));
     assert_eq!(stdout(&a), stdout(&b).replace(s(&ply), s(&obj)));
     let out = dir.join("moved.ply");
-    let z = zipmesh(&[
-        "zip",
-        s(&ply),
-        "--from",
-        "15",
-        "--to",
-        "2",
-        "--move",
-        "LC",
-        "-o",
-        s(&out),
-    ]);
+    let mut args = run::spot_zip(s(&ply));
+    args.extend(["-o", s(&out)]);
+    let z = zipmesh(&args);
     assert!(z.status.success(), "{}", stderr(&z));
     assert!(fs::read(&out)
         .unwrap()

@@ -325,16 +325,7 @@ fn zip_relaxes_by_default_and_reports_quality() {
     let input = common::shared("quad/spot_quadrangulated.obj");
     let run = |extra: &[&str]| {
         let out = dir.join("moved.obj");
-        let mut args = vec![
-            "zip",
-            s(&input),
-            "--from",
-            "15",
-            "--to",
-            "2",
-            "--move",
-            "LC",
-        ];
+        let mut args = run::spot_zip(s(&input));
         args.extend(["-o", s(&out), "--json"]);
         args.extend(extra);
         let o = zipmesh(&args);

@@ -210,19 +210,10 @@ fn paths_from_reports_are_drawn() {
 fn the_path_zip_reports_is_drawn_on_its_input() {
     let dir = temp_dir("render-zip-path");
     let zipped = dir.join("zipped.obj");
-    let o = zipmesh(&[
-        "zip",
-        s(&spot()),
-        "--from",
-        "15",
-        "--to",
-        "2",
-        "--move",
-        "LC",
-        "-o",
-        s(&zipped),
-        "--json",
-    ]);
+    let input = spot();
+    let mut args = run::spot_zip(s(&input));
+    args.extend(["-o", s(&zipped), "--json"]);
+    let o = zipmesh(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     let report: Value = serde_json::from_slice(&o.stdout).unwrap();
     let path: Vec<u64> = report["path"]

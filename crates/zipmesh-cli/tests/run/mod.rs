@@ -13,6 +13,13 @@ pub fn zipmesh(args: &[&str]) -> Output {
         .expect("the zipmesh binary runs")
 }
 
+/// `zip IN --from 15 --to 2 --move LC`: the LC movement on Spot's quad mesh that several
+/// tests run (add `-o` and the options).
+#[allow(dead_code)] // not every test file that includes this module zips
+pub fn spot_zip(input: &str) -> Vec<&str> {
+    vec!["zip", input, "--from", "15", "--to", "2", "--move", "LC"]
+}
+
 /// Runs the binary with the words of `line` as arguments (for arguments without spaces).
 pub fn zipmesh_words(line: &str) -> Output {
     zipmesh(&line.split_whitespace().collect::<Vec<_>>())
