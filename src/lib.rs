@@ -41,7 +41,6 @@
 //!   Graphics 29(6), 2010 (the semantic edits, Sec. 6-7; relaxation,
 //!   Sec. 8): [`tri_edit`], [`optimize`] on triangle meshes.
 #![no_std]
-#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 extern crate alloc;

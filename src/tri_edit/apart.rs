@@ -110,7 +110,8 @@ pub fn can_generate_quadruple_apart(
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;

@@ -120,7 +120,8 @@ pub fn can_generate_pair(map: &Map, d: Dart, via: Via) -> Result<(), TriEditErro
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
@@ -248,7 +249,8 @@ pub fn can_remove_pair(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEd
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 pub fn remove_pair<T: EditTarget>(
     target: &mut T,
     m: Vert,

@@ -203,7 +203,8 @@ pub fn can_move_pair(map: &Map, p: Vert, q: Vert, dir: Direction) -> Result<(), 
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::tri_edit::{move_pair, Direction};

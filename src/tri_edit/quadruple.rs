@@ -123,7 +123,8 @@ pub(super) fn check_start(map: &Map, d: Dart) -> Result<(), TriEditError> {
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
@@ -180,7 +181,8 @@ pub fn generate_quadruple<T: EditTarget>(
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;

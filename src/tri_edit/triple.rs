@@ -117,7 +117,8 @@ pub fn can_generate_pair_v7(map: &Map, d: Dart, via: Via7) -> Result<(), TriEdit
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 pub fn generate_pair_v7<T: EditTarget>(
     target: &mut T,
     d: Dart,
@@ -214,7 +215,8 @@ pub fn can_remove_pair_v7(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), Tr
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 pub fn remove_pair_v7<T: EditTarget>(
     target: &mut T,
     m: Vert,
@@ -353,7 +355,8 @@ pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> 
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 pub fn cancel_triple<T: EditTarget>(
     target: &mut T,
     three: &[Vert],
@@ -549,7 +552,8 @@ impl Search {
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 pub fn cancel_triple_along<T: EditTarget>(
     target: &mut T,
     three: &[Vert],

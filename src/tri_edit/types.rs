@@ -171,7 +171,8 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
@@ -245,7 +246,8 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 ///
 /// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
 /// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and values `==`.
+/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+/// values `==`.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;

@@ -29,7 +29,6 @@
 //!   *Editing Operations for Irregular Vertices in Triangle Meshes*, ACM Transactions on
 //!   Graphics 29(6), 2010 (edge flip, edge collapse and vertex split, Sec. 6.1).
 #![no_std]
-#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 extern crate alloc;
