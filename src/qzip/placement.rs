@@ -26,8 +26,22 @@ use crate::ops::quad::QuadRecord;
 use crate::ops::{Refusal, Undo};
 
 /// Places the vertices the splits among `records` created (see the module's rule), then
-/// covers every vertex slot of `map`.
+/// covers every vertex slot of `map`. Values of no size (a bare map's `()`) carry nothing
+/// to place, so the passes are skipped for them.
 pub(super) fn place_created<A: VertexAttributes>(
+    map: &Map,
+    attrs: &mut A,
+    journal: &mut Journal<A>,
+    records: &[QuadRecord],
+) {
+    if core::mem::size_of::<A::Value>() != 0 {
+        place_splits(map, attrs, journal, records);
+    }
+    attrs.cover(map.vertex_slots());
+}
+
+/// The two passes of [`place_created`].
+fn place_splits<A: VertexAttributes>(
     map: &Map,
     attrs: &mut A,
     journal: &mut Journal<A>,
@@ -49,7 +63,6 @@ pub(super) fn place_created<A: VertexAttributes>(
             journal.place(map, attrs, s.created(), Rule::NeighbourMean(s.created()));
         }
     }
-    attrs.cover(map.vertex_slots());
 }
 
 impl Undo for ZipReport {

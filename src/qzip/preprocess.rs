@@ -5,7 +5,7 @@ use alloc::vec::Vec;
 use core::cmp::Reverse;
 
 use super::placement::place_created;
-use crate::mesh::{EditTarget, Edited, Journal, VertexAttributes};
+use crate::mesh::{EditTarget, Edited, Journal};
 use crate::ops::quad::{remove_valence2, split_high_valence, QuadRecord};
 use crate::ops::Refusal;
 use crate::{Dart, Map, Vert};
@@ -88,10 +88,7 @@ pub fn preprocess<T: EditTarget>(
     let (map, values) = target.parts();
     let mut journal = Journal::start(values);
     let p = preprocess_counted(map, &mut 0)?;
-    // Values of no size (a bare map's `()`) carry nothing to place.
-    if core::mem::size_of::<<T::Values as VertexAttributes>::Value>() != 0 {
-        place_created(map, values, &mut journal, p.records());
-    }
+    place_created(map, values, &mut journal, p.records());
     Ok(Edited::new(p, journal))
 }
 

@@ -293,10 +293,7 @@ impl<'a> Qzip<'a> {
     ) -> Result<Edited<ZipReport, A>, QzipError> {
         let mut journal = Journal::start(attrs);
         let report = zip_along_guarded(map, path, initial, self.guard())?;
-        // Values of no size (a bare map's `()`) carry nothing to place.
-        if core::mem::size_of::<A::Value>() != 0 {
-            place_created(map, attrs, &mut journal, report.records());
-        }
+        place_created(map, attrs, &mut journal, report.records());
         Ok(Edited::new(report, journal))
     }
 }
