@@ -9,27 +9,7 @@ use zipmesh::quad_dominant::{self, compass, Move};
 use zipmesh::{is_isomorphic, Dart, Face, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
-
-/// An input problem: printed as `zipmesh: <message>`, exit 2.
-pub struct InputError(String);
-
-impl std::fmt::Display for InputError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl From<out::OutputError> for InputError {
-    fn from(e: out::OutputError) -> Self {
-        InputError(e.to_string())
-    }
-}
-
-impl From<io::MeshFileError> for InputError {
-    fn from(e: io::MeshFileError) -> Self {
-        InputError(e.to_string())
-    }
-}
+use crate::qzip::InputError;
 
 /// `zipmesh tri-walk`.
 #[derive(Args)]
