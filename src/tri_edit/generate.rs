@@ -118,10 +118,7 @@ pub fn can_generate_pair(map: &Map, d: Dart, via: Via) -> Result<(), TriEditErro
 /// assert_eq!(map, before);
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
@@ -247,10 +244,7 @@ pub fn can_remove_pair(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), TriEd
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 pub fn remove_pair<T: EditTarget>(
     target: &mut T,
     m: Vert,

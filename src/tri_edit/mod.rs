@@ -4,8 +4,11 @@
 //!
 //! Every operation follows the operators' contract: a pure check `can_*`, the operation
 //! itself (all or nothing: on a refusal the map is exactly as before, `==`), a record that
-//! says where the irregular vertices are now and whose `undo` restores the map exactly, and
-//! a `*_with` variant that keeps per-vertex data (see [`crate::mesh::Edited`]).
+//! says where the irregular vertices are now and whose `undo` restores the map exactly.
+//! Every operation takes any [`crate::mesh::EditTarget`]: a bare map, a [`crate::Mesh`] or a
+//! map with any per-vertex values. New and moved vertices are placed by their operators'
+//! rules ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
+//! values `==` (see [`crate::mesh::Edited`]).
 //!
 //! ```
 //! use zipmesh::tri_edit::{move_pair, Direction};

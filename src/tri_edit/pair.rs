@@ -201,10 +201,7 @@ pub fn can_move_pair(map: &Map, p: Vert, q: Vert, dir: Direction) -> Result<(), 
 ///
 /// See the module example in [`crate::tri_edit`].
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::tri_edit::{move_pair, Direction};

@@ -121,10 +121,7 @@ pub(super) fn check_start(map: &Map, d: Dart) -> Result<(), TriEditError> {
 /// assert_eq!(map, before);
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;
@@ -179,10 +176,7 @@ pub fn generate_quadruple<T: EditTarget>(
 /// # let _ = r;
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::gen::geodesic_sphere;

@@ -115,10 +115,7 @@ pub fn can_generate_pair_v7(map: &Map, d: Dart, via: Via7) -> Result<(), TriEdit
 /// assert_eq!(map, before);
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 pub fn generate_pair_v7<T: EditTarget>(
     target: &mut T,
     d: Dart,
@@ -213,10 +210,7 @@ pub fn can_remove_pair_v7(map: &Map, m: Vert, p: Vert, q: Vert) -> Result<(), Tr
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 pub fn remove_pair_v7<T: EditTarget>(
     target: &mut T,
     m: Vert,
@@ -353,10 +347,7 @@ pub fn can_cancel_triple(map: &Map, three: &[Vert]) -> Result<(), TriEditError> 
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 pub fn cancel_triple<T: EditTarget>(
     target: &mut T,
     three: &[Vert],
@@ -550,10 +541,7 @@ impl Search {
 /// assert_eq!(map, before);
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 pub fn cancel_triple_along<T: EditTarget>(
     target: &mut T,
     three: &[Vert],

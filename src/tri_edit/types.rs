@@ -169,10 +169,7 @@ pub fn can_split_type(map: &Map, v: Vert) -> Result<(), TriEditError> {
 /// assert_eq!(map, before);
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
@@ -244,10 +241,7 @@ pub(super) fn irregular_among(map: &Map, mut seen: Vec<Vert>) -> Vec<Vert> {
 /// assert!(is_isomorphic(&map, &before));
 /// ```
 ///
-/// On a bare map, a [`crate::Mesh`] or a map with any per-vertex values
-/// ([`EditTarget`]): new and moved vertices are placed by their operators' rules
-/// ([`crate::ops::tri::TriOp::apply`]), and the result's `undo` gives back map and
-/// values `==`.
+/// On any [`EditTarget`]: the [module docs](crate::tri_edit) say how values are placed.
 ///
 /// ```
 /// use zipmesh::gen::subdivided_bipyramid;
