@@ -321,6 +321,15 @@ fn check_type_split(map: &Map, v: Vert, back: bool) -> bool {
         a.check().unwrap();
         assert_eq!(a.valence(g.vertices()[0]), k);
         assert!(is_isomorphic(&a, map));
+        assert!(s.is_split() && !g.is_split());
+        assert!(s.inverse_restores(&m, map));
+        // Splitting the aggregated vertex again gives the split's result up to isomorphism.
+        let mut again = a.clone();
+        let resplit = split_type(&mut again, g.vertices()[0]).is_ok();
+        assert_eq!(
+            g.inverse_restores(&a, &m),
+            resplit && is_isomorphic(&again, &m)
+        );
         g.undo(&mut a).unwrap();
         assert_eq!(a, m);
     }
@@ -352,7 +361,9 @@ fn split_and_gather(map: &Map, v: Vert) -> bool {
     assert_eq!(a, m);
     let mut again = m.clone();
     aggregate_type(&mut again, s.vertices()).unwrap();
-    is_isomorphic(&again, map)
+    let same = is_isomorphic(&again, map);
+    assert_eq!(s.inverse_restores(&m, map), same);
+    same
 }
 
 #[test]

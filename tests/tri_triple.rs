@@ -9,8 +9,8 @@ use zipmesh::gen::{cone_disk, geodesic_sphere};
 use zipmesh::invariants::{irregular_valences, MeshKind};
 use zipmesh::tri_edit::{
     can_cancel_triple, can_generate_pair_v7, can_remove_pair_v7, cancel_triple,
-    cancel_triple_along, generate_pair, generate_pair_v7, remove_pair_v7, Moved, TripleEdit, Via,
-    Via7,
+    cancel_triple_along, generate_pair, generate_pair_v7, remove_pair_v7, Generation, Moved,
+    TripleEdit, Via, Via7,
 };
 use zipmesh::{gen, is_isomorphic, Map, Vert};
 
@@ -96,6 +96,64 @@ fn v7_moves_with_pair_generation_and_removal() {
     // A lone v7 at the centre of a lattice cone: every configuration applies.
     let cone = cone_disk(7, 5);
     assert_eq!(check_v7_generations(&cone), 7 * 2 * 2);
+}
+
+/// Applies the generation `inverse_generation` names after cancelling `three` in
+/// `generated`; whether it gives back `generated` up to isomorphism (`None` when no
+/// generation was named).
+fn named_inverse_restores(generated: &Map, three: [Vert; 3]) -> Option<bool> {
+    let mut m = generated.clone();
+    let t = cancel_triple_along(&mut m, &three, 0).unwrap();
+    let (d, config) = t.inverse_generation(&m, generated)?;
+    assert_eq!(m.origin(d), t.remaining());
+    let done = match Generation::of(m.valence(t.remaining()), config)? {
+        Generation::Five(via) => generate_pair(&mut m, d, via, Moved::First).is_ok(),
+        Generation::Seven(via) => generate_pair_v7(&mut m, d, via, Moved::First).is_ok(),
+        Generation::Quadruple(_) => false,
+    };
+    Some(done && is_isomorphic(&m, generated))
+}
+
+/// Every adjacent triple generated at the v5 of a sphere and at the v7 of a cone names the
+/// generation that undoes its cancellation, and that generation restores the triple.
+#[test]
+fn triple_cancellations_name_the_generation_that_undoes_them() {
+    let (mut named, mut all) = (0, 0);
+    let starts = [(geodesic_sphere(2), 5), (cone_disk(7, 5), 7)];
+    for (map, k) in &starts {
+        for v in map.vertices().filter(|&v| map.valence(v) == *k) {
+            if map.is_boundary_vertex(v) {
+                continue;
+            }
+            for d in map.vertex_darts(v).collect::<Vec<_>>() {
+                for g in [Via::Flip, Via::Collapse, Via::Split] {
+                    let mut m = map.clone();
+                    let r = match (k, g) {
+                        (5, via) => generate_pair(&mut m, d, via, Moved::First)
+                            .map(|g| (g.moved(), g.pair())),
+                        (_, Via::Flip) => generate_pair_v7(&mut m, d, Via7::Flip, Moved::First)
+                            .map(|g| (g.moved(), g.pair())),
+                        (_, Via::Split) => generate_pair_v7(&mut m, d, Via7::Split, Moved::First)
+                            .map(|g| (g.moved(), g.pair())),
+                        _ => continue,
+                    };
+                    let Ok((moved, Some((p, q)))) = r else {
+                        continue;
+                    };
+                    all += 1;
+                    match named_inverse_restores(&m, [moved, p, q]) {
+                        Some(ok) => {
+                            assert!(ok, "v{k} {g:?}");
+                            named += 1;
+                        }
+                        None => panic!("v{k} {g:?}: no inverse generation named"),
+                    }
+                }
+            }
+        }
+    }
+    // 12 v5 x 5 darts x 3 configurations, and one v7 x 7 darts x 2.
+    assert_eq!((named, all), (12 * 5 * 3 + 7 * 2, 12 * 5 * 3 + 7 * 2));
 }
 
 #[test]

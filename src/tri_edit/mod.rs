@@ -55,7 +55,11 @@
 //!   equations and our reading of them in [`relax`];
 //! * composite movement of a 5-7, 5-5 or 7-7 pair that need not be adjacent (Sec. 7.1):
 //!   [`move_far_pair`], the three-step pipeline of 7.1.1 (generation at one vertex, a walk
-//!   of the generated pair, removal at the other).
+//!   of the generated pair, removal at the other);
+//! * the generations by name ([`Generation::of`] a valence and a [`GenerationConfig`]), and
+//!   the inverses no record holds, each checked by isomorphism:
+//!   [`TripleCancel::inverse_generation`], [`TypeEdit::inverse_restores`] and
+//!   [`far_pair_inverse`].
 //!
 //! [`crate::gen::geodesic_sphere`], [`crate::gen::subdivided_tetrahedron`],
 //! [`crate::gen::subdivided_bipyramid`] and [`crate::gen::cone_disk`] make meshes with lone
@@ -70,6 +74,7 @@ mod apart;
 mod composite;
 mod gather;
 mod generate;
+mod generation;
 mod pair;
 mod quadruple;
 mod record;
@@ -86,6 +91,7 @@ pub use composite::{
 pub use generate::{
     can_generate_pair, can_remove_pair, generate_pair, remove_pair, Moved, V5Move, Via,
 };
+pub use generation::{Generation, GenerationConfig};
 pub use pair::{can_move_pair, move_pair, pair_op, Direction, PairMove};
 pub use quadruple::{
     can_generate_quadruple, can_remove_quadruple, generate_quadruple, remove_quadruple, Quadruple,

@@ -204,7 +204,12 @@ pub fn split_type<T: EditTarget>(
         run_with(map, attrs, |m, done| next_high_split(m, v, done))?
     };
     let vertices = irregular_among(map, seen);
-    Ok(Edited::new(TypeEdit { vertices, steps }, journal))
+    let edit = TypeEdit {
+        vertices,
+        steps,
+        split: true,
+    };
+    Ok(Edited::new(edit, journal))
 }
 
 /// The live irregular vertices among `seen`, sorted, once each.
@@ -269,7 +274,12 @@ pub fn aggregate_type<T: EditTarget>(
         (None, Some(TriRecord::SplitVertex(s))) => alloc::vec![s.created()],
         _ => Vec::new(),
     };
-    Ok(Edited::new(TypeEdit { vertices, steps }, journal))
+    let edit = TypeEdit {
+        vertices,
+        steps,
+        split: false,
+    };
+    Ok(Edited::new(edit, journal))
 }
 
 /// Checks whether [`aggregate_type`] applies, without changing anything. Gathering v7
@@ -335,6 +345,7 @@ fn aggregation_op(map: &Map, v5s: &[Vert]) -> Result<TriOp, TriEditError> {
 pub struct TypeEdit {
     vertices: Vec<Vert>,
     steps: Vec<TriRecord>,
+    split: bool,
 }
 
 impl TypeEdit {
@@ -351,6 +362,13 @@ impl TypeEdit {
     /// See [`split_type`] for an example.
     pub fn steps(&self) -> &[TriRecord] {
         &self.steps
+    }
+
+    /// Whether the edit was a [`split_type`] (else an [`aggregate_type`]).
+    ///
+    /// See [`split_type`] for an example.
+    pub fn is_split(&self) -> bool {
+        self.split
     }
 
     /// Undoes every step in reverse (`==`). If a step's undo refuses (a stale record), the

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use zipmesh::io;
 use zipmesh::quad_dominant::{self, compass, Move};
-use zipmesh::{is_isomorphic, Dart, Face, Map, Mesh, Vert};
+use zipmesh::{Dart, Face, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
 use crate::qzip::InputError;
@@ -122,20 +122,8 @@ fn undo_of(
 ) -> (Option<u32>, Option<u32>, Option<Vec<Move>>) {
     let face = mesh.map.face(tip).map(|f| f.index() as u32);
     let tip_v = Some(mesh.map.origin(tip).index() as u32);
-    let back: Vec<Move> = done.iter().rev().map(|m| m.reverse()).collect();
-    let mut m = mesh.map.clone();
-    let mut t = tip;
-    let restores = back
-        .iter()
-        .all(|&mv| match quad_dominant::move_triangle(&mut m, t, mv) {
-            Ok(r) => {
-                t = r.tip();
-                true
-            }
-            Err(_) => false,
-        })
-        && is_isomorphic(&m, original);
-    (face, tip_v, restores.then_some(back))
+    let back = compass::reverse_restores(&mesh.map, tip, done, original);
+    (face, tip_v, back)
 }
 
 fn names(moves: &[Move]) -> String {

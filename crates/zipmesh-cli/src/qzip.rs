@@ -275,30 +275,18 @@ fn run_partners(args: &MovesArgs, n: usize) -> Result<ExitCode, InputError> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The first `n` interior irregular vertices other than `from`, breadth first from it, with
-/// their distances in edges.
+/// The first `n` interior irregular vertices other than `from` that it reaches, nearest
+/// first (ties by vertex number), with their distances in edges.
 fn nearest_singularities(map: &Map, from: Vert, n: usize) -> Vec<(Vert, usize)> {
-    let mut dist = vec![usize::MAX; map.vertex_slots()];
-    let mut queue = std::collections::VecDeque::from([from]);
-    dist[from.index()] = 0;
-    let mut found = Vec::new();
-    while let Some(v) = queue.pop_front() {
-        if found.len() == n {
-            break;
-        }
-        let irregular = !map.is_boundary_vertex(v) && map.valence(v) != 4;
-        if v != from && irregular {
-            found.push((v, dist[v.index()]));
-        }
-        let mut next: Vec<Vert> = map.vertex_darts(v).map(|d| map.dest(d)).collect();
-        next.sort_unstable();
-        for w in next {
-            if dist[w.index()] == usize::MAX {
-                dist[w.index()] = dist[v.index()] + 1;
-                queue.push_back(w);
-            }
-        }
-    }
+    let dist = map.distances(from);
+    let mut found: Vec<(Vert, usize)> = map
+        .vertices()
+        .filter(|&v| v != from && dist[v.index()] != usize::MAX)
+        .filter(|&v| !map.is_boundary_vertex(v) && map.valence(v) != 4)
+        .map(|v| (v, dist[v.index()]))
+        .collect();
+    found.sort_unstable_by_key(|&(v, d)| (d, v));
+    found.truncate(n);
     found
 }
 

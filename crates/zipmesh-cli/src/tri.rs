@@ -4,7 +4,7 @@
 //! Same conventions as `zip`: 0-based vertex numbers of the file, OUT written compacted and
 //! atomically after the report, exit 2 and no OUT on bad input. Vertices the edit does not
 //! touch keep their positions bit for bit; a vertex an operator creates or moves is placed
-//! by its rule (`TriOp::apply_with`). Then the edit's neighbourhood is relaxed on the input
+//! by its rule (`TriOp::apply`). Then the edit's neighbourhood is relaxed on the input
 //! surface: by default without inverting a face or thinning a triangle
 //! (`geometry::relax_footprint`), with `--relax local|global` as Sec. 8 does
 //! (`tri_edit::relax_local` / `relax_global`); `--no-relax` keeps the placement.
@@ -19,14 +19,13 @@ use zipmesh::ops::tri::TriRecord;
 use zipmesh::optimize::Surface;
 use zipmesh::quality::{Reference, Summary};
 use zipmesh::tri_edit::{
-    aggregate_type, can_generate_pair, can_generate_pair_v7, can_generate_quadruple,
-    can_generate_quadruple_apart, cancel_triple_along, far_pair_inverse, far_pair_start,
-    generate_pair, generate_pair_v7, generate_quadruple, generate_quadruple_apart, move_far_pair,
-    move_pair, quadruple_sides, relax_global, relax_local, relax_region, remove_quadruple,
-    split_type, touched_vertices, Direction, FarStart, Moved, Quadruple, Relaxed, TriEditError,
-    TripleEdit, Via, Via7,
+    aggregate_type, cancel_triple_along, far_pair_inverse, far_pair_start, generate_pair,
+    generate_pair_v7, generate_quadruple, generate_quadruple_apart, move_far_pair, move_pair,
+    quadruple_sides, relax_global, relax_local, relax_region, remove_quadruple, split_type,
+    touched_vertices, Direction, FarStart, Generation, GenerationConfig, Moved, Relaxed,
+    TriEditError, TripleEdit,
 };
-use zipmesh::{is_isomorphic, Compaction, Dart, Map, Mesh, Vert};
+use zipmesh::{Compaction, Dart, Map, Mesh, Vert};
 
 use crate::out::{self, outln};
 use crate::quality;
@@ -124,48 +123,20 @@ pub enum Config {
     CollapseFlip,
 }
 
+impl From<Config> for GenerationConfig {
+    fn from(c: Config) -> GenerationConfig {
+        match c {
+            Config::Flip => GenerationConfig::Flip,
+            Config::Split => GenerationConfig::Split,
+            Config::Collapse => GenerationConfig::Collapse,
+            Config::CollapseFlip => GenerationConfig::CollapseFlip,
+        }
+    }
+}
+
 impl Config {
     fn name(self) -> &'static str {
-        match self {
-            Config::Flip => "flip",
-            Config::Split => "split",
-            Config::Collapse => "collapse",
-            Config::CollapseFlip => "collapse-flip",
-        }
-    }
-}
-
-/// What a generation makes at `--at`: read off its valence.
-#[derive(Clone, Copy)]
-enum Generation {
-    Quadruple(Quadruple),
-    Five(Via),
-    Seven(Via7),
-}
-
-impl Generation {
-    /// The generation `config` names at a vertex of valence `k`, if there is one.
-    fn of(k: usize, config: Config) -> Option<Generation> {
-        use Config as C;
-        Some(match (k, config) {
-            (6, C::Flip) => Generation::Quadruple(Quadruple::Flip),
-            (6, C::Split) => Generation::Quadruple(Quadruple::Split),
-            (6, C::CollapseFlip) => Generation::Quadruple(Quadruple::CollapseFlip),
-            (5, C::Flip) => Generation::Five(Via::Flip),
-            (5, C::Collapse) => Generation::Five(Via::Collapse),
-            (5, C::Split) => Generation::Five(Via::Split),
-            (7, C::Flip) => Generation::Seven(Via7::Flip),
-            (7, C::Split) => Generation::Seven(Via7::Split),
-            _ => return None,
-        })
-    }
-
-    fn can(self, map: &Map, d: Dart) -> Result<(), TriEditError> {
-        match self {
-            Generation::Quadruple(how) => can_generate_quadruple(map, d, how),
-            Generation::Five(via) => can_generate_pair(map, d, via),
-            Generation::Seven(via) => can_generate_pair_v7(map, d, via),
-        }
+        GenerationConfig::from(self).name()
     }
 }
 
@@ -615,7 +586,7 @@ fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart),
             args.at
         )));
     }
-    let how = Generation::of(k, args.config).ok_or_else(|| {
+    let how = Generation::of(k, args.config.into()).ok_or_else(|| {
         err(format_args!(
             "{}: --at {} --config {}: no such generation at {}; a regular vertex takes flip, \
              split or collapse-flip, a v5 flip, collapse or split, a v7 flip or split",
@@ -644,26 +615,16 @@ fn generation_dart(args: &GenerateArgs, map: &Map) -> Result<(Generation, Dart),
         }
         None => map.vertex_darts(at).collect(),
     };
-    let mut last = TriEditError::WrongValence;
-    for &d in &darts {
-        let can = match (how, args.walk_apart()) {
-            (Generation::Quadruple(q), Some((k, dir))) => {
-                can_generate_quadruple_apart(map, d, q, dir, k)
-            }
-            _ => how.can(map, d),
-        };
-        match can {
-            Ok(()) => return Ok((how, d)),
-            Err(e) => last = e,
-        }
-    }
-    Err(err(format_args!(
-        "{}: --at {}: no {} generation there: {}",
-        f.file.display(),
-        args.at,
-        args.config.name(),
-        why(last)
-    )))
+    let d = how.first_dart(map, darts, args.walk_apart()).map_err(|e| {
+        err(format_args!(
+            "{}: --at {}: no {} generation there: {}",
+            f.file.display(),
+            args.at,
+            args.config.name(),
+            why(e)
+        ))
+    })?;
+    Ok((how, d))
 }
 
 /// Runs `zipmesh tri-generate`: a 5-5-7-7 quadruple from a regular vertex, or a 5-5-7 /
@@ -854,7 +815,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
     let mut mesh = load(f)?;
     let original = mesh.map.clone();
     let name = f.file.display();
-    let (edit, what) = match (&args.split, &args.aggregate) {
+    let edit = match (&args.split, &args.aggregate) {
         (Some(v), _) => {
             let x = verts(f, &mesh.map, "--split", &[*v], None)?[0];
             let e = split_type(&mut mesh, x).map_err(|e| {
@@ -863,7 +824,7 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
                     type_why(e, &mesh.map, x)
                 ))
             })?;
-            (e.into_parts().0, "split")
+            e.into_parts().0
         }
         (None, Some(vs)) => {
             let xs = verts(f, &mesh.map, "--aggregate", vs, None)?;
@@ -881,11 +842,16 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
                     }
                 ))
             })?;
-            (e.into_parts().0, "aggregate")
+            e.into_parts().0
         }
         (None, None) => return Err(err("tri-type needs --split V or --aggregate A,B[,C]")),
     };
-    let undoable = inverse_restores(&mesh.map, &original, what, edit.vertices());
+    let undoable = edit.inverse_restores(&mesh.map, &original);
+    let what = if edit.is_split() {
+        "split"
+    } else {
+        "aggregate"
+    };
     let valences: Vec<usize> = edit
         .vertices()
         .iter()
@@ -927,18 +893,6 @@ pub fn run_type(args: TypeArgs) -> Result<ExitCode, InputError> {
     })
 }
 
-/// Whether the inverse of the type edit `what` (aggregating what a split left, splitting
-/// what an aggregation made) turns `edited` into a map isomorphic to `original`.
-fn inverse_restores(edited: &Map, original: &Map, what: &str, vs: &[Vert]) -> bool {
-    let mut m = edited.clone();
-    let done = match (what, vs.first()) {
-        ("split", _) => aggregate_type(&mut m, vs).is_ok(),
-        (_, Some(&v)) => split_type(&mut m, v).is_ok(),
-        _ => false,
-    };
-    done && is_isomorphic(&m, original)
-}
-
 fn type_why(e: TriEditError, map: &Map, v: Vert) -> String {
     match e {
         TriEditError::WrongValence => format!(
@@ -969,24 +923,6 @@ pub fn run_cancel(args: CancelArgs) -> Result<ExitCode, InputError> {
     }
 }
 
-/// The generation at `at` (some dart, some configuration) that gives back a map isomorphic
-/// to `original`: the undo of a triple cancellation, found by trying each.
-fn find_generation(edited: &Map, original: &Map, at: Vert) -> Option<(Vert, Config)> {
-    let k = edited.valence(at);
-    let configs = [Config::Flip, Config::Split, Config::Collapse];
-    edited.vertex_darts(at).find_map(|d| {
-        configs.into_iter().find_map(|config| {
-            let mut m = edited.clone();
-            let ok = match Generation::of(k, config)? {
-                Generation::Five(via) => generate_pair(&mut m, d, via, Moved::First).is_ok(),
-                Generation::Seven(via) => generate_pair_v7(&mut m, d, via, Moved::First).is_ok(),
-                Generation::Quadruple(_) => false,
-            };
-            (ok && is_isomorphic(&m, original)).then(|| (edited.dest(d), config))
-        })
-    })
-}
-
 fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
     let mut mesh = load(f)?;
     let original = mesh.map.clone();
@@ -1012,10 +948,9 @@ fn cancel_triple_cli(f: &Files, given: &[u32]) -> Result<ExitCode, InputError> {
     let t = t.into_parts().0;
     let left = t.remaining();
     let walked = t.moves().len();
-    // An adjacent triple is undone by one generation at the vertex left, found by trying.
-    let undo = (walked == 0)
-        .then(|| find_generation(&mesh.map, &original, left))
-        .flatten();
+    let undo = t
+        .inverse_generation(&mesh.map, &original)
+        .map(|(d, config)| (mesh.map.dest(d), config));
     let mut steps: Vec<TriRecord> = t.moves().iter().map(|m| *m.record()).collect();
     steps.push(match t.cancellation() {
         TripleEdit::Five(m) => *m.record(),

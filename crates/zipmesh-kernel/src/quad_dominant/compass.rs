@@ -234,3 +234,26 @@ pub fn merged<A: VertexAttributes>(walk: &Walk<A>, target: Vert) -> bool {
         .last()
         .is_some_and(|e| e.record().removed_vertex() == Some(target))
 }
+
+/// The moves that take a triangle back along `done` (each [`Move::reverse`]d, the last
+/// first) from tip dart `tip` of `map`, when they all apply and leave a map isomorphic to
+/// `original`; `None` otherwise. This undoes moves where no record survives (a mesh written
+/// to a file and read back), so it is checked on a copy, not assumed: O(moves + map).
+///
+/// ```
+/// use zipmesh_kernel::{gen, quad_dominant::{compass, Move}};
+/// let (mut mesh, tips) = gen::quad_dominant(10, 10, 1, 3);
+/// let original = mesh.map.clone();
+/// let e = Move::VE.apply(&mut mesh, tips[0]).unwrap();
+/// let back = compass::reverse_restores(&mesh.map, e.record().tip(), &[Move::VE], &original);
+/// assert_eq!(back, Some(vec![Move::VE.reverse()]));
+/// ```
+pub fn reverse_restores(map: &Map, tip: Dart, done: &[Move], original: &Map) -> Option<Vec<Move>> {
+    let back: Vec<Move> = done.iter().rev().map(|m| m.reverse()).collect();
+    let mut m = map.clone();
+    let mut t = tip;
+    for &mv in &back {
+        t = super::walk::move_triangle(&mut m, t, mv).ok()?.tip();
+    }
+    crate::is_isomorphic(&m, original).then_some(back)
+}

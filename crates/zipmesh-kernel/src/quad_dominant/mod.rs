@@ -38,7 +38,7 @@ pub use collide::{
     can_collapse_shared_base, can_merge_triangles, can_split_quad, collapse_shared_base, collision,
     merge_collision, merge_triangles, split_quad, Collision, QuadSplit, TriangleMerge,
 };
-pub use compass::{walk_to, Walk, WalkError};
+pub use compass::{reverse_restores, walk_to, Walk, WalkError};
 pub use walk::{can_move_triangle, move_triangle, probe_move, Move, TriangleMove, UnknownMove};
 
 /// The tip dart of triangle `f` by valence: the dart of `f` leaving its corner of strictly
