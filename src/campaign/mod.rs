@@ -144,8 +144,8 @@ impl Default for Config {
 /// assert_eq!(select(&all, &["nope".into()]).unwrap_err(), "nope");
 /// assert_eq!(select(&all, &[]).unwrap().len(), all.len());
 /// // The quad-dominant properties' earlier names still select them.
-/// let old = select(&all, &["qzip-hybrid-grid".into()]).unwrap();
-/// assert_eq!(old[0].name(), "qzip-quad-dominant-grid");
+/// let old = select(&all, &["qzip-hybrid-grid".into(), "tri-walk".into()]).unwrap();
+/// assert_eq!((old[0].name(), old[1].name()), ("qzip-quad-dominant-grid", "qd-walk"));
 /// ```
 pub fn select(all: &[Property], names: &[String]) -> Result<Vec<Property>, String> {
     if names.is_empty() {
@@ -155,9 +155,10 @@ pub fn select(all: &[Property], names: &[String]) -> Result<Vec<Property>, Strin
         .iter()
         .map(|n| {
             // Counterexamples found outside carry the earlier names in their file names.
-            let current = n
-                .strip_prefix("qzip-hybrid-")
-                .map(|rest| alloc::format!("qzip-quad-dominant-{rest}"));
+            let current = match n.strip_prefix("qzip-hybrid-") {
+                Some(rest) => Some(alloc::format!("qzip-quad-dominant-{rest}")),
+                None => (n == "tri-walk").then(|| "qd-walk".into()),
+            };
             let wanted = current.as_deref().unwrap_or(n);
             all.iter()
                 .find(|p| p.name() == wanted)

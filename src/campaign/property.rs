@@ -205,7 +205,7 @@ pub fn builtin_with(choice: super::PairChoice) -> Vec<Property> {
     all
 }
 
-/// The quad-dominant properties (Q-zip paper, Sec. 3.2): `tri-walk`, sixteen random
+/// The quad-dominant properties (Q-zip paper, Sec. 3.2): `qd-walk`, sixteen random
 /// triangle moves per case (on a mixed case its own triangles, on a quad case two inserted
 /// triangle pairs, [`crate::gen::with_triangle_pairs`]): `can_move_triangle` and the move
 /// agree, a refusal changes nothing, an application passes `check()` with its
@@ -213,13 +213,13 @@ pub fn builtin_with(choice: super::PairChoice) -> Vec<Property> {
 /// exactly.
 ///
 /// ```
-/// assert_eq!(zipmesh::campaign::quad_dominant()[0].name(), "tri-walk");
+/// assert_eq!(zipmesh::campaign::quad_dominant()[0].name(), "qd-walk");
 /// ```
 pub fn quad_dominant() -> Vec<Property> {
     alloc::vec![Property::new(
-        "tri-walk",
+        "qd-walk",
         "triangle moves VE/EV/LE/RE: can_* agrees, documented effect, valid map; exact undo",
-        tri_walk
+        qd_walk
     )]
 }
 
@@ -755,7 +755,7 @@ fn tri_edge_split(case: &Case) -> Outcome {
 // ------------------------------------------------------------------------------------
 // Quad-dominant properties.
 
-fn tri_walk(case: &Case) -> Outcome {
+fn qd_walk(case: &Case) -> Outcome {
     use crate::quad_dominant::{self, Move};
     let m0 = &case.mesh.map;
     if !m0.faces().any(|f| m0.degree(f) == 4) {

@@ -112,9 +112,11 @@ enum Command {
     /// Cancel a 5-5-7-7 quadruple inside two triangles (`--quadruple`), or reduce a 5-5-7 or
     /// 5-7-7 triple to its one left-over singularity (`--triple`), in a triangle mesh.
     TriCancel(tri::CancelArgs),
-    /// Move a triangle of a quad-dominant mesh by one edge per move (VE, EV, LE, RE), or walk
-    /// it to a vertex, and write the result; prints the triangle and the moves that undo it.
-    TriWalk(quad_dominant::TriWalkArgs),
+    /// Move a triangle of a quad-dominant (qd) mesh by one edge per move (VE, EV, LE, RE), or
+    /// walk it to a vertex, and write the result; prints the triangle and the moves that undo
+    /// it.
+    #[command(alias = "tri-walk")]
+    QdWalk(quad_dominant::QdWalkArgs),
     /// Reduce the singularities of a quad, quad-dominant or triangle mesh by batches of
     /// Q-zips (Q-zip paper, Sec. 4.1; triangle meshes by the triangle paper's moves)
     /// and write the result; `--json` prints the counts before, after each batch and at the end.
@@ -154,7 +156,7 @@ fn dispatch(command: Command) -> Result<ExitCode, String> {
         Command::TriGenerate(args) => tri::run_generate(args).map_err(|e| e.to_string()),
         Command::TriType(args) => tri::run_type(args).map_err(|e| e.to_string()),
         Command::TriCancel(args) => tri::run_cancel(args).map_err(|e| e.to_string()),
-        Command::TriWalk(args) => quad_dominant::run_tri_walk(args).map_err(|e| e.to_string()),
+        Command::QdWalk(args) => quad_dominant::run_qd_walk(args).map_err(|e| e.to_string()),
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
         command => run(command).map_err(|e| e.to_string()),
@@ -179,7 +181,7 @@ fn check_outputs(command: &Command) -> Result<(), MeshFileError> {
         Command::TriGenerate(a) => mesh(&a.files.output),
         Command::TriType(a) => mesh(&a.files.output),
         Command::TriCancel(a) => mesh(&a.files.output),
-        Command::TriWalk(a) => mesh(&a.output),
+        Command::QdWalk(a) => mesh(&a.output),
         Command::Optimize(a) => mesh(&a.output),
         Command::Render(a) => io::check_target(&a.output),
         Command::Stats { .. }
@@ -211,7 +213,7 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriGenerate(_)
         | Command::TriType(_)
         | Command::TriCancel(_)
-        | Command::TriWalk(_)
+        | Command::QdWalk(_)
         | Command::Optimize(_)
         | Command::Render(_) => {}
         Command::Singularities(args) => singular::run(args)?,

@@ -1,4 +1,4 @@
-//! `zipmesh tri-walk`: moving a triangle through a quad-dominant mesh (Q-zip paper, Sec. 3.2).
+//! `zipmesh qd-walk`: moving a triangle through a quad-dominant mesh (Q-zip paper, Sec. 3.2).
 
 use clap::{ArgGroup, Args};
 use serde_json::json;
@@ -11,10 +11,10 @@ use zipmesh::{Dart, Face, Map, Mesh, Vert};
 use crate::out::{self, outln};
 use crate::qzip::InputError;
 
-/// `zipmesh tri-walk`.
+/// `zipmesh qd-walk`.
 #[derive(Args)]
 #[command(group(ArgGroup::new("how").required(true).args(["moves", "to"])))]
-pub struct TriWalkArgs {
+pub struct QdWalkArgs {
     /// A quad-dominant mesh (.obj, .off or .ply).
     file: PathBuf,
     /// The triangle: a 0-based face number of the file.
@@ -82,7 +82,7 @@ fn tip_dart(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Dart, In
 fn walk(
     mesh: &mut Mesh,
     t: Dart,
-    a: &TriWalkArgs,
+    a: &QdWalkArgs,
     name: &str,
 ) -> Result<(Dart, Vec<Move>), InputError> {
     if let Some(v) = a.to {
@@ -130,8 +130,8 @@ fn names(moves: &[Move]) -> String {
     moves.iter().map(|m| m.name()).collect::<Vec<_>>().join(",")
 }
 
-/// Runs `zipmesh tri-walk`.
-pub fn run_tri_walk(args: TriWalkArgs) -> Result<ExitCode, InputError> {
+/// Runs `zipmesh qd-walk`.
+pub fn run_qd_walk(args: QdWalkArgs) -> Result<ExitCode, InputError> {
     let name = args.file.display().to_string();
     let (original, _) = io::read_mesh(&args.file)?;
     let t = tip_dart(&original.map, Face::new(args.triangle), args.tip, &name)?;
@@ -167,7 +167,7 @@ pub fn run_tri_walk(args: TriWalkArgs) -> Result<ExitCode, InputError> {
         );
         match &undo {
             Some(u) if !u.is_empty() => outln!(
-                "undo: zipmesh tri-walk {} --triangle {} --tip {} --move {} -o UNDONE",
+                "undo: zipmesh qd-walk {} --triangle {} --tip {} --move {} -o UNDONE",
                 args.output.display(),
                 face.unwrap_or(0),
                 tip_v.unwrap_or(0),

@@ -443,7 +443,7 @@ fn every_writing_command_checks_its_output_first() {
         vec!["tri-generate", bad, "--at", "1", "-o", obj],
         vec!["tri-type", bad, "--split", "1", "-o", obj],
         vec!["tri-cancel", bad, "--triple", "1,2,3", "-o", obj],
-        vec!["tri-walk", bad, "--triangle", "0", "--to", "1", "-o", obj],
+        vec!["qd-walk", bad, "--triangle", "0", "--to", "1", "-o", obj],
         vec!["optimize", bad, "-o", obj],
         vec!["render", bad, "-o", svg],
     ] {

@@ -1,4 +1,4 @@
-//! `zipmesh tri-walk`: the JSON report checked against the library, the printed undo
+//! `zipmesh qd-walk`: the JSON report checked against the library, the printed undo
 //! restoring the input up to isomorphism, and exit 2 with no output file on bad input.
 
 #[path = "../../../tests/common/mod.rs"]
@@ -37,13 +37,13 @@ fn num(v: &Value) -> String {
     v.as_u64().map(|x| x.to_string()).unwrap_or_default()
 }
 
-/// Runs tri-walk, checks the report against the library and the undo against the input.
+/// Runs qd-walk, checks the report against the library and the undo against the input.
 fn walk_and_undo(name: &str, extra: &[&str], lib: impl Fn(&mut Mesh, Dart) -> Dart) {
     let dir = temp_dir(name);
     let (inp, mesh) = input(&dir, 3);
     let f = quad_dominant::triangles(&mesh.map)[0].index() as u32;
     let out = dir.join("out.obj");
-    let mut args = vec!["tri-walk", s(&inp), "--triangle"];
+    let mut args = vec!["qd-walk", s(&inp), "--triangle"];
     let fs = f.to_string();
     args.extend([fs.as_str(), "-o", s(&out), "--json"]);
     args.extend(extra);
@@ -78,7 +78,7 @@ fn walk_and_undo(name: &str, extra: &[&str], lib: impl Fn(&mut Mesh, Dart) -> Da
         u["move"].as_str().unwrap(),
     );
     let o = zipmesh(&[
-        "tri-walk",
+        "qd-walk",
         s(&out),
         "--triangle",
         &uf,
@@ -101,7 +101,7 @@ fn walk_and_undo(name: &str, extra: &[&str], lib: impl Fn(&mut Mesh, Dart) -> Da
 fn each_move_and_its_undo() {
     for mv in Move::ALL {
         for steps in [1usize, 3] {
-            let name = format!("tri-walk-{mv}-{steps}");
+            let name = format!("qd-walk-{mv}-{steps}");
             let k = steps.to_string();
             walk_and_undo(&name, &["--move", mv.name(), "--steps", &k], |m, t| {
                 (0..steps).fold(t, |t, _| mv.apply(m, t).unwrap().record().tip())
@@ -113,7 +113,7 @@ fn each_move_and_its_undo() {
 #[test]
 fn a_sequence_of_moves() {
     let seq = [Move::VE, Move::LE, Move::LE, Move::EV, Move::RE];
-    walk_and_undo("tri-walk-seq", &["--move", "VE,LE,le,EV,RE"], |m, t| {
+    walk_and_undo("qd-walk-seq", &["--move", "VE,LE,le,EV,RE"], |m, t| {
         seq.iter()
             .fold(t, |t, &mv| mv.apply(m, t).unwrap().record().tip())
     });
@@ -121,7 +121,7 @@ fn a_sequence_of_moves() {
 
 #[test]
 fn compass_walk_to_a_vertex() {
-    let dir = temp_dir("tri-walk-to-probe");
+    let dir = temp_dir("qd-walk-to-probe");
     let (_, mesh) = input(&dir, 3);
     let f = quad_dominant::triangles(&mesh.map)[0].index() as u32;
     let m = &mesh.map;
@@ -131,16 +131,44 @@ fn compass_walk_to_a_vertex() {
     let d = straight(straight(m.rotate_cw(m.rotate_cw(t))));
     let target = m.dest(m.rotate_cw(straight(d)));
     let ts = target.index().to_string();
-    walk_and_undo("tri-walk-to", &["--to", &ts], |m, t| {
+    walk_and_undo("qd-walk-to", &["--to", &ts], |m, t| {
         compass::walk_to(m, t, target).unwrap().tip()
     });
+}
+
+/// `tri-walk`, the command's earlier name, runs `qd-walk`: the same report and OUT.
+#[test]
+fn the_earlier_name_runs_the_same_command() {
+    let dir = temp_dir("qd-walk-alias");
+    let (inp, mesh) = input(&dir, 3);
+    let f = quad_dominant::triangles(&mesh.map)[0].index().to_string();
+    let (a, b) = (dir.join("a.obj"), dir.join("b.obj"));
+    let run = |cmd: &str, out: &Path| {
+        json(&zipmesh(&[
+            cmd,
+            s(&inp),
+            "--triangle",
+            &f,
+            "--move",
+            "VE",
+            "-o",
+            s(out),
+            "--json",
+        ]))
+    };
+    let (ra, rb) = (run("qd-walk", &a), run("tri-walk", &b));
+    assert_eq!(
+        (ra["moves"].clone(), ra["undo"].clone()),
+        (rb["moves"].clone(), rb["undo"].clone())
+    );
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
 }
 
 /// Exit 2 and no OUT: a quad as the triangle, a tip that is not a corner, a refused move,
 /// a missing target, an unknown move name.
 #[test]
 fn bad_input_exits_2_without_output() {
-    let dir = temp_dir("tri-walk-bad");
+    let dir = temp_dir("qd-walk-bad");
     let (inp, mesh) = input(&dir, 3);
     let quad = mesh.map.faces().find(|&f| mesh.map.degree(f) == 4).unwrap();
     let tri = quad_dominant::triangles(&mesh.map)[0];
@@ -174,7 +202,7 @@ fn bad_input_exits_2_without_output() {
         vec![s(&gp), "--triangle", "0", "--tip", "0", "--move", "VE"],
     ];
     for c in cases {
-        let mut args = vec!["tri-walk"];
+        let mut args = vec!["qd-walk"];
         args.extend(&c);
         args.extend(["-o", s(&out)]);
         let o = zipmesh(&args);
