@@ -13,9 +13,11 @@ use zipmesh::optimize::{
     optimize, optimize_triangles, BatchReport, Constraints, OptimizeOptions, SingularityCounts,
     TriCounts, TriOptimizeOptions,
 };
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::{Face, Mesh, Vert};
 
 use crate::out::{self, outln};
+use crate::quality;
 use crate::qzip::InputError;
 
 #[derive(Args)]
@@ -117,6 +119,7 @@ fn tri_summary(c: &TriCounts) -> String {
 /// (`optimize_triangles`).
 /// The quad-only options (constraints, weights, paths) are refused rather than ignored.
 fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<ExitCode, InputError> {
+    let input = mesh.clone();
     let quad_only = [
         ("--protect", args.protect.is_some()),
         ("--features", args.features.is_some()),
@@ -165,7 +168,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         bar.finish_and_clear();
     }
     let seconds = start.elapsed().as_secs_f64();
-    let report = json!({
+    let mut report = json!({
         "kind": "triangle",
         "input": tri_counts(&outcome.input),
         "batches": rows,
@@ -181,19 +184,23 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
             outcome.batches.len()
         ),
     ];
-    finish(args, &mut mesh, &report, &lines)
+    finish(args, (&input, &mut mesh), &mut report, &lines)
 }
 
-/// The ending both paths share: OUT is prepared beside its place, the report printed
-/// (`--json`: the object, else the two lines), and only then OUT moved in, so a failed
-/// print leaves no OUT.
+/// The ending both paths share: the quality of input and output measured against the
+/// input's surface, OUT prepared beside its place, the report printed (`--json`: the object
+/// with `quality`, else the two lines and a quality line), and only then OUT moved in, so a
+/// failed print leaves no OUT.
 fn finish(
     args: &OptimizeArgs,
-    mesh: &mut Mesh,
-    report: &Value,
+    (input, mesh): (&Mesh, &mut Mesh),
+    report: &mut Value,
     lines: &[String; 2],
 ) -> Result<ExitCode, InputError> {
     mesh.compact();
+    let reference = Reference::new(input);
+    let q = [input, &*mesh].map(|m| Summary::against(m, &reference));
+    report["quality"] = quality::both_json(&q);
     let pending = io::prepare_mesh(&args.output, mesh)?;
     if args.json {
         outln!("{report}");
@@ -201,6 +208,7 @@ fn finish(
         for line in lines {
             outln!("{line}");
         }
+        outln!("quality: {}", quality::line(&q));
     }
     out::flush()?;
     pending.commit()?;
@@ -378,6 +386,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         )));
     }
     let c = constraints(&args, &mesh)?;
+    let input = mesh.clone();
     let bar = progress(args.batches);
     let start = Instant::now();
     let mut last = Instant::now();
@@ -395,7 +404,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
         bar.finish_and_clear();
     }
     let seconds = start.elapsed().as_secs_f64();
-    let report = json!({
+    let mut report = json!({
         "input": counts(&outcome.input),
         "triangle_stage": {
             "input": outcome.triangles.input,
@@ -435,5 +444,5 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
             outcome.batches.len()
         ),
     ];
-    finish(&args, &mut mesh, &report, &lines)
+    finish(&args, (&input, &mut mesh), &mut report, &lines)
 }

@@ -1,5 +1,6 @@
-//! The quality part of `zipmesh stats`: the library's `quality::Summary` as JSON and as
-//! table rows.
+//! The library's `quality::Summary` as the commands print it: the `"quality"` object of
+//! `stats --json` and its table rows, and the one-line comparison of an input and an output
+//! that the edits and `optimize` print.
 
 use serde_json::{json, Value};
 use zipmesh::quality::{Summary, THIN_TRIANGLE_DEGREES};
@@ -88,4 +89,36 @@ pub fn rows(q: &Value) -> Vec<(String, String)> {
         ));
     }
     rows
+}
+
+/// The `"quality"` object of an edit's or `optimize`'s JSON report: `input` and `output`,
+/// both measured against the input's surface.
+pub fn both_json(q: &[Summary; 2]) -> Value {
+    json!({"input": to_json(&q[0]), "output": to_json(&q[1])})
+}
+
+/// One line comparing input and output, then the output's largest distance to the input
+/// surface: folded quads and negative scaled Jacobians where there are quads, else thin and
+/// flipped triangles and the smallest angle.
+pub fn line(q: &[Summary; 2]) -> String {
+    let far = q[1].distance.map_or(0.0, |d| d.max);
+    let angle = |s: &Summary| s.min_angle.unwrap_or(0.0);
+    let faces = if q[0].quads > 0 || q[1].quads > 0 {
+        format!(
+            "folded quads {} -> {}, scaled jacobian < 0 {} -> {}",
+            q[0].folded_quads, q[1].folded_quads, q[0].negative_jacobian, q[1].negative_jacobian
+        )
+    } else {
+        format!(
+            "triangles under {THIN_TRIANGLE_DEGREES} degrees {} -> {}, flipped {} -> {}, \
+             smallest angle {:.1} -> {:.1} degrees",
+            q[0].thin_triangles,
+            q[1].thin_triangles,
+            q[0].flipped_triangles,
+            q[1].flipped_triangles,
+            angle(&q[0]),
+            angle(&q[1]),
+        )
+    };
+    format!("{faces}, max distance to the input {far:.2e} of its diagonal")
 }

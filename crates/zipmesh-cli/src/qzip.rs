@@ -411,10 +411,7 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
         "relax": relaxed.map(|x| json!({
             "projected": x.projected, "region": x.region, "moves": x.moves, "refused": x.refused,
         })),
-        "quality": {
-            "input": quality::to_json(&quality[0]),
-            "output": quality::to_json(&quality[1]),
-        },
+        "quality": quality::both_json(&quality),
     });
     if args.pair.json {
         outln!("{report}");
@@ -429,7 +426,12 @@ pub fn run_zip(args: ZipArgs) -> Result<ExitCode, InputError> {
             report["moved"]["from"],
             report["moved"]["to"]
         );
-        outln!("{}", quality_line(&quality, relaxed.is_some()));
+        let how = if relaxed.is_some() {
+            "relaxed"
+        } else {
+            "raw placement"
+        };
+        outln!("quality ({how}): {}", quality::line(&quality));
         match &reverse {
             Some(rev) => outln!(
                 "undo: zipmesh zip {} --from {} --to {} --move {} --path {} -o UNDONE",
@@ -465,20 +467,5 @@ fn relax(input: &Mesh, mesh: &mut Mesh, relax: bool) -> (Option<Relaxation>, [Su
     (
         relaxed,
         [input, &*mesh].map(|m| Summary::against(m, &reference)),
-    )
-}
-
-/// The text line of `zip`'s quality: folded quads and negative scaled Jacobians, input then
-/// output, and the output's largest distance to the input surface.
-fn quality_line(q: &[Summary; 2], relaxed: bool) -> String {
-    let far = q[1].distance.map_or(0.0, |d| d.max);
-    format!(
-        "quality ({}): folded quads {} -> {}, scaled jacobian < 0 {} -> {}, max distance to \
-         the input {far:.2e} of its diagonal",
-        if relaxed { "relaxed" } else { "raw placement" },
-        q[0].folded_quads,
-        q[1].folded_quads,
-        q[0].negative_jacobian,
-        q[1].negative_jacobian,
     )
 }

@@ -323,10 +323,7 @@ fn finish(
     value["collapses"] = json!(ops.collapses);
     value["splits"] = json!(ops.splits);
     value["relax"] = relaxed.as_ref().map_or(Value::Null, |r| r.0.clone());
-    value["quality"] = json!({
-        "input": quality::to_json(&quality[0]),
-        "output": quality::to_json(&quality[1]),
-    });
+    value["quality"] = quality::both_json(&quality);
     if f.json {
         outln!("{value}");
     } else {
@@ -339,7 +336,7 @@ fn finish(
         if let Some((_, line)) = &relaxed {
             outln!("{line}");
         }
-        outln!("{}", quality_line(&quality));
+        outln!("quality: {}", quality::line(&quality));
     }
     out::flush()?;
     pending.commit()?;
@@ -405,23 +402,6 @@ fn relax(f: &Files, input: &Mesh, mesh: &mut Mesh) -> Result<(Value, String), In
         r.energy_after
     );
     Ok((value, line))
-}
-
-/// The text line of a triangle edit's quality: thin and flipped triangles and the smallest
-/// angle, input then output, and the output's largest distance to the input surface.
-fn quality_line(q: &[Summary; 2]) -> String {
-    let far = q[1].distance.map_or(0.0, |d| d.max);
-    let angle = |s: &Summary| s.min_angle.unwrap_or(0.0);
-    format!(
-        "quality: triangles under 10 degrees {} -> {}, flipped {} -> {}, smallest angle \
-         {:.1} -> {:.1} degrees, max distance to the input {far:.2e} of its diagonal",
-        q[0].thin_triangles,
-        q[1].thin_triangles,
-        q[0].flipped_triangles,
-        q[1].flipped_triangles,
-        angle(&q[0]),
-        angle(&q[1]),
-    )
 }
 
 fn list(v: &[Option<u32>]) -> String {

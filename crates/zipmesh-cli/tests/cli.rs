@@ -7,7 +7,7 @@ mod run;
 
 use common::shared;
 use glam::DVec3;
-use run::{s, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
+use run::{assert_quality_matches, s, stderr, stdout, temp_dir, zipmesh, zipmesh_words};
 use serde_json::Value;
 use std::fs;
 use std::path::Path;
@@ -54,60 +54,6 @@ fn assert_stats_match(json: &Value, mesh: &Mesh, unreferenced: usize) {
         format!("{:032x}", canonical_hash(map))
     );
     assert_quality_matches(&json["quality"], &Summary::of(mesh));
-}
-
-/// Whether a JSON number is `x` (serde_json's default parsing may miss by an ulp).
-fn same_number(v: &Value, x: Option<f64>) -> bool {
-    match (v.as_f64(), x) {
-        (Some(a), Some(b)) => (a - b).abs() <= 1e-12 * b.abs().max(1.0),
-        (a, b) => a.is_none() && b.is_none() && v.is_null(),
-    }
-}
-
-/// Compares the `"quality"` object of `stats --json` with the library's summary.
-fn assert_quality_matches(q: &Value, s: &Summary) {
-    assert_eq!(q["faces"], s.faces);
-    assert_eq!(q["quads"], s.quads);
-    assert_eq!(q["triangles"], s.triangles);
-    assert_eq!(q["folded_quads"], s.folded_quads);
-    assert_eq!(q["folded_by"]["diagonal"], s.folded_by.diagonal);
-    assert_eq!(q["folded_by"]["corner"], s.folded_by.corner);
-    assert_eq!(q["folded_by"]["neighbours"], s.folded_by.neighbours);
-    assert_eq!(q["negative_scaled_jacobian"], s.negative_jacobian);
-    let j = &q["scaled_jacobian"];
-    match s.jacobian {
-        Some(p) => {
-            let pairs = [
-                ("min", p.min),
-                ("p1", p.p1),
-                ("p5", p.p5),
-                ("median", p.median),
-            ];
-            for (key, x) in pairs {
-                assert!(
-                    same_number(&j[key], Some(x)),
-                    "{key}: {} against {x}",
-                    j[key]
-                );
-            }
-        }
-        None => assert!(j.is_null()),
-    }
-    assert!(same_number(&q["min_angle_degrees"], s.min_angle), "{q}");
-    assert_eq!(q["thin_triangles"], s.thin_triangles);
-    assert_eq!(q["flipped_triangles"], s.flipped_triangles);
-    assert!(same_number(&q["max_edge_ratio"], s.max_edge_ratio), "{q}");
-    assert_eq!(q["degenerate_faces"], s.degenerate_faces);
-    match s.distance {
-        Some(d) => {
-            let got = &q["distance"];
-            for (key, x) in [("mean", d.mean), ("p99", d.p99), ("max", d.max)] {
-                assert!(same_number(&got[key], Some(x)), "{key}: {got}");
-            }
-            assert_eq!(got["vertices"], d.vertices);
-        }
-        None => assert!(q["distance"].is_null()),
-    }
 }
 
 /// `--reference` adds the vertices' distances to another mesh's surface: 0 for the input

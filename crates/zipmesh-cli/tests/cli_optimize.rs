@@ -6,17 +6,32 @@ mod common;
 mod run;
 
 use common::shared;
-use run::{s, stderr, temp_dir, zipmesh};
+use run::{assert_quality_matches, s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::fs;
 use zipmesh::optimize::SingularityCounts;
-use zipmesh::{gen, io};
+use zipmesh::quality::{Reference, Summary};
+use zipmesh::{gen, io, Mesh};
 
 fn counts_json(c: &SingularityCounts) -> Value {
     serde_json::json!({
         "faces": c.faces, "triangles": c.triangles, "vertices": c.vertices, "v2": c.v2, "v3": c.v3, "v5": c.v5,
         "v6plus": c.v6plus, "boundary_defects": c.boundary_defects,
     })
+}
+
+/// The report's `quality` is the library's summary of IN and of OUT as written, both
+/// against IN's surface.
+fn assert_quality_reported(v: &Value, before: &Mesh, after: &Mesh) {
+    let reference = Reference::new(before);
+    assert_quality_matches(
+        &v["quality"]["input"],
+        &Summary::against(before, &reference),
+    );
+    assert_quality_matches(
+        &v["quality"]["output"],
+        &Summary::against(after, &reference),
+    );
 }
 
 fn input(dir: &std::path::Path) -> std::path::PathBuf {
@@ -46,6 +61,7 @@ fn json_counts_match_a_recount_of_out() {
     let (after, _) = io::read_mesh(&out).unwrap();
     assert_eq!(v["input"], counts_json(&SingularityCounts::of(&before)));
     assert_eq!(v["final"], counts_json(&SingularityCounts::of(&after)));
+    assert_quality_reported(&v, &before, &after);
     let batches = v["batches"].as_array().unwrap();
     assert!(!batches.is_empty() && batches.len() <= 4);
     let last = batches.last().unwrap();
@@ -322,6 +338,8 @@ fn triangle_input_json_counts_match_a_recount() {
     assert_eq!(v["kind"], "triangle");
     assert_eq!(v["input"], recount(&mesh));
     assert_eq!(v["final"], recount(&result));
+    let (read, _) = io::read_mesh(&inp).unwrap();
+    assert_quality_reported(&v, &read, &result);
     // Count first, then score: the look-ahead may raise the score to lower the count.
     let ranks: Vec<(u64, u64)> = v["batches"]
         .as_array()
