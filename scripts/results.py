@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""The tables of docs/results.md: `zipmesh optimize --json` on every mesh of tests/data
+(quad, poly and tri), with the default command line and with each option given as an
+argument, read back from the reports (counts, quality against the input surface, time).
+
+    cargo build --release -p zipmesh-cli
+    python3 scripts/results.py                        # the default command line
+    python3 scripts/results.py --no-fold-guard        # any optimize options after the script
+    python3 scripts/results.py --bin PATH -- FILE...  # another binary, other meshes
+
+A mesh `optimize` refuses (a face of five or more corners) gets a row saying why.
+"""
+
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def singularities(c):
+    """Interior irregular vertices of a quad report's counts, and the boundary defect."""
+    if "irregular" in c:
+        return f"{c['irregular']}"
+    total = c["v2"] + c["v3"] + c["v5"] + c["v6plus"]
+    bd = c["boundary_defects"]
+    return f"{total}" + (f" (bd {bd})" if bd else "")
+
+
+def pct(x):
+    return "-" if x is None else f"{100 * x:.3f} %"
+
+
+def number(x, digits):
+    return "-" if x is None else f"{x:.{digits}f}"
+
+
+def quad_row(name, r):
+    qi, qo = r["quality"]["input"], r["quality"]["output"]
+    sj = lambda q: (q["scaled_jacobian"] or {}).get("p1")
+    d = qo["distance"] or {}
+    faces = f"{r['input']['faces']} -> {r['final']['faces']}"
+    return (
+        f"| {name} | {singularities(r['input'])} -> {singularities(r['final'])} | {faces} "
+        f"| {qi['folded_quads']} -> {qo['folded_quads']} "
+        f"| {qi['negative_scaled_jacobian']} -> {qo['negative_scaled_jacobian']} "
+        f"| {number(sj(qi), 2)} -> {number(sj(qo), 2)} "
+        f"| {pct(d.get('mean'))} / {pct(d.get('max'))} | {r['seconds']:.1f} |"
+    )
+
+
+def tri_row(name, r):
+    qi, qo = r["quality"]["input"], r["quality"]["output"]
+    d = qo["distance"] or {}
+    cut = 1 - r["final"]["irregular"] / max(r["input"]["irregular"], 1)
+    faces = f"{r['input']['faces']} -> {r['final']['faces']}"
+    return (
+        f"| {name} | {r['input']['irregular']} -> {r['final']['irregular']} ({100 * cut:.0f} % cut) "
+        f"| {faces} | {qi['thin_triangles']} -> {qo['thin_triangles']} "
+        f"| {qi['flipped_triangles']} -> {qo['flipped_triangles']} "
+        f"| {number(qi['min_angle_degrees'], 1)} -> {number(qo['min_angle_degrees'], 1)} "
+        f"| {pct(d.get('mean'))} / {pct(d.get('max'))} | {r['seconds']:.1f} |"
+    )
+
+
+def main():
+    args = sys.argv[1:]
+    binary = ROOT / "target/release/zipmesh"
+    if args[:1] == ["--bin"]:
+        binary, args = Path(args[1]), args[2:]
+    files = []
+    if "--" in args:
+        i = args.index("--")
+        args, files = args[:i], [Path(f) for f in args[i + 1 :]]
+    if not files:
+        files = sorted((ROOT / "tests/data").glob("[pqt]*/*.obj"))
+    quads, tris = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for f in files:
+            name = f"{f.parent.name}/{f.name}"
+            run = subprocess.run(
+                [str(binary), "optimize", str(f), "-o", f"{tmp}/out.obj", "--json", *args],
+                capture_output=True,
+                text=True,
+            )
+            if run.returncode != 0:
+                why = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else "?"
+                quads.append(f"| {name} | refused: {why} |||||||")
+                continue
+            r = json.loads(run.stdout)
+            (tris if r.get("kind") == "triangle" else quads).append(
+                tri_row(name, r) if r.get("kind") == "triangle" else quad_row(name, r)
+            )
+    given = " ".join(args) or "(defaults)"
+    print(f"`zipmesh optimize IN -o OUT {given}`\n")
+    print(
+        "| mesh | singularities | faces | folded quads | scaled Jacobian < 0 "
+        "| scaled Jacobian 1st pct | distance mean / max | s |"
+    )
+    print("|---|---|---|---|---|---|---|---|")
+    print("\n".join(quads))
+    if tris:
+        print()
+        print(
+            "| triangle mesh | irregular vertices | faces | triangles under 10 deg | flipped "
+            "| smallest angle (deg) | distance mean / max | s |"
+        )
+        print("|---|---|---|---|---|---|---|---|")
+        print("\n".join(tris))
+
+
+if __name__ == "__main__":
+    main()
