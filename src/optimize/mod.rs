@@ -511,6 +511,26 @@ fn mean_face_area(mesh: &Mesh) -> f64 {
     }
 }
 
+/// Relaxes on `surface` the vertices an edit of `before` moved or made (and their rings),
+/// the constraints' locked vertices held where they are.
+fn relax_edited(mesh: &mut Mesh, before: &Mesh, surface: &Surface, constraints: &Constraints) {
+    let mut fixed = alloc::vec![false; mesh.map.vertex_slots()];
+    for v in constraints.locked_vertices() {
+        if let Some(x) = fixed.get_mut(v.index()) {
+            *x = true;
+        }
+    }
+    let seeds = crate::geometry::edited_vertices(before, mesh);
+    crate::geometry::relax_footprint_fixed(
+        mesh,
+        surface,
+        &seeds,
+        batch::RELAX,
+        &fixed,
+        &mut Vec::new(),
+    );
+}
+
 /// Runs batches of Q-zips on `mesh` until a batch improves nothing
 /// ([`OptimizeOptions::patience`] times in a row) or [`OptimizeOptions::max_batches`] ran,
 /// calling `progress` after each batch. The score never rises from one batch to the next;
@@ -520,7 +540,8 @@ fn mean_face_area(mesh: &Mesh) -> f64 {
 /// **Quad-dominant input** (triangles and quads, at least one quad): first pairs of
 /// triangles crawl towards each other and merge ([`TriangleStage`], Tarini et al. 2010,
 /// Sec. 6.1), closest pair first; a merge is kept only if it does not raise the interior
-/// singularities plus boundary defects. The preprocessing runs only if the result is pure
+/// singularities plus boundary defects; the crawls' moved and new vertices are then relaxed
+/// on the input surface. The preprocessing runs only if the result is pure
 /// quad; the batches' Q-zips wind around the triangles left
 /// ([`crate::qzip::avoid_triangles`]), which they never change.
 ///
@@ -542,7 +563,13 @@ pub fn optimize(
     let input = SingularityCounts::of(mesh);
     let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
+    let with_triangles = mesh.map.faces().any(|f| mesh.map.degree(f) == 3);
+    let before = with_triangles.then(|| mesh.clone());
     let triangles = quad_dominant::pair_triangles(mesh, &constraints);
+    if let (Some(before), true) = (&before, triangles.merged > 0) {
+        // The crawls' moved and new vertices go onto the surface, as a Q-zip's scar does.
+        relax_edited(mesh, before, &surface, &constraints);
+    }
     let mut preprocessed = false;
     // Nothing can lower the total defect: leave the mesh as it is (no v6 splits either).
     let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
@@ -555,21 +582,7 @@ pub fn optimize(
                 let _ = p.undo(mesh);
             } else {
                 // The splits' new vertices go onto the surface, as a Q-zip's scar does.
-                let mut fixed = alloc::vec![false; mesh.map.vertex_slots()];
-                for v in constraints.locked_vertices() {
-                    if let Some(x) = fixed.get_mut(v.index()) {
-                        *x = true;
-                    }
-                }
-                let seeds = crate::geometry::edited_vertices(&before, mesh);
-                crate::geometry::relax_footprint_fixed(
-                    mesh,
-                    &surface,
-                    &seeds,
-                    batch::RELAX,
-                    &fixed,
-                    &mut Vec::new(),
-                );
+                relax_edited(mesh, &before, &surface, &constraints);
             }
         }
     }
