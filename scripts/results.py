@@ -8,7 +8,8 @@ argument, read back from the reports (counts, quality against the input surface,
     python3 scripts/results.py --no-fold-guard        # any optimize options after the script
     python3 scripts/results.py --bin PATH -- FILE...  # another binary, other meshes
 
-A mesh `optimize` refuses (a face of five or more corners) gets a row saying why. The last
+A mesh `optimize` refuses (a face of five or more corners) gets a row saying why; a mesh
+of the kind an option does not apply to (`--no-fold-guard` on triangles) is left out. The last
 column checks the bounds a user holds the output to (docs/results.md, "The bounds"): for
 quads no more folded quads or negative scaled Jacobians than the input, the scaled
 Jacobian's 1st percentile at least min(input's, 0.3), every vertex within 1 % of the
@@ -116,10 +117,11 @@ def tri_bounds(r):
 def tri_row(name, r):
     qi, qo = r["quality"]["input"], r["quality"]["output"]
     d = qo["distance"] or {}
-    cut = 1 - r["final"]["irregular"] / max(r["input"]["irregular"], 1)
+    n = r["input"]["irregular"]
+    cut = f" ({100 * (n - r['final']['irregular']) / n:.0f} % cut)" if n else ""
     faces = f"{r['input']['faces']} -> {r['final']['faces']}"
     return (
-        f"| {name} | {r['input']['irregular']} -> {r['final']['irregular']} ({100 * cut:.0f} % cut) "
+        f"| {name} | {n} -> {r['final']['irregular']}{cut} "
         f"| {faces} | {qi['thin_triangles']} -> {qo['thin_triangles']} "
         f"| {qi['flipped_triangles']} -> {qo['flipped_triangles']} "
         f"| {number(qi['min_angle_degrees'], 1)} -> {number(qo['min_angle_degrees'], 1)} "
@@ -129,7 +131,9 @@ def tri_row(name, r):
 
 def topology(binary, f):
     """(Euler characteristic, boundary loops) from `zipmesh stats --json`."""
-    run = subprocess.run([str(binary), "stats", str(f), "--json"], capture_output=True, text=True)
+    run = subprocess.run(
+        [str(binary), "stats", str(f), "--json"], capture_output=True, text=True, cwd=ROOT
+    )
     s = json.loads(run.stdout) if run.returncode == 0 else {}
     return s.get("euler_characteristic", 0), s.get("boundary_loops", 1)
 
@@ -142,9 +146,9 @@ def main():
     files = []
     if "--" in args:
         i = args.index("--")
-        args, files = args[:i], [Path(f) for f in args[i + 1 :]]
+        args, files = args[:i], [Path(f).resolve() for f in args[i + 1 :]]
     if not files:
-        files = sorted((ROOT / "tests/data").glob("[pqt]*/*.obj"))
+        files = sorted(Path("tests/data").glob("[pqt]*/*.obj"), key=str)
     quads, tris = [], []
     with tempfile.TemporaryDirectory() as tmp:
         for f in files:
@@ -153,9 +157,13 @@ def main():
                 [str(binary), "optimize", str(f), "-o", f"{tmp}/out.obj", "--json", *args],
                 capture_output=True,
                 text=True,
+                cwd=ROOT,
             )
             if run.returncode != 0:
                 why = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else "?"
+                if "applies to" in why:
+                    continue  # an option for the other kind of mesh
+                why = why.split(": ", 2)[-1]  # without "zipmesh: FILE: "
                 quads.append(f"| {name} | refused: {why} |||||||||")
                 continue
             r = json.loads(run.stdout)
