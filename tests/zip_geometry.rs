@@ -261,3 +261,47 @@ fn measure_cause() {
         );
     }
 }
+
+/// How many faces of `mesh` point against their edge-neighbours.
+fn against_count(mesh: &Mesh) -> usize {
+    let faces: Vec<_> = mesh.map.faces().collect();
+    faces
+        .into_iter()
+        .filter(|&f| zipmesh::quality::against_neighbours(mesh, f))
+        .collect::<Vec<_>>()
+        .len()
+}
+
+/// The relaxation's smoothing never turns a face against its edge-neighbours: on random
+/// triangle meshes whose positions are jittered (some faces already turned), relaxing every
+/// vertex on the mesh's own surface (so the projection moves nothing) leaves no more such
+/// faces than there were, while it still moves vertices.
+#[test]
+fn relaxation_turns_no_face_against_its_neighbours() {
+    let (mut moved, mut turned_before) = (0, 0);
+    for seed in 0..12u64 {
+        let mut mesh = zipmesh::gen::random_triangle(160, (seed % 3) as usize, 0, seed);
+        let mut rng = zipmesh::rng::Rng::new(seed);
+        let scale = zipmesh::tri_edit::mean_edge_length(&mesh) * 0.45;
+        for p in &mut mesh.positions {
+            let mut unit = || rng.below(1 << 20) as f64 / f64::from(1u32 << 20) - 0.5;
+            let j = DVec3::new(unit(), unit(), unit());
+            *p += j * scale;
+        }
+        let before = against_count(&mesh);
+        turned_before += before;
+        let surface = Surface::new(&mesh);
+        let all: Vec<_> = mesh.map.vertices().collect();
+        let r = relax_footprint(&mut mesh, &surface, &all, RelaxOptions::default());
+        moved += r.moves;
+        assert!(
+            against_count(&mesh) <= before,
+            "seed {seed}: {before} -> {}",
+            against_count(&mesh)
+        );
+    }
+    assert!(
+        moved > 0 && turned_before > 0,
+        "{moved} moves, {turned_before} turned"
+    );
+}

@@ -245,3 +245,43 @@ pub fn corners(mesh: &Mesh, f: Face) -> Vec<DVec3> {
         .map(|d| at(mesh.map.origin(d)))
         .collect()
 }
+
+/// The sum of the unit normals (given by `normal`) of the faces across the edges of face
+/// `f`, one term per edge; edges on the boundary and faces without a normal add nothing.
+///
+/// ```
+/// use glam::DVec3;
+/// use zipmesh::{gen, quality::{corners, neighbour_normals, normal}, Face};
+/// let m = gen::grid(3, 3); // the middle square has four neighbours, all facing up
+/// let middle = Face::new(4);
+/// let sum = neighbour_normals(&m, middle, |g| normal(&corners(&m, g)));
+/// assert!((sum - DVec3::Z * 4.0).length() < 1e-12);
+/// ```
+pub fn neighbour_normals(mesh: &Mesh, f: Face, normal: impl Fn(Face) -> Option<DVec3>) -> DVec3 {
+    let map = &mesh.map;
+    if !map.is_live_face(f) {
+        return DVec3::ZERO;
+    }
+    map.face_darts(f)
+        .filter_map(|d| map.face(d.twin()))
+        .filter(|&g| g != f)
+        .filter_map(normal)
+        .sum()
+}
+
+/// Whether face `f` points against its edge-neighbours: its unit normal's dot with the sum
+/// of theirs is negative (a triangle's `flipped`, a quad's neighbour fold, in
+/// [`crate::quality::FaceQuality`]); false for a face without a normal or neighbours.
+///
+/// ```
+/// use zipmesh::{gen, quality::against_neighbours, Face};
+/// let mut m = gen::grid(2, 1); // two unit squares side by side, vertices row by row
+/// assert!(!against_neighbours(&m, Face::new(0)));
+/// m.positions[2].x = 0.5; // fold the second square back over the first
+/// m.positions[5].x = 0.5;
+/// assert!(against_neighbours(&m, Face::new(0)) && against_neighbours(&m, Face::new(1)));
+/// ```
+pub fn against_neighbours(mesh: &Mesh, f: Face) -> bool {
+    let n = |g: Face| normal(&corners(mesh, g));
+    n(f).is_some_and(|x| x.dot(neighbour_normals(mesh, f, n)) < 0.0)
+}

@@ -10,18 +10,20 @@
 //! neighbours' mean, and keeps the move only where its faces get no worse ("smart"
 //! Laplacian: the fan's worst corner, read in the plane of the fan's normal before the
 //! move, does not fall below its value before or below 0, its triangles' worst corner not
-//! below its value before or below 20 degrees, and no corner or diagonal fold appears).
-//! Boundary vertices keep their place after the projection. The triangle optimizer relaxes
+//! below its value before or below 20 degrees, no corner or diagonal fold appears, and no
+//! more faces round it or across their edges point against their edge-neighbours).
+//! Boundary vertices keep their place after the projection; the projection itself is not
+//! judged (a vertex off the surface is what the bounds forbid). The triangle optimizer relaxes
 //! each batch the same way.
 
 use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use super::element::{corner_fold, corners, diagonal_fold, normal};
+use super::element::{against_neighbours, corner_fold, corners, diagonal_fold, normal};
 use super::region::{relax_region, touched_vertices};
 use crate::geometry::Surface;
-use crate::{Mesh, Vert};
+use crate::{Face, Mesh, Vert};
 
 /// How far and how long [`relax_footprint`] works.
 ///
@@ -96,8 +98,9 @@ impl Fan {
 /// tangentially for `options.sweeps` sweeps, never into a worse fan: a move is kept only if
 /// the worst corner of the vertex's fan (read in the plane of the fan's normal before the
 /// move) does not fall below its value before or below 0, the worst corner of its
-/// triangles not below its value before or below 20 degrees, and no corner or diagonal
-/// fold appears.
+/// triangles not below its value before or below 20 degrees, no corner or diagonal fold
+/// appears, and no more of the faces round it and across their edges point against their
+/// edge-neighbours ([`crate::quality::against_neighbours`]).
 /// Deterministic: vertices go in slot order, and only their positions change.
 ///
 /// ```
@@ -193,6 +196,7 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
         return;
     };
     let before = fan(mesh, v, n);
+    let against = against_near(mesh, v);
     let target = sum / k as f64;
     for step in [1.0, 0.5, 0.25] {
         let p = surface.closest(here + (target - here) * step);
@@ -201,13 +205,30 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
             return;
         }
         mesh.positions[v.index()] = p;
-        if fan(mesh, v, n).accepts(&before) {
+        if fan(mesh, v, n).accepts(&before) && against_near(mesh, v) <= against {
             r.moves += 1;
             return;
         }
         r.refused += 1;
     }
     mesh.positions[v.index()] = here;
+}
+
+/// How many of the faces round `v` and across their edges (the faces whose normal, or whose
+/// neighbours' normals, a move of `v` changes) point against their edge-neighbours.
+fn against_near(mesh: &Mesh, v: Vert) -> usize {
+    let m = &mesh.map;
+    let mut faces: Vec<Face> = m
+        .vertex_darts(v)
+        .filter_map(|d| m.face(d))
+        .flat_map(|f| m.face_darts(f).filter_map(|x| m.face(x.twin())).chain([f]))
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    faces
+        .into_iter()
+        .filter(|&f| against_neighbours(mesh, f))
+        .count()
 }
 
 /// The corners of each face round `v` (boundary darts have none).

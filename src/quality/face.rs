@@ -5,7 +5,7 @@ use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use crate::geometry::element::{self, corners, Angles};
+use crate::geometry::element::{self, corners, neighbour_normals, Angles};
 use crate::map::Face;
 use crate::Mesh;
 
@@ -123,29 +123,6 @@ impl FaceQuality {
         }
         q
     }
-}
-
-/// The sum of the unit normals (given by `normal`) of the faces across the edges of face
-/// `f`, one term per edge; edges on the boundary and faces without a normal add nothing.
-///
-/// ```
-/// use glam::DVec3;
-/// use zipmesh::{gen, quality::{corners, neighbour_normals, normal}, Face};
-/// let m = gen::grid(3, 3); // the middle square has four neighbours, all facing up
-/// let middle = Face::new(4);
-/// let sum = neighbour_normals(&m, middle, |g| normal(&corners(&m, g)));
-/// assert!((sum - DVec3::Z * 4.0).length() < 1e-12);
-/// ```
-pub fn neighbour_normals(mesh: &Mesh, f: Face, normal: impl Fn(Face) -> Option<DVec3>) -> DVec3 {
-    let map = &mesh.map;
-    if !map.is_live_face(f) {
-        return DVec3::ZERO;
-    }
-    map.face_darts(f)
-        .filter_map(|d| map.face(d.twin()))
-        .filter(|&g| g != f)
-        .filter_map(normal)
-        .sum()
 }
 
 /// Every live face of `mesh` with its measures, in the order of [`crate::Map::faces`]. Each

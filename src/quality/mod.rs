@@ -37,10 +37,10 @@ mod reference;
 mod summary;
 
 pub use crate::geometry::element::{
-    angles, corner_fold, corner_normal, corners, diagonal_fold, edge_ratio, normal, quad_normal,
-    scaled_jacobian, Angles,
+    against_neighbours, angles, corner_fold, corner_normal, corners, diagonal_fold, edge_ratio,
+    neighbour_normals, normal, quad_normal, scaled_jacobian, Angles,
 };
-pub use face::{measure_faces, neighbour_normals, FaceQuality, Folds};
+pub use face::{measure_faces, FaceQuality, Folds};
 pub use reference::{Distances, Reference};
 pub use summary::{FoldCounts, Percentiles, Summary, THIN_TRIANGLE_DEGREES};
 

@@ -3,7 +3,9 @@
 
 use glam::DVec3;
 
-use crate::{Dart, Map, Mesh, Vert};
+use crate::quality::FaceQuality;
+use crate::{Dart, Face, Map, Mesh, Vert};
+use alloc::vec::Vec;
 
 /// The face counts an edit may leave.
 pub(super) struct Budget {
@@ -25,26 +27,70 @@ pub(super) fn face_normal(mesh: &Mesh, d: Dart) -> Option<DVec3> {
     (b - a).cross(c - a).try_normalize()
 }
 
-/// The summed unit normals of the triangles round `verts` (a reference direction for
-/// [`folds`]).
-pub(super) fn region_normal(mesh: &Mesh, verts: &[Vert]) -> DVec3 {
-    verts
+/// What an edit round some vertices is held to, read before it: the summed unit normals of
+/// the triangles round them (the direction no triangle may turn away from) and how many
+/// triangles near them are flipped.
+pub(super) struct Facing {
+    reference: DVec3,
+    flipped: usize,
+}
+
+/// [`Facing`] round `verts`, before an edit.
+pub(super) fn facing(mesh: &Mesh, verts: &[Vert]) -> Facing {
+    let reference = verts
         .iter()
         .filter(|&&v| mesh.map.is_live_vertex(v))
         .flat_map(|&v| fan(&mesh.map, v))
         .filter_map(|x| face_normal(mesh, x))
         .sum::<DVec3>()
-        .normalize_or_zero()
+        .normalize_or_zero();
+    Facing {
+        reference,
+        flipped: flipped_near(mesh, verts),
+    }
 }
 
-/// Whether a triangle round `verts` is degenerate or faces away from `reference` (more
-/// than about 70 degrees off): the edit folded the surface there.
-pub(super) fn folds(mesh: &Mesh, verts: &[Vert], reference: DVec3) -> bool {
-    verts
+/// Whether the edit folded the surface round `verts`: a triangle there is degenerate or
+/// faces away from the reference (more than about 70 degrees off), or more triangles near
+/// them are flipped than before (each against its edge-neighbours, as
+/// [`crate::quality::FaceQuality::flipped`] reads it).
+pub(super) fn folds(mesh: &Mesh, verts: &[Vert], before: &Facing) -> bool {
+    let turned = verts
         .iter()
         .filter(|&&v| mesh.map.is_live_vertex(v))
         .flat_map(|&v| fan(&mesh.map, v))
-        .any(|x| face_normal(mesh, x).is_none_or(|n| n.dot(reference) < 0.3))
+        .any(|x| face_normal(mesh, x).is_none_or(|n| n.dot(before.reference) < 0.3));
+    turned || before.more_flipped(mesh, verts)
+}
+
+impl Facing {
+    /// Whether more triangles near `verts` are flipped than were near the vertices this was
+    /// read round (the same vertices, or what an edit made of them).
+    pub(super) fn more_flipped(&self, mesh: &Mesh, verts: &[Vert]) -> bool {
+        flipped_near(mesh, verts) > self.flipped
+    }
+}
+
+/// The flipped triangles among those round `verts` and their edge-neighbours (whose
+/// neighbours changed with them).
+fn flipped_near(mesh: &Mesh, verts: &[Vert]) -> usize {
+    let m = &mesh.map;
+    let mut faces: Vec<Face> = verts
+        .iter()
+        .filter(|&&v| m.is_live_vertex(v))
+        .flat_map(|&v| fan(m, v))
+        .flat_map(|d| {
+            let tri = [d, m.next(d), m.next(m.next(d))];
+            core::iter::once(m.face(d)).chain(tri.map(|x| m.face(x.twin())))
+        })
+        .flatten()
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    faces
+        .into_iter()
+        .filter(|&f| FaceQuality::of(mesh, f).is_some_and(|q| q.flipped))
+        .count()
 }
 
 /// The darts leaving `v` that have a face (one per triangle round `v`).

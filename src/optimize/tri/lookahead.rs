@@ -15,7 +15,7 @@
 use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
 
-use super::guard::{folds, region_normal, Budget};
+use super::guard::{facing, folds, Budget};
 use crate::ops::tri::{TriOp, TriRecord};
 use crate::ops::Effect;
 use crate::{Dart, Map, Mesh, Vert};
@@ -302,7 +302,7 @@ fn keep_best_near(mesh: &mut Mesh, v: Vert, budget: &Budget) -> Option<Vec<Vert>
         zone = ring(&mesh.map, &zone);
     }
     let before = cost(&mesh.map, &zone);
-    let reference = region_normal(mesh, &region);
+    let reference = facing(mesh, &region);
     let first = op.apply(mesh).ok()?;
     let second = match then.map(|op2| op2.apply(mesh)) {
         Some(Ok(e)) => Some(e),
@@ -326,7 +326,7 @@ fn keep_best_near(mesh: &mut Mesh, v: Vert, budget: &Budget) -> Option<Vec<Vert>
     zone.dedup();
     let after = ring(&mesh.map, &[region, created].concat());
     let fewer = cost(&mesh.map, &zone).irregular < before.irregular;
-    if !fewer || folds(mesh, &after, reference) || !budget.holds(&mesh.map) {
+    if !fewer || folds(mesh, &after, &reference) || !budget.holds(&mesh.map) {
         // Both were made on this mesh just now, last undone first: not refused.
         if let Some(e) = &second {
             let _ = e.undo(mesh);

@@ -38,7 +38,7 @@ use crate::tri_edit::{
     can_cancel_triple, cancel_triple, move_far_pair, move_pair, Direction, FarStart, Moved, Start,
 };
 use crate::{Dart, Map, Mesh, Vert};
-use guard::{face_normal, fan, folds, region_normal, Budget};
+use guard::{face_normal, facing, fan, folds, Budget};
 use lookahead::Lookahead;
 
 /// How a run goes. Start from [`TriOptimizeOptions::default`].
@@ -426,22 +426,25 @@ fn flip_pass(mesh: &mut Mesh, touched: &mut Vec<Vert>) -> usize {
             (Some(x), Some(y)) => (x + y).normalize_or_zero(),
             _ => continue,
         };
+        let corners = |m: &Map| {
+            [
+                m.origin(d),
+                m.dest(d),
+                m.dest(m.next(d)),
+                m.dest(m.next(d.twin())),
+            ]
+        };
+        let before = facing(mesh, &corners(map));
         let Ok(edit) = TriOp::Flip(d).apply(mesh) else {
             continue;
         };
-        if turned_over(mesh, d, old) {
+        if turned_over(mesh, d, old) || before.more_flipped(mesh, &corners(&mesh.map)) {
             // The record was made on this mesh just now: the undo cannot be stale.
             let _ = edit.undo(mesh);
             continue;
         }
-        let m = &mesh.map;
-        let four = [
-            m.origin(d),
-            m.dest(d),
-            m.dest(m.next(d)),
-            m.dest(m.next(d.twin())),
-        ];
-        vals.update(m, &four);
+        let four = corners(&mesh.map);
+        vals.update(&mesh.map, &four);
         touched.extend(four);
         kept += 1;
     }
@@ -485,6 +488,7 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
                 .filter_map(|x| face_normal(mesh, x).map(|n| (x, n))),
         );
         let k = mesh.map.dest(d); // the collapse keeps the edge's end
+        let before = facing(mesh, &[map.origin(d), k]);
         let Ok(edit) = TriOp::Collapse(d).apply(mesh) else {
             continue;
         };
@@ -493,7 +497,7 @@ fn collapse_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> u
                 && mesh.map.face(x).is_some()
                 && face_normal(mesh, x).is_none_or(|m| m.dot(n) < 0.5)
         });
-        if turned || !budget.holds(&mesh.map) {
+        if turned || before.more_flipped(mesh, &[k]) || !budget.holds(&mesh.map) {
             let _ = edit.undo(mesh);
             continue;
         }
@@ -523,7 +527,7 @@ fn cancel_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usi
             continue;
         };
         let before: Cost = three.iter().map(|&x| vertex_cost(map, x)).sum();
-        let reference = region_normal(mesh, &three);
+        let reference = facing(mesh, &three);
         let Ok(edit) = cancel_triple(mesh, &three) else {
             continue;
         };
@@ -533,7 +537,7 @@ fn cancel_pass(mesh: &mut Mesh, budget: &Budget, touched: &mut Vec<Vert>) -> usi
             .filter(|&&x| map.is_live_vertex(x))
             .map(|&x| vertex_cost(map, x))
             .sum();
-        if !before.improved_by(after) || folds(mesh, &three, reference) || !budget.holds(&mesh.map)
+        if !before.improved_by(after) || folds(mesh, &three, &reference) || !budget.holds(&mesh.map)
         {
             let _ = edit.undo(mesh);
             continue;
@@ -644,11 +648,11 @@ fn move_pass(mesh: &mut Mesh, radius: usize, budget: &Budget, touched: &mut Vec<
                 best = Some((at, dir));
             }
         }
-        let reference = region_normal(mesh, &[p, q]);
+        let reference = facing(mesh, &[p, q]);
         if let Some((_, dir)) = best {
             if let Ok(e) = move_pair(mesh, p, q, dir) {
                 let four = [p, q, e.record().p(), e.record().q()];
-                if folds(mesh, &four, reference) || !budget.holds(&mesh.map) {
+                if folds(mesh, &four, &reference) || !budget.holds(&mesh.map) {
                     let _ = e.undo(mesh);
                     continue;
                 }
@@ -819,13 +823,13 @@ fn far_move_pass(
         let Some((d, start, m)) = best_far_move(mesh, p, q, target, radius) else {
             continue;
         };
-        let reference = region_normal(mesh, &[p, q]);
+        let reference = facing(mesh, &[p, q]);
         let Ok(e) = move_far_pair(mesh, d, start, m, q, FAR_STEPS) else {
             continue;
         };
         let (np, nq) = e.record().pair();
         let four = [p, q, np, nq];
-        if folds(mesh, &four, reference) || !budget.holds(&mesh.map) {
+        if folds(mesh, &four, &reference) || !budget.holds(&mesh.map) {
             let _ = e.undo(mesh);
             continue;
         }
