@@ -7,7 +7,8 @@
 //! match a recount, batch and chain stats whose face changes are the batch's, a chain stage
 //! only after a batch that executed nothing, and the constraints holding; with the fold
 //! guard (on for some inputs, with the preprocessing off), no more folded quads than the
-//! input had; a mesh whose defects all have one sign comes back unchanged, with no batch.
+//! input had; a mesh whose defects all have one sign comes back unchanged, with no batch;
+//! every vertex within 1 % of the input's bounding-box diagonal from its surface.
 //!
 //! The meshes are small on purpose: on the random meshes of hundreds of faces used before,
 //! one input took tens of milliseconds (12 exec/s); see `docs/fuzzing.md`.
@@ -19,6 +20,7 @@ use zipmesh::ops::quad;
 use zipmesh::optimize::{
     at_defect_minimum, folded_quads, optimize, Constraints, OptimizeOptions, SingularityCounts,
 };
+use zipmesh::quality::{Reference, Summary};
 use zipmesh::{gen, Dart, Face, Mesh};
 
 /// The mesh bytes 0 to 4 ask for: a small cube, torus or grid with up to two vertex splits
@@ -91,6 +93,7 @@ fuzz_target!(|data: &[u8]| {
         options.preprocess = false;
     }
     let folds = folded_quads(&mesh);
+    let input = mesh.clone();
     // A mesh whose defects all have one sign is returned as it was, with no batch.
     let minimal = at_defect_minimum(&mesh).then(|| mesh.clone());
     let out = optimize(&mut mesh, c, options, |_| {}).expect("a quad mesh is accepted");
@@ -143,4 +146,12 @@ fuzz_target!(|data: &[u8]| {
     }
     assert_eq!(out.final_counts, SingularityCounts::of(&mesh));
     assert!(check.holds(&mesh), "a constraint broke");
+    // Every vertex stays within 1 % of the input's diagonal from its surface.
+    let far = Summary::against(&mesh, &Reference::new(&input))
+        .distance
+        .map_or(0.0, |d| d.max);
+    assert!(
+        far <= 0.01,
+        "a vertex {far} of the diagonal off the input surface"
+    );
 });
