@@ -196,7 +196,8 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
         return;
     };
     let before = fan(mesh, v, n);
-    let against = against_near(mesh, v);
+    // Read before the first move the fan accepts (most are refused or too small to make).
+    let mut against = None;
     let target = sum / k as f64;
     for step in [1.0, 0.5, 0.25] {
         let p = surface.closest(here + (target - here) * step);
@@ -204,14 +205,26 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
         if p.distance(here) <= 1e-6 * len / k as f64 {
             return;
         }
-        mesh.positions[v.index()] = p;
-        if fan(mesh, v, n).accepts(&before) && against_near(mesh, v) <= against {
-            r.moves += 1;
-            return;
+        if fan_at(mesh, v, p, n).accepts(&before) {
+            let was = *against.get_or_insert_with(|| against_near(mesh, v));
+            mesh.positions[v.index()] = p;
+            if against_near(mesh, v) <= was {
+                r.moves += 1;
+                return;
+            }
+            mesh.positions[v.index()] = here;
         }
         r.refused += 1;
     }
     mesh.positions[v.index()] = here;
+}
+
+/// The [`Fan`] of `v` with `v` moved to `p` (and back to where it was).
+fn fan_at(mesh: &mut Mesh, v: Vert, p: DVec3, n: DVec3) -> Fan {
+    let here = core::mem::replace(&mut mesh.positions[v.index()], p);
+    let f = fan(mesh, v, n);
+    mesh.positions[v.index()] = here;
+    f
 }
 
 /// How many of the faces round `v` and across their edges (the faces whose normal, or whose
