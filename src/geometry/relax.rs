@@ -11,7 +11,7 @@
 //! Laplacian: the fan's worst corner, read in the plane of the fan's normal before the
 //! move, does not fall below its value before or below 0, its triangles' worst corner not
 //! below its value before or below 20 degrees, no corner or diagonal fold appears, and no
-//! more faces round it or across their edges point against their edge-neighbours).
+//! more triangles round it or across their edges point against their edge-neighbours).
 //! Boundary vertices keep their place after the projection; the projection itself is not
 //! judged (a vertex off the surface is what the bounds forbid). The triangle optimizer relaxes
 //! each batch the same way.
@@ -20,10 +20,10 @@ use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use super::element::{against_neighbours, corner_fold, corners, diagonal_fold, normal};
+use super::element::{corner_fold, corners, diagonal_fold, normal};
 use super::region::{relax_region, touched_vertices};
 use crate::geometry::Surface;
-use crate::{Face, Mesh, Vert};
+use crate::{Face, Map, Mesh, Vert};
 
 /// How far and how long [`relax_footprint`] works.
 ///
@@ -99,8 +99,8 @@ impl Fan {
 /// the worst corner of the vertex's fan (read in the plane of the fan's normal before the
 /// move) does not fall below its value before or below 0, the worst corner of its
 /// triangles not below its value before or below 20 degrees, no corner or diagonal fold
-/// appears, and no more of the faces round it and across their edges point against their
-/// edge-neighbours ([`crate::quality::against_neighbours`]).
+/// appears, and where there are triangles no more of the faces round it and across their
+/// edges point against their edge-neighbours ([`crate::quality::against_neighbours`]).
 /// Deterministic: vertices go in slot order, and only their positions change.
 ///
 /// ```
@@ -196,7 +196,9 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
         return;
     };
     let before = fan(mesh, v, n);
-    // Read before the first move the fan accepts (most are refused or too small to make).
+    // Triangles turned against their neighbours are what the fan's tests miss (quads have
+    // the fold tests, and Q-zips' fold guard); read before the first move the fan accepts.
+    let triangles = triangles_near(&mesh.map, v);
     let mut against = None;
     let target = sum / k as f64;
     for step in [1.0, 0.5, 0.25] {
@@ -206,6 +208,11 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
             return;
         }
         if fan_at(mesh, v, p, n).accepts(&before) {
+            if !triangles {
+                mesh.positions[v.index()] = p;
+                r.moves += 1;
+                return;
+            }
             let was = *against.get_or_insert_with(|| against_near(mesh, v));
             mesh.positions[v.index()] = p;
             if against_near(mesh, v) <= was {
@@ -219,6 +226,16 @@ fn relax_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, r: &mut Relaxation)
     mesh.positions[v.index()] = here;
 }
 
+/// Whether a face round `v` or across the edges of one is a triangle.
+fn triangles_near(m: &Map, v: Vert) -> bool {
+    m.vertex_darts(v).filter_map(|d| m.face(d)).any(|f| {
+        m.degree(f) == 3
+            || m.face_darts(f)
+                .filter_map(|x| m.face(x.twin()))
+                .any(|g| m.degree(g) == 3)
+    })
+}
+
 /// The [`Fan`] of `v` with `v` moved to `p` (and back to where it was).
 fn fan_at(mesh: &mut Mesh, v: Vert, p: DVec3, n: DVec3) -> Fan {
     let here = core::mem::replace(&mut mesh.positions[v.index()], p);
@@ -228,20 +245,61 @@ fn fan_at(mesh: &mut Mesh, v: Vert, p: DVec3, n: DVec3) -> Fan {
 }
 
 /// How many of the faces round `v` and across their edges (the faces whose normal, or whose
-/// neighbours' normals, a move of `v` changes) point against their edge-neighbours.
+/// neighbours' normals, a move of `v` changes) point against their edge-neighbours, as
+/// [`against_neighbours`] reads it. Each face's normal is computed once, without
+/// allocating: this runs for every move the relaxation keeps.
 fn against_near(mesh: &Mesh, v: Vert) -> usize {
     let m = &mesh.map;
-    let mut faces: Vec<Face> = m
+    let mut near: Vec<Face> = m
         .vertex_darts(v)
         .filter_map(|d| m.face(d))
         .flat_map(|f| m.face_darts(f).filter_map(|x| m.face(x.twin())).chain([f]))
         .collect();
-    faces.sort_unstable();
-    faces.dedup();
-    faces
-        .into_iter()
-        .filter(|&f| against_neighbours(mesh, f))
-        .count()
+    near.sort_unstable();
+    near.dedup();
+    let mut normals: Vec<(Face, Option<DVec3>)> = Vec::with_capacity(4 * near.len());
+    let mut count = 0;
+    for &f in &near {
+        let Some(n) = cached_normal(mesh, f, &mut normals) else {
+            continue;
+        };
+        let mut sum = DVec3::ZERO;
+        for g in m.face_darts(f).filter_map(|d| m.face(d.twin())) {
+            if g != f {
+                sum += cached_normal(mesh, g, &mut normals).unwrap_or(DVec3::ZERO);
+            }
+        }
+        count += usize::from(n.dot(sum) < 0.0);
+    }
+    count
+}
+
+/// The unit normal of face `f` ([`normal`] of its corners), looked up in or added to `cache`.
+fn cached_normal(mesh: &Mesh, f: Face, cache: &mut Vec<(Face, Option<DVec3>)>) -> Option<DVec3> {
+    if let Some(&(_, n)) = cache.iter().find(|(g, _)| *g == f) {
+        return n;
+    }
+    let mut p = [DVec3::ZERO; 8];
+    let mut k = 0;
+    for d in mesh.map.face_darts(f) {
+        if k == p.len() {
+            k = usize::MAX; // a long polygon: read it the allocating way
+            break;
+        }
+        p[k] = mesh
+            .positions
+            .get(mesh.map.origin(d).index())
+            .copied()
+            .unwrap_or(DVec3::ZERO);
+        k += 1;
+    }
+    let n = if k == usize::MAX {
+        normal(&corners(mesh, f))
+    } else {
+        normal(&p[..k])
+    };
+    cache.push((f, n));
+    n
 }
 
 /// The corners of each face round `v` (boundary darts have none).
