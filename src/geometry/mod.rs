@@ -26,6 +26,6 @@ mod relax;
 mod surface;
 
 pub use region::{relax_region, touched_vertices};
-pub(crate) use relax::relax_footprint_fixed;
 pub use relax::{edited_vertices, relax_footprint, RelaxOptions, Relaxation};
+pub(crate) use relax::{relax_footprint_fixed, widen_thin_triangles};
 pub use surface::Surface;

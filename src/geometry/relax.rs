@@ -16,11 +16,12 @@
 //! judged (a vertex off the surface is what the bounds forbid). The triangle optimizer relaxes
 //! each batch the same way.
 
+use alloc::vec;
 use alloc::vec::Vec;
 
 use glam::DVec3;
 
-use super::element::{corner_fold, corners, diagonal_fold, normal};
+use super::element::{angles, corner_fold, corners, diagonal_fold, normal};
 use super::region::{relax_region, touched_vertices};
 use crate::geometry::Surface;
 use crate::{Face, Map, Mesh, Vert};
@@ -369,5 +370,127 @@ pub fn edited_vertices(before: &Mesh, after: &Mesh) -> Vec<Vert> {
     out.extend(after.map.vertices().filter(|&v| moved(v)));
     out.sort_unstable();
     out.dedup();
+    out
+}
+
+/// Widens the thin triangles of `mesh` on `surface`: each interior vertex of a triangle
+/// with a corner under `degrees`, and each of its neighbours, moves where its fan's worst
+/// triangle corner is widest, among the points of the surface closest to its neighbours'
+/// mean and to the apex of an equilateral triangle on the far side of each of its
+/// triangles (full, half and quarter steps), for up to `sweeps` sweeps. A move is kept only
+/// if the fan's worst triangle corner rises, no more of its triangles are under `degrees`,
+/// no face of the fan inverts, and no more faces near it point against their
+/// edge-neighbours: the smallest angle of the mesh never falls, and no triangle turns.
+/// The relaxation's Laplacian step ([`relax_footprint`]) leaves thin triangles where a
+/// smoother fan needs a vertex off its neighbours' mean; this moves towards shape instead.
+pub(crate) fn widen_thin_triangles(
+    mesh: &mut Mesh,
+    surface: &Surface,
+    degrees: f64,
+    sweeps: usize,
+) -> Relaxation {
+    let mut seeds = Vec::new();
+    for f in mesh.map.faces() {
+        if mesh.map.degree(f) == 3 && angles(&corners(mesh, f)).min < degrees {
+            seeds.extend(mesh.map.face_darts(f).map(|d| mesh.map.origin(d)));
+        }
+    }
+    let region = relax_region(&mesh.map, &seeds, 1);
+    let mut r = Relaxation {
+        region: region.len(),
+        ..Relaxation::default()
+    };
+    for _ in 0..sweeps {
+        let moved = r.moves;
+        for &v in &region {
+            widen_vertex(mesh, surface, v, degrees, &mut r);
+        }
+        if r.moves == moved {
+            break;
+        }
+    }
+    r
+}
+
+/// One vertex's move of [`widen_thin_triangles`]: the candidate point whose fan has the
+/// widest worst triangle corner, if it beats the fan as it is.
+fn widen_vertex(mesh: &mut Mesh, surface: &Surface, v: Vert, degrees: f64, r: &mut Relaxation) {
+    let here = mesh.positions[v.index()];
+    let Some(n) = fan_normal(mesh, v).filter(|_| here.is_finite()) else {
+        return;
+    };
+    let before = fan(mesh, v, n);
+    let (narrowest, thin) = triangle_angles_round(mesh, v, degrees);
+    let mut best: Option<(DVec3, f64)> = None;
+    for target in widening_targets(mesh, v, n) {
+        for step in [1.0, 0.5, 0.25] {
+            let p = surface.closest(here + (target - here) * step);
+            let after = fan_at(mesh, v, p, n);
+            let sound = p.is_finite()
+                && after.bad <= before.bad
+                && (after.worst > 0.0 || after.worst >= before.worst);
+            if !sound {
+                continue;
+            }
+            mesh.positions[v.index()] = p;
+            let (min, count) = triangle_angles_round(mesh, v, degrees);
+            mesh.positions[v.index()] = here;
+            if count <= thin && min > best.map_or(narrowest, |(_, w)| w) {
+                best = Some((p, min));
+            }
+        }
+    }
+    let Some((p, _)) = best else {
+        return;
+    };
+    let was = against_near(mesh, v);
+    mesh.positions[v.index()] = p;
+    if against_near(mesh, v) <= was {
+        r.moves += 1;
+    } else {
+        mesh.positions[v.index()] = here;
+        r.refused += 1;
+    }
+}
+
+/// Where [`widen_vertex`] looks: `v`'s neighbours' mean, and for each triangle round `v`
+/// the apex of the equilateral triangle on its side opposite `v`, on `v`'s side of it, in
+/// the plane of normal `n`.
+fn widening_targets(mesh: &Mesh, v: Vert, n: DVec3) -> Vec<DVec3> {
+    let m = &mesh.map;
+    let at = |w: Vert| {
+        mesh.positions
+            .get(w.index())
+            .copied()
+            .unwrap_or(DVec3::ZERO)
+    };
+    let here = at(v);
+    let ring: Vec<DVec3> = m.vertex_darts(v).map(|d| at(m.dest(d))).collect();
+    let mut out = vec![ring.iter().sum::<DVec3>() / ring.len().max(1) as f64];
+    for d in m.vertex_darts(v) {
+        if m.face(d).is_none_or(|f| m.degree(f) != 3) {
+            continue;
+        }
+        let (a, b) = (at(m.dest(d)), at(m.dest(m.next(d))));
+        let mid = (a + b) / 2.0;
+        let Some(mut up) = n.cross(b - a).try_normalize() else {
+            continue;
+        };
+        if up.dot(here - mid) < 0.0 {
+            up = -up;
+        }
+        out.push(mid + up * (b - a).length() * (0.75f64).sqrt());
+    }
+    out
+}
+
+/// The smallest corner angle of the triangles round `v` (degrees; 180 without one), and how
+/// many of them have a corner under `degrees`.
+fn triangle_angles_round(mesh: &Mesh, v: Vert, degrees: f64) -> (f64, usize) {
+    let mut out = (180.0f64, 0);
+    for c in faces_of(mesh, v).filter(|c| c.len() == 3) {
+        let min = angles(&c).min;
+        out = (out.0.min(min), out.1 + usize::from(min < degrees));
+    }
     out
 }

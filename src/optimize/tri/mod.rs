@@ -242,13 +242,20 @@ fn vertex_cost(map: &Map, v: Vert) -> Cost {
     }
 }
 
+/// Triangles with a corner under this many degrees get their vertices moved towards shape
+/// after the batches ([`crate::geometry::widen_thin_triangles`]).
+const WIDEN_BELOW_DEGREES: f64 = 15.0;
+
 /// Reduces the interior irregular vertices of a triangle mesh by batches; `progress` sees
 /// each batch. A batch keeps the flips, collapses and triple cancellations (Sec. 7.2) that
 /// lower [`tri_score`] without adding an irregular vertex; when none is left it moves each
 /// adjacent 5-7 pair (Sec. 6.2) towards its nearest other irregular vertex; when none moves
 /// either, it makes the look-ahead's edits ([`TriOptimizeOptions::lookahead`]) that leave
 /// fewer irregular vertices; when there are none, it moves each 5-7 pair 2 or 3 edges apart
-/// (Sec. 7.1.1) towards its nearest other irregular vertex; then it relaxes what it touched. An edit that turns a triangle over or lets the face count drift past
+/// (Sec. 7.1.1) towards its nearest other irregular vertex; then it relaxes what it touched.
+/// After the batches it widens the triangles with a corner under 15 degrees on the input
+/// surface ([`crate::geometry::widen_thin_triangles`]). An edit that turns a triangle over
+/// or lets the face count drift past
 /// [`TriOptimizeOptions::face_drift`] is undone. Every edit keeps the map valid; the mesh's
 /// topology (genus, boundary) and its boundary valences are kept. `docs/optimize.md` gives
 /// the reading and measurements.
@@ -337,6 +344,9 @@ pub fn optimize_triangles(
         if flips + cancellations + lookaheads + pair_moves + far_pair_moves == 0 {
             break;
         }
+    }
+    if let Some(surface) = surface.as_ref() {
+        crate::geometry::widen_thin_triangles(mesh, surface, WIDEN_BELOW_DEGREES, 20);
     }
     Ok(TriOutcome {
         input,
