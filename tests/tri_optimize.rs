@@ -7,7 +7,7 @@ use zipmesh::invariants::Counts;
 use zipmesh::optimize::{
     optimize_triangles, tri_score, TriCounts, TriOptimizeError, TriOptimizeOptions,
 };
-use zipmesh::quality::{Reference, Summary};
+use zipmesh::quality::{Bounds, Reference, Summary};
 use zipmesh::{gen, io, Mesh, Vert};
 
 fn boundary_valences(mesh: &Mesh) -> Vec<(u32, usize)> {
@@ -202,14 +202,8 @@ fn assert_sound_triangles(input: &Mesh, output: &Mesh, p: &std::path::Path) {
         Summary::of(input),
         Summary::against(output, &Reference::new(input)),
     );
-    let name = p.display();
-    assert!(
-        after.flipped_triangles <= before.flipped_triangles,
-        "{name}: {after:?}"
-    );
-    let thin = before.thin_triangles + before.faces / 1000;
-    assert!(after.thin_triangles <= thin, "{name}: {after:?}");
-    assert!(after.distance.unwrap().max <= 0.005, "{name}: {after:?}");
+    let failed = Bounds::default().failures(&before, &after);
+    assert!(failed.is_empty(), "{}: {failed:?}: {after:?}", p.display());
 }
 
 /// With relaxation, a batch's edits are the same and the vertices near them move on the

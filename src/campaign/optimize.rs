@@ -10,6 +10,7 @@ use crate::optimize::{
     optimize, optimize_triangles, tri_score, Constraints, OptimizeOptions, SingularityCounts,
     TriCounts, TriOptimizeOptions,
 };
+use crate::quality::{Bound, Bounds, Reference, Summary};
 use crate::Mesh;
 use std::format;
 
@@ -93,9 +94,31 @@ fn check(case: &Case) -> Outcome {
     if out.final_counts != SingularityCounts::of(&mesh) {
         return Outcome::fail("the reported counts differ from a recount", None);
     }
-    Outcome::Pass {
-        checks: 4 + out.batches.len() as u64,
+    if let Some(why) = unsound_quads(case, &mesh, tris > 0) {
+        return Outcome::fail(why, None);
     }
+    Outcome::Pass {
+        checks: 5 + out.batches.len() as u64,
+    }
+}
+
+/// The geometry bounds of the optimizer's output ([`Bounds`], docs/results.md): all of them
+/// on a pure quad case; on a quad-dominant one (`mixed`) only the distance, the rest noted
+/// unchecked ([`Case::note_unchecked`], one per case): the triangle stage's merges change
+/// the face count of these small meshes by more than 5 %, and its crawls fold quads between
+/// the generator's randomly placed triangles. `None` when what is asked holds.
+fn unsound_quads(case: &Case, output: &Mesh, mixed: bool) -> Option<std::string::String> {
+    let input = &case.mesh;
+    let after = Summary::against(output, &Reference::new(input));
+    let mut failed = Bounds::default().failures(&Summary::of(input), &after);
+    if mixed {
+        failed.retain(|&b| b == Bound::Distance);
+        case.note_unchecked(1);
+    }
+    (!failed.is_empty()).then(|| {
+        let names: std::vec::Vec<&str> = failed.iter().map(|b| b.name()).collect();
+        format!("geometry bounds broken: {} ({after:?})", names.join(", "))
+    })
 }
 
 /// What is wrong with the batch reports, if anything: the score rose; a chain stage ran
@@ -179,7 +202,7 @@ fn check_triangles(case: &Case) -> Outcome {
         max_batches: 3,
         ..TriOptimizeOptions::default()
     };
-    check_optimize_triangles(&case.mesh, &options)
+    check_triangles_noting(&case.mesh, &options, |n| case.note_unchecked(n))
 }
 
 /// The oracle of `optimize-triangles` (and of the `tri_optimize` fuzz target): runs
@@ -194,6 +217,16 @@ fn check_triangles(case: &Case) -> Outcome {
 /// assert!(check_optimize_triangles(&mesh, &TriOptimizeOptions::default()).is_pass());
 /// ```
 pub fn check_optimize_triangles(mesh: &Mesh, options: &TriOptimizeOptions) -> Outcome {
+    check_triangles_noting(mesh, options, |_| {})
+}
+
+/// [`check_optimize_triangles`], with `note` told of a run that breaks a geometry bound the
+/// oracle does not fail on (see [`unsound_triangles`]).
+fn check_triangles_noting(
+    mesh: &Mesh,
+    options: &TriOptimizeOptions,
+    note: impl Fn(u64),
+) -> Outcome {
     let input = mesh;
     let mut mesh = mesh.clone();
     let (before, boundary) = (Counts::of(&mesh.map), boundary_valences(&mesh));
@@ -242,7 +275,7 @@ pub fn check_optimize_triangles(mesh: &Mesh, options: &TriOptimizeOptions) -> Ou
     // which is near the surface, not on it.
     if let Some(why) = options
         .relax
-        .then(|| unsound_triangles(input, &mesh))
+        .then(|| unsound_triangles(input, &mesh, note))
         .flatten()
     {
         return Outcome::fail(why, None);
@@ -252,13 +285,25 @@ pub fn check_optimize_triangles(mesh: &Mesh, options: &TriOptimizeOptions) -> Ou
     }
 }
 
-/// The distance bound of the triangle optimizer's output with its relaxation on
-/// (docs/results.md, "The bounds"): every vertex within 0.5 % of the input's bounding-box
-/// diagonal from its surface; `None` when it holds. (No new flipped triangle is not asked here: on a few generated cases the
-/// relaxation's projection onto the surface flips one, docs/results.md.)
-fn unsound_triangles(input: &Mesh, output: &Mesh) -> Option<alloc::string::String> {
-    let reference = crate::quality::Reference::new(input);
-    let q1 = crate::quality::Summary::against(output, &reference);
-    let far = q1.distance.map_or(0.0, |d| d.max);
-    (far > 0.005).then(|| format!("a vertex {far:.4} of the diagonal off the input surface"))
+/// The geometry bounds of the triangle optimizer's output with its relaxation on
+/// ([`Bounds`], docs/results.md): the distance (every vertex within 0.5 % of the input's
+/// diagonal from its surface) fails the case; a new flipped triangle or thin triangles past
+/// the slack are passed to `note` (counted unchecked in a campaign): on a few generated
+/// cases the relaxation's projection onto the surface flips a triangle, and three batches
+/// on a few hundred faces leave a triangle under 10 degrees where the slack is none
+/// (docs/VERIFICATION.md). `None` when the distance holds.
+fn unsound_triangles(
+    input: &Mesh,
+    output: &Mesh,
+    note: impl Fn(u64),
+) -> Option<alloc::string::String> {
+    let after = Summary::against(output, &Reference::new(input));
+    let failed = Bounds::default().failures(&Summary::of(input), &after);
+    if failed.iter().any(|&b| b != Bound::Distance) {
+        note(1);
+    }
+    let far = after.distance.map_or(0.0, |d| d.max);
+    failed
+        .contains(&Bound::Distance)
+        .then(|| format!("a vertex {far:.4} of the diagonal off the input surface"))
 }

@@ -32,6 +32,7 @@
 //! assert_eq!(s.distance.unwrap().max, 0.0); // still on the plane
 //! ```
 
+mod bounds;
 mod face;
 mod reference;
 mod summary;
@@ -40,6 +41,7 @@ pub use crate::geometry::element::{
     against_neighbours, angles, corner_fold, corner_normal, corners, diagonal_fold, edge_ratio,
     neighbour_normals, normal, quad_normal, scaled_jacobian, Angles,
 };
+pub use bounds::{Bound, Bounds};
 pub use face::{measure_faces, FaceQuality, Folds};
 pub use reference::{Distances, Reference};
 pub use summary::{FoldCounts, Percentiles, Summary, THIN_TRIANGLE_DEGREES};

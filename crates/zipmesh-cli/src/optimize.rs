@@ -13,7 +13,7 @@ use zipmesh::optimize::{
     optimize, optimize_triangles, BatchReport, Constraints, OptimizeOptions, SingularityCounts,
     TriCounts, TriOptimizeOptions,
 };
-use zipmesh::quality::{Reference, Summary};
+use zipmesh::quality::{Bound, Bounds, Reference, Summary};
 use zipmesh::{Face, Mesh, Vert};
 
 use crate::out::{self, outln};
@@ -201,6 +201,12 @@ fn finish(
     let reference = Reference::new(input);
     let q = [input, &*mesh].map(|m| Summary::against(m, &reference));
     report["quality"] = quality::both_json(&q);
+    let failed: Vec<&str> = Bounds::default()
+        .failures(&q[0], &q[1])
+        .into_iter()
+        .map(Bound::name)
+        .collect();
+    report["bounds"] = json!({"hold": failed.is_empty(), "failed": failed});
     let pending = io::prepare_mesh(&args.output, mesh)?;
     if args.json {
         outln!("{report}");
@@ -209,6 +215,13 @@ fn finish(
             outln!("{line}");
         }
         outln!("quality: {}", quality::line(&q));
+        match failed.as_slice() {
+            [] => outln!("geometry bounds (docs/results.md): hold"),
+            f => outln!(
+                "geometry bounds (docs/results.md): broken: {}",
+                f.join(", ")
+            ),
+        }
     }
     out::flush()?;
     pending.commit()?;
