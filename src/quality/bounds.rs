@@ -210,7 +210,10 @@ mod tests {
         let (input, _) = crate::io::read_mesh(p).unwrap();
         let m = &input.map;
         let v = crate::Vert::new(5);
-        let ring: Vec<DVec3> = m.vertex_darts(v).map(|d| input.positions[m.dest(d).index()]).collect();
+        let ring: Vec<DVec3> = m
+            .vertex_darts(v)
+            .map(|d| input.positions[m.dest(d).index()])
+            .collect();
         let mut thin = input.clone();
         thin.positions[5] = (ring[0] + ring[1]) / 2.0 * 0.999 + input.positions[5] * 0.001;
         assert!(failures(&input, &thin).contains(&Bound::Thin));

@@ -10,7 +10,7 @@ use run::{assert_quality_matches, s, stderr, temp_dir, zipmesh};
 use serde_json::Value;
 use std::fs;
 use zipmesh::optimize::SingularityCounts;
-use zipmesh::quality::{Reference, Summary};
+use zipmesh::quality::{Bounds, Reference, Summary};
 use zipmesh::{gen, io, Mesh};
 
 fn counts_json(c: &SingularityCounts) -> Value {
@@ -21,17 +21,19 @@ fn counts_json(c: &SingularityCounts) -> Value {
 }
 
 /// The report's `quality` is the library's summary of IN and of OUT as written, both
-/// against IN's surface.
+/// against IN's surface, and its `bounds` are the library's verdict on the two.
 fn assert_quality_reported(v: &Value, before: &Mesh, after: &Mesh) {
     let reference = Reference::new(before);
-    assert_quality_matches(
-        &v["quality"]["input"],
-        &Summary::against(before, &reference),
-    );
-    assert_quality_matches(
-        &v["quality"]["output"],
-        &Summary::against(after, &reference),
-    );
+    let q = [before, after].map(|m| Summary::against(m, &reference));
+    assert_quality_matches(&v["quality"]["input"], &q[0]);
+    assert_quality_matches(&v["quality"]["output"], &q[1]);
+    let failed: Vec<Value> = Bounds::default()
+        .failures(&q[0], &q[1])
+        .into_iter()
+        .map(|b| Value::from(b.name()))
+        .collect();
+    assert_eq!(v["bounds"]["failed"], Value::Array(failed.clone()));
+    assert_eq!(v["bounds"]["hold"], failed.is_empty());
 }
 
 fn input(dir: &std::path::Path) -> std::path::PathBuf {
