@@ -76,7 +76,10 @@ impl PyMesh {
     /// Builds a mesh from an (N, 3) array of positions and an (F, k) integer array of
     /// faces, or a list of lists for faces of mixed degrees (vertices numbered from 0).
     #[new]
-    fn new(vertices: PyArrayLike2<'_, f64, AllowTypeChange>, faces: &Bound<'_, PyAny>) -> PyResult<Self> {
+    fn new(
+        vertices: PyArrayLike2<'_, f64, AllowTypeChange>,
+        faces: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
         let v = vertices.as_array();
         if v.ncols() != 3 {
             return Err(PyValueError::new_err(format!(
@@ -84,9 +87,15 @@ impl PyMesh {
                 v.ncols()
             )));
         }
-        let positions: Vec<DVec3> = v.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
+        let positions: Vec<DVec3> = v
+            .rows()
+            .into_iter()
+            .map(|r| DVec3::new(r[0], r[1], r[2]))
+            .collect();
         if positions.iter().any(|p| !p.is_finite()) {
-            return Err(PyValueError::new_err("vertices: every coordinate must be finite"));
+            return Err(PyValueError::new_err(
+                "vertices: every coordinate must be finite",
+            ));
         }
         let rows = face_rows(faces, positions.len())?;
         let (mesh, _) = Mesh::from_polygons(positions, &rows)
@@ -97,7 +106,12 @@ impl PyMesh {
     /// The positions, an (N, 3) float64 array.
     #[getter]
     fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let flat: Vec<f64> = self.mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+        let flat: Vec<f64> = self
+            .mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.to_array())
+            .collect();
         let n = self.mesh.positions.len();
         Array2::from_shape_vec((n, 3), flat)
             .unwrap_or_else(|_| Array2::zeros((0, 3)))
