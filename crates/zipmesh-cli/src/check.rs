@@ -246,7 +246,8 @@ fn run_campaign(
     planned: u64,
     bar: bool,
 ) -> Report {
-    let bar = (bar && std::io::stderr().is_terminal()).then(|| progress_bar(planned));
+    let bar = (bar && std::io::stderr().is_terminal() && !out::capturing())
+        .then(|| progress_bar(planned));
     let tick = || {
         if let Some(b) = &bar {
             b.inc(1);

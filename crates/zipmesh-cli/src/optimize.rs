@@ -296,7 +296,7 @@ fn constraints(args: &OptimizeArgs, mesh: &Mesh) -> Result<Constraints, InputErr
 }
 
 fn progress(planned: Option<usize>) -> Option<ProgressBar> {
-    if !std::io::stderr().is_terminal() {
+    if !std::io::stderr().is_terminal() || out::capturing() {
         return None;
     }
     let (bar, template) = match planned {

@@ -13,16 +13,40 @@ use std::sync::Mutex;
 /// The exit status on a closed standard output: 128 + SIGPIPE, as `cat` or `seq` give.
 pub const CLOSED_PIPE: u8 = 141;
 
-/// Text printed so far (standard output) and whether writing it has already failed.
+/// Text printed so far (standard output), whether writing it has already failed, and,
+/// while a command runs for an embedder ([`capture`]), the text flushed so far.
 struct Sink {
     text: String,
     closed: bool,
+    captured: Option<String>,
 }
 
 static STDOUT: Mutex<Sink> = Mutex::new(Sink {
     text: String::new(),
     closed: false,
+    captured: None,
 });
+
+/// Runs `f` with standard output collected instead of written; its result and the text.
+/// The caller runs one command at a time (`run_captured` holds a lock).
+pub fn capture<T>(f: impl FnOnce() -> T) -> (T, String) {
+    let lock = || STDOUT.lock().unwrap_or_else(|p| p.into_inner());
+    {
+        let mut sink = lock();
+        sink.text.clear();
+        sink.captured = Some(String::new());
+    }
+    let result = f();
+    let mut sink = lock();
+    let mut text = sink.captured.take().unwrap_or_default();
+    text.push_str(&std::mem::take(&mut sink.text));
+    (result, text)
+}
+
+/// Whether standard output is being collected for an embedder (no progress bars then).
+pub fn capturing() -> bool {
+    STDOUT.lock().map(|s| s.captured.is_some()).unwrap_or(false)
+}
 
 /// Appends to standard output; [`flush`] writes it.
 macro_rules! outln {
@@ -55,6 +79,10 @@ impl fmt::Display for OutputError {
 pub fn flush() -> Result<(), OutputError> {
     let mut sink = STDOUT.lock().unwrap_or_else(|p| p.into_inner());
     let text = std::mem::take(&mut sink.text);
+    if let Some(captured) = &mut sink.captured {
+        captured.push_str(&text);
+        return Ok(());
+    }
     let mut stdout = io::stdout().lock();
     let result = stdout
         .write_all(text.as_bytes())
