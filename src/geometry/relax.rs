@@ -479,7 +479,8 @@ fn widening_targets(mesh: &Mesh, v: Vert, n: DVec3) -> Vec<DVec3> {
         if up.dot(here - mid) < 0.0 {
             up = -up;
         }
-        out.push(mid + up * (b - a).length() * (0.75f64).sqrt());
+        // The height of an equilateral triangle of side 1, sqrt(3) / 2 (no sqrt in no_std).
+        out.push(mid + up * (b - a).length() * 0.866_025_403_784_438_6);
     }
     out
 }
