@@ -31,6 +31,7 @@ fn at(view: Option<(f64, f64)>, width: u32, height: u32) -> Options {
         height,
         paths: Vec::new(),
         point_paths: Vec::new(),
+        legend: true,
     }
 }
 
@@ -504,4 +505,34 @@ fn valence_two_vertices_are_green() {
     assert!(cs
         .iter()
         .all(|c| c.class == "v2" && c.fill == "url(#ball-green)"));
+}
+
+/// The legend has one row per valence of the interior singularities, seen or not, with its
+/// colour and count (Spot: 56 v3, 40 v5, 4 v6 among its 100), and `legend: false` drops it.
+#[test]
+fn the_legend_counts_each_valence() {
+    let (mesh, _) = zipmesh::io::read_mesh(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/quad/spot_quadrangulated.obj"
+    ))
+    .unwrap();
+    let svg = Scene::new(&mesh, &Options::default()).unwrap().svg();
+    let mut want: std::collections::BTreeMap<usize, usize> = Default::default();
+    for (_, valence) in zipmesh::render::singularities(&mesh.map) {
+        *want.entry(valence).or_default() += 1;
+    }
+    let labels: Vec<String> = want.iter().map(|(k, n)| format!("v{k}: {n}")).collect();
+    assert_eq!(labels, ["v3: 56", "v5: 40", "v6: 4"]);
+    for (label, (valence, _)) in labels.iter().zip(&want) {
+        assert!(svg.contains(&format!("data-label=\"{label}\"")), "{label}");
+        let colour = zipmesh::render::ball_colour(MeshKind::Quad, *valence).unwrap();
+        assert!(svg.contains(&format!("fill=\"url(#ball-{})\"", colour.name())));
+    }
+    assert_eq!(svg.matches("class=\"legend\"").count(), 3);
+    let bare = Options {
+        legend: false,
+        ..Options::default()
+    };
+    let svg = Scene::new(&mesh, &bare).unwrap().svg();
+    assert!(!svg.contains("id=\"legend\""));
 }

@@ -26,6 +26,7 @@
 mod balls;
 mod camera;
 mod depth;
+mod legend;
 mod png;
 mod svg;
 
@@ -73,6 +74,9 @@ pub struct Options {
     /// --paths` writes them: vertices are renumbered from batch to batch, positions are
     /// not). A point is seen unless a face is more than [`TOLERANCE`] pixels nearer there.
     pub point_paths: Vec<Vec<[f64; 3]>>,
+    /// Draw the legend: per valence of the singularities, its colour and `vK: N` (the count
+    /// of interior singularities of valence K, seen or not), in the top-left corner.
+    pub legend: bool,
 }
 
 impl Default for Options {
@@ -83,6 +87,7 @@ impl Default for Options {
             height: DEFAULT_SIZE.1,
             paths: Vec::new(),
             point_paths: Vec::new(),
+            legend: true,
         }
     }
 }
@@ -230,6 +235,7 @@ pub struct Scene {
     polylines: Vec<Vec<[f64; 2]>>,
     radius: f64,
     stroke: f64,
+    legend: bool,
 }
 
 impl Scene {
@@ -320,6 +326,7 @@ impl Scene {
             polylines,
             radius,
             stroke,
+            legend: options.legend,
         })
     }
 

@@ -31,6 +31,9 @@ pub(super) fn write(scene: &Scene) -> String {
     let _ = write_faces(&mut s, scene);
     let _ = write_paths(&mut s, scene);
     let _ = write_balls(&mut s, scene);
+    if scene.legend {
+        let _ = super::legend::write(&mut s, scene);
+    }
     s.push_str("</svg>\n");
     s
 }

@@ -34,10 +34,12 @@ pub fn elements<'a>(svg: &'a str, tag: &str) -> Vec<&'a str> {
     out
 }
 
-/// Every circle, with its attributes parsed.
+/// Every singularity's circle, with its attributes parsed (the legend's circles, of class
+/// `legend`, are left out).
 pub fn circles(svg: &str) -> Vec<Circle> {
     elements(svg, "circle")
         .into_iter()
+        .filter(|el| attr(el, "class") != Some("legend"))
         .map(|el| {
             let num = |n| attr(el, n).unwrap().parse::<f64>().unwrap();
             Circle {

@@ -33,6 +33,10 @@ pub struct RenderArgs {
     /// (0-based vertex numbers of FILE).
     #[arg(long)]
     paths: Option<PathBuf>,
+    /// No legend (by default the top-left corner shows each valence's colour and how many
+    /// interior singularities have it, `vK: N`).
+    #[arg(long)]
+    no_legend: bool,
 }
 
 fn pair(s: &str) -> Result<(&str, &str), String> {
@@ -97,6 +101,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
         height: args.size.1,
         paths,
         point_paths: points,
+        legend: !args.no_legend,
     };
     let name = args.file.display();
     let scene = Scene::new(&mesh, &options).map_err(|e| format!("{name}: {e}"))?;
