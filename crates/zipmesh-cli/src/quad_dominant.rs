@@ -21,7 +21,8 @@ pub struct QdWalkArgs {
     #[arg(long)]
     triangle: u32,
     /// Its tip: a 0-based vertex number, a corner of the triangle (default: the corner of
-    /// highest valence, which must be the only one).
+    /// highest valence; when no corner has it alone, the first corner from which the walk
+    /// works).
     #[arg(long)]
     tip: Option<u32>,
     /// The moves, comma-separated, in order: VE (towards the tip), EV (towards the base),
@@ -42,8 +43,9 @@ pub struct QdWalkArgs {
     json: bool,
 }
 
-/// The tip dart of face `f`: the one leaving `tip`, or the default tip.
-fn tip_dart(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Dart, InputError> {
+/// The tip darts to try for face `f`: the one leaving `tip`; else the default tip (the
+/// corner of highest valence); else, when no corner has it alone, all three corners.
+fn tip_darts(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Vec<Dart>, InputError> {
     let bad = |m: String| InputError(format!("{name}: {m}"));
     if !map.is_live_face(f) {
         return Err(bad(format!(
@@ -63,35 +65,59 @@ fn tip_dart(map: &Map, f: Face, tip: Option<u32>, name: &str) -> Result<Dart, In
         Some(v) => map
             .face_darts(f)
             .find(|&d| map.origin(d) == Vert::new(v))
+            .map(|d| vec![d])
             .ok_or_else(|| {
                 bad(format!(
                     "--tip {v} is not a corner of triangle {}",
                     f.index()
                 ))
             }),
-        None => quad_dominant::default_tip(map, f).ok_or_else(|| {
-            bad(format!(
-                "triangle {}: no corner has the highest valence alone; name the tip with --tip",
-                f.index()
-            ))
-        }),
+        None => Ok(quad_dominant::default_tip(map, f)
+            .map_or_else(|| map.face_darts(f).collect(), |d| vec![d])),
     }
 }
 
-/// Makes the moves (`--move`, `--steps`) or the compass walk (`--to`); the moves made.
-fn walk(
-    mesh: &mut Mesh,
-    t: Dart,
-    a: &QdWalkArgs,
+/// Runs the walk from each of `tips` on a copy of `original` until one works: the mesh it
+/// left, the tip it started from, its end tip and moves. With one tip its error is the
+/// error; with several (no corner of highest valence alone) the error names each tip's.
+fn walk_from_some(
+    original: &Mesh,
+    tips: &[Dart],
+    args: &QdWalkArgs,
     name: &str,
-) -> Result<(Dart, Vec<Move>), InputError> {
+) -> Result<(Mesh, Dart, Dart, Vec<Move>), InputError> {
+    let mut why = Vec::new();
+    for &t in tips {
+        let mut mesh = original.clone();
+        match walk(&mut mesh, t, args) {
+            Ok((tip, done)) => return Ok((mesh, t, tip, done)),
+            Err(e) => why.push(format!("tip {}: {e}", original.map.origin(t).index())),
+        }
+    }
+    Err(InputError(match why.as_slice() {
+        [one] => format!(
+            "{name}: {}",
+            one.split_once(": ").map_or(one.as_str(), |x| x.1)
+        ),
+        _ => format!(
+            "{name}: triangle {}: no corner has the highest valence alone, and the walk fails \
+             from each as the tip: {}",
+            args.triangle,
+            why.join("; ")
+        ),
+    }))
+}
+
+/// Makes the moves (`--move`, `--steps`) or the compass walk (`--to`); the moves made, or
+/// why not (without the file's name).
+fn walk(mesh: &mut Mesh, t: Dart, a: &QdWalkArgs) -> Result<(Dart, Vec<Move>), String> {
     if let Some(v) = a.to {
         let target = Vert::new(v);
         if !mesh.map.is_live_vertex(target) {
-            return Err(InputError(format!("{name}: --to {v}: no such vertex")));
+            return Err(format!("--to {v}: no such vertex"));
         }
         let w = compass::walk_to(mesh, t, target)
-            .map_err(|e| InputError(format!("{name}: the walk to {v} failed: {e}")))?;
+            .map_err(|e| format!("the walk to {v} failed: {e}"))?;
         return Ok((w.tip(), w.moves()));
     }
     let seq = a.moves.as_deref().unwrap_or_default();
@@ -99,12 +125,9 @@ fn walk(
     let mut tip = t;
     for _ in 0..a.steps {
         for &mv in seq {
-            let e = mv.apply(mesh, tip).map_err(|r| {
-                InputError(format!(
-                    "{name}: move {} ({mv}) was refused: {r}",
-                    done.len() + 1
-                ))
-            })?;
+            let e = mv
+                .apply(mesh, tip)
+                .map_err(|r| format!("move {} ({mv}) was refused: {r}", done.len() + 1))?;
             tip = e.record().tip();
             done.push(mv);
         }
@@ -134,9 +157,11 @@ fn names(moves: &[Move]) -> String {
 pub fn run_qd_walk(args: QdWalkArgs) -> Result<ExitCode, InputError> {
     let name = args.file.display().to_string();
     let (original, _) = io::read_mesh(&args.file)?;
-    let t = tip_dart(&original.map, Face::new(args.triangle), args.tip, &name)?;
-    let mut mesh = original.clone();
-    let (tip, done) = walk(&mut mesh, t, &args, &name)?;
+    let tips = tip_darts(&original.map, Face::new(args.triangle), args.tip, &name)?;
+    let (mut mesh, start, tip, done) = walk_from_some(&original, &tips, &args, &name)?;
+    let start = original.map.origin(start).index();
+    // The tip the walk started from, when no corner had the highest valence alone.
+    let chosen = (tips.len() > 1).then_some(start);
     let c = mesh.compact();
     let tip = c.darts.get(tip.index()).copied().flatten().unwrap_or(tip);
     let (face, tip_v, undo) = undo_of(&mesh, tip, &done, &original.map);
@@ -151,12 +176,20 @@ pub fn run_qd_walk(args: QdWalkArgs) -> Result<ExitCode, InputError> {
                 "file": name,
                 "output": args.output.display().to_string(),
                 "moves": done.iter().map(|m| m.name()).collect::<Vec<_>>(),
+                "start_tip": start,
                 "triangle": face,
                 "tip": tip_v,
                 "undo": undo_json,
             })
         );
     } else {
+        if let Some(v) = chosen {
+            outln!(
+                "tip {v}: no corner of triangle {} has the highest valence alone, and the \
+                 walk works from this one (name another with --tip)",
+                args.triangle
+            );
+        }
         outln!(
             "{name} -> {}: {} move(s) {}; the triangle is face {} with tip {}",
             args.output.display(),

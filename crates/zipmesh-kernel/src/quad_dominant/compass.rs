@@ -9,7 +9,9 @@
 //! move; the "small rotation" of Fig. 14 is this choice of move by where the next path edge
 //! sits relative to `t`. Each step takes the applicable move whose new tip is nearest the
 //! target (breadth-first distances on the current map, ties in the order VE, EV, LE, RE)
-//! and must bring it strictly nearer; the walk is all or nothing.
+//! and must bring it strictly nearer; where none does, a move aside followed by one that
+//! brings the tip nearer than it was is taken (the first such pair). The walk is all or
+//! nothing.
 
 use super::walk::{can_move_triangle, Move, TriangleMove};
 use crate::map::{Dart, Map, Vert};
@@ -27,12 +29,16 @@ pub enum WalkError {
     BadArguments(Refusal),
     /// No path joins the tip to the target.
     Unreachable,
-    /// At this tip no applicable move brings the tip nearer the target.
+    /// At this tip no applicable move brings the tip nearer the target, nor a move aside
+    /// followed by one.
     Stuck {
         /// The tip vertex where the walk stopped (in the map as it was then).
         tip: Vert,
         /// Its distance to the target.
         distance: usize,
+        /// Each move there ([`Move::ALL`] order): why it is refused, or how far from the
+        /// target it lands the tip (`usize::MAX`: where no path leads).
+        moves: [(Move, Result<usize, Refusal>); 4],
     },
 }
 
@@ -41,11 +47,27 @@ impl fmt::Display for WalkError {
         match self {
             WalkError::BadArguments(r) => write!(f, "bad arguments: {r}"),
             WalkError::Unreachable => f.write_str("no path joins the tip to the target"),
-            WalkError::Stuck { tip, distance } => write!(
-                f,
-                "no move brings the triangle nearer the target from vertex {} ({distance} edges away)",
-                tip.index()
-            ),
+            WalkError::Stuck {
+                tip,
+                distance,
+                moves,
+            } => {
+                write!(
+                    f,
+                    "no move, nor a move aside and then one, brings the triangle nearer the \
+                     target from vertex {} ({distance} edges away):",
+                    tip.index()
+                )?;
+                for (i, (mv, r)) in moves.iter().enumerate() {
+                    let sep = if i == 0 { " " } else { "; " };
+                    match r {
+                        Err(why) => write!(f, "{sep}{} refused ({why})", mv.name())?,
+                        Ok(usize::MAX) => write!(f, "{sep}{} leads nowhere", mv.name())?,
+                        Ok(d) => write!(f, "{sep}{} lands {d} away", mv.name())?,
+                    }
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -195,21 +217,21 @@ pub fn walk_to<T: EditTarget>(
         let here = dist[map.origin(walk.tip).index()];
         let stop = if here == usize::MAX {
             Some(WalkError::Unreachable)
+        } else if let Some(mv) = next_move_by(map, walk.tip, &dist) {
+            step(map, values, &mut walk, mv)
+                .err()
+                .map(WalkError::BadArguments)
+        } else if sidestep(map, values, &mut walk, target, here) {
+            None
         } else {
-            match next_move_by(map, walk.tip, &dist) {
-                Some(mv) => match mv.apply(&mut (&mut *map, &mut *values), walk.tip) {
-                    Ok(e) => {
-                        walk.tip = e.record().tip();
-                        walk.steps.push(e);
-                        None
-                    }
-                    Err(r) => Some(WalkError::BadArguments(r)),
-                },
-                None => Some(WalkError::Stuck {
-                    tip: map.origin(walk.tip),
-                    distance: here,
+            Some(WalkError::Stuck {
+                tip: map.origin(walk.tip),
+                distance: here,
+                moves: Move::ALL.map(|mv| {
+                    let r = can_move_triangle(map, walk.tip, mv);
+                    (mv, r.map(|()| landing(map, walk.tip, mv, &dist)))
                 }),
-            }
+            })
         };
         if let Some(e) = stop {
             // The moves were just made, so their undo fits.
@@ -218,6 +240,59 @@ pub fn walk_to<T: EditTarget>(
         }
     }
     Ok(walk)
+}
+
+/// Makes move `mv` at the walk's tip and records it.
+fn step<A: VertexAttributes>(
+    map: &mut Map,
+    values: &mut A,
+    walk: &mut Walk<A>,
+    mv: Move,
+) -> Result<(), Refusal> {
+    let e = mv.apply(&mut (&mut *map, &mut *values), walk.tip)?;
+    walk.tip = e.record().tip();
+    walk.steps.push(e);
+    Ok(())
+}
+
+/// Where no move brings the tip nearer than `here` edges from `target`: a move that does
+/// not, then one that does (a tip of valence 3 or 4 reaches only some of its neighbours,
+/// and a step aside turns the compass). Both are made, and `true` returned, for the first
+/// such pair in [`Move::ALL`] order; otherwise the map is as it was.
+fn sidestep<A: VertexAttributes>(
+    map: &mut Map,
+    values: &mut A,
+    walk: &mut Walk<A>,
+    target: Vert,
+    here: usize,
+) -> bool {
+    for aside in Move::ALL {
+        let before = walk.tip;
+        if step(map, values, walk, aside).is_err() {
+            continue;
+        }
+        if !map.is_live_vertex(target) || map.origin(walk.tip) == target {
+            return true;
+        }
+        let dist = distances(map, target, map.origin(walk.tip));
+        let on = Move::ALL
+            .into_iter()
+            .filter(|&mv| can_move_triangle(map, walk.tip, mv).is_ok())
+            .map(|mv| (landing(map, walk.tip, mv, &dist), mv))
+            .filter(|&(d, _)| d < here)
+            .min();
+        if let Some((_, mv)) = on {
+            if step(map, values, walk, mv).is_ok() {
+                return true;
+            }
+        }
+        // The step aside was just made, so its undo fits.
+        if let Some(e) = walk.steps.pop() {
+            let _ = e.undo(&mut (&mut *map, &mut *values));
+        }
+        walk.tip = before;
+    }
+    false
 }
 
 /// Whether the walk's last move merged `target` away (EV onto it).
