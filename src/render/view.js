@@ -6,7 +6,8 @@
   'use strict';
   var D = JSON.parse(document.getElementById('zipmesh-data').textContent);
   var canvas = document.getElementById('view');
-  var S = { az: D.view[0], el: D.view[1], zoom: 1, picks: [], errors: [] };
+  var S = { az: D.view[0], el: D.view[1], zoom: 1, picks: [], errors: [], gl: [], ui: true };
+  // S.gl: WebGL's complaints; S.errors: what the URL had that was ignored.
   var ballOf = {}; // vertex number -> index into D.balls
   D.balls.forEach(function (b, i) { ballOf[b[0]] = i; });
   var P = D.positions;
@@ -107,12 +108,12 @@
 
   // WebGL: buffers and programs.
   var gl = canvas.getContext('webgl', { antialias: true, preserveDrawingBuffer: true });
-  if (!gl) { S.errors.push('WebGL is not available'); }
+  if (!gl) { S.gl.push('WebGL is not available'); }
   function shader(type, src) {
     var s = gl.createShader(type);
     gl.shaderSource(s, src);
     gl.compileShader(s);
-    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) S.errors.push(gl.getShaderInfoLog(s));
+    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) S.gl.push(gl.getShaderInfoLog(s));
     return s;
   }
   function program(vs, fs) {
@@ -120,7 +121,7 @@
     gl.attachShader(p, shader(gl.VERTEX_SHADER, vs));
     gl.attachShader(p, shader(gl.FRAGMENT_SHADER, fs));
     gl.linkProgram(p);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) S.errors.push(gl.getProgramInfoLog(p));
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) S.gl.push(gl.getProgramInfoLog(p));
     return p;
   }
   function buffer(values) {
@@ -290,18 +291,21 @@
           : ' (moves lists the four movements LS, RS, LC, RC and which are realizable)'));
       text(el, 'pre', commands());
     }
-    S.errors.forEach(function (e) { text(el, 'div', e, 'error'); });
+    S.gl.concat(S.errors).forEach(function (e) { text(el, 'div', e, 'error'); });
   }
 
   // The URL hash, read and written.
   function readHash() {
-    S.errors = S.errors.filter(function (e) { return e === 'WebGL is not available'; });
+    // The hash says everything: what it leaves out is the default.
+    S.errors = [];
+    S.az = D.view[0]; S.el = D.view[1]; S.zoom = 1; S.picks = []; S.ui = true;
     location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
       if (!kv) return;
       var i = kv.indexOf('='), k = i < 0 ? kv : kv.slice(0, i), v = i < 0 ? '' : decodeURIComponent(kv.slice(i + 1));
       var nums = v.split(',').map(Number), ok = v !== '' && nums.every(isFinite);
       if (k === 'view' && ok && nums.length === 2 && Math.abs(nums[1]) <= 90) { S.az = nums[0]; S.el = nums[1]; }
       else if (k === 'zoom' && ok && nums.length === 1 && nums[0] > 0) { S.zoom = nums[0]; }
+      else if (k === 'ui' && (v === '0' || v === '1')) { S.ui = v === '1'; }
       else if (k === 'pick' && ok && nums.length <= 2 && nums.every(function (n) { return n in ballOf; })) { S.picks = nums; }
       else { S.errors.push('ignored in the URL: ' + kv + (k === 'pick' ? ' (not interior singularities)' : '')); }
     });
@@ -309,7 +313,8 @@
   function round(x) { return Math.round(x * 100) / 100; }
   function hash() {
     var h = 'view=' + round(S.az) + ',' + round(S.el) + '&zoom=' + round(S.zoom);
-    return S.picks.length ? h + '&pick=' + S.picks.join(',') : h;
+    if (S.picks.length) h += '&pick=' + S.picks.join(',');
+    return S.ui ? h : h + '&ui=0';
   }
   function writeHash() {
     try { history.replaceState(null, '', '#' + hash()); } catch (e) { /* a file: URL may refuse */ }
@@ -322,12 +327,18 @@
       var q = project(cam, pos(v));
       return { vertex: v, x: round(q[0]), y: round(q[1]), hit: pickAt(q[0], q[1]) };
     });
-    var state = { ready: !!G && S.errors.length === 0, singularities: D.balls.length, kind: D.kind,
+    var state = { ready: !!G && S.gl.length === 0, singularities: D.balls.length, kind: D.kind,
       view: [round(S.az), round(S.el)], zoom: round(S.zoom), picks: S.picks.slice(),
       picked: screen, ball_pixels: round(ballPixels(cam)), command: commands(), hash: hash(),
-      errors: S.errors.slice() };
+      errors: S.gl.concat(S.errors) };
     window.zipmeshView = state;
     document.getElementById('state').textContent = JSON.stringify(state);
+  }
+  // ui=0 in the URL hides the panels (a clean picture of the mesh).
+  function panels() {
+    ['legend', 'pick'].forEach(function (id) {
+      document.getElementById(id).style.display = S.ui ? '' : 'none';
+    });
   }
   function changed() { writeHash(); panel(); publish(); redraw(); }
 
@@ -366,12 +377,13 @@
   window.addEventListener('resize', function () { publish(); redraw(); });
   window.addEventListener('hashchange', function () {
     if (location.hash.slice(1) === hash()) return;
-    readHash(); panel(); publish(); redraw();
+    readHash(); panels(); panel(); publish(); redraw();
   });
 
   readHash();
   if (gl) setup();
   legend();
+  panels();
   panel();
   draw();
   publish();
