@@ -10,6 +10,8 @@
 //!   choice, so an SVG viewer's painting order only matters where two seen faces overlap.
 //! * [`balls`](ball_colour): which vertices get a ball, in which colour.
 //! * `svg` and `png`: the writers ([`Scene::svg`], [`Scene::png`]).
+//! * [`view`]: an interactive view (one self-contained HTML page, WebGL) with the same
+//!   balls, a legend, orbit, zoom and picking.
 //!
 //! ```
 //! use zipmesh::{gen, render::{self, Options}};
@@ -29,6 +31,7 @@ mod depth;
 mod legend;
 mod png;
 mod svg;
+pub mod view;
 
 pub use balls::{ball_colour, singularities, BallColour};
 pub use camera::{Camera, View};

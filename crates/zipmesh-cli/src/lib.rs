@@ -16,6 +16,7 @@ mod render;
 mod signals;
 mod singular;
 mod tri;
+mod view;
 
 use out::outln;
 
@@ -124,6 +125,12 @@ enum Command {
     /// Draw the mesh (SVG or PNG): shaded faces and edges, hidden surfaces removed, the seen
     /// interior singularities as balls, optionally surgery paths from a JSON report.
     Render(render::RenderArgs),
+    /// One self-contained HTML page (WebGL, no network access) to look around the mesh:
+    /// orbit, zoom, the interior singularities coloured as `render` draws them with a legend,
+    /// and picking: click two singularities and the page shows the `moves`/`zip` command for
+    /// them (`tri-move` on triangle meshes). The URL's hash sets the view:
+    /// `view.html#view=AZ,EL&zoom=Z&pick=A,B`.
+    View(view::ViewArgs),
 }
 
 /// The `zipmesh` binary: parses the process's arguments, runs the command, prints its
@@ -192,6 +199,7 @@ fn dispatch(command: Command) -> Result<ExitCode, String> {
         Command::QdWalk(args) => quad_dominant::run_qd_walk(args).map_err(|e| e.to_string()),
         Command::Optimize(args) => optimize::run(args).map_err(|e| e.to_string()),
         Command::Render(args) => render::run(args),
+        Command::View(args) => view::run(args),
         command => run(command).map_err(|e| e.to_string()),
     }
 }
@@ -217,6 +225,7 @@ fn check_outputs(command: &Command) -> Result<(), MeshFileError> {
         Command::QdWalk(a) => mesh(&a.output),
         Command::Optimize(a) => mesh(&a.output),
         Command::Render(a) => io::check_target(&a.output),
+        Command::View(a) => io::check_target(&a.output),
         Command::Stats { .. }
         | Command::Hash { .. }
         | Command::Iso { .. }
@@ -248,7 +257,8 @@ fn run(command: Command) -> Result<ExitCode, MeshFileError> {
         | Command::TriCancel(_)
         | Command::QdWalk(_)
         | Command::Optimize(_)
-        | Command::Render(_) => {}
+        | Command::Render(_)
+        | Command::View(_) => {}
         Command::Singularities(args) => singular::run(args)?,
         Command::Stats {
             file,

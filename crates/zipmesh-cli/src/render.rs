@@ -135,16 +135,16 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
 /// The paths of a report: vertex numbers, or points (`[x, y, z]` entries, as `optimize
 /// --paths` writes them).
 #[derive(Default)]
-struct Found {
-    paths: Vec<Vec<u64>>,
-    points: Vec<Vec<[f64; 3]>>,
+pub(crate) struct Found {
+    pub(crate) paths: Vec<Vec<u64>>,
+    pub(crate) points: Vec<Vec<[f64; 3]>>,
 }
 
 /// Every path in the JSON file `path`: arrays under a key `path`, and the elements of
 /// arrays under a key `paths`, at any depth, in document order; nothing under a key `undo`
 /// (a `zip` report's undo path numbers OUT's vertices, not IN's). A path whose first entry
 /// is an array is a path of points.
-fn read_paths(path: &Path) -> Result<Found, String> {
+pub(crate) fn read_paths(path: &Path) -> Result<Found, String> {
     let name = path.display();
     let text = std::fs::read(path).map_err(|e| format!("{name}: {e}"))?;
     let value: Value =

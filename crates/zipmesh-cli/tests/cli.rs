@@ -674,7 +674,9 @@ fn every_printing_command(dir: &Path) -> Vec<Vec<String>> {
     let mut moves = vec!["moves".to_string(), spot.clone()];
     moves.extend(pair);
     let v = |a: &[&str]| a.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let page = dir.join("spot.html").to_str().unwrap().to_string();
     vec![
+        v(&["view", &spot, "-o", &page]),
         v(&["stats"]),
         v(&["stats", "--json"]),
         v(&["hash", &spot]),
