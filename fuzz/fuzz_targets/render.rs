@@ -2,7 +2,8 @@
 //! fuzzer moves (onto each other, far away, to tiny or huge coordinates), from a
 //! fuzzer-chosen view at a fuzzer-chosen size (at most 96 x 96), with a fuzzer-chosen path. The library must
 //! never panic; the oracle: the SVG has exactly one circle per seen interior singularity,
-//! each with its recounted valence as class.
+//! each with its recounted valence as class, and with the legend asked for one legend row per
+//! valence of the singularities (at most eight).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -102,6 +103,7 @@ fuzz_target!(|data: &[u8]| {
         point_paths: vec![(0..bytes.u8() % 4)
             .map(|_| [0, 1, 2].map(|_| f64::from(bytes.u16() as i16) / 100.0))
             .collect()],
+        legend: bytes.u8() % 2 == 0,
     };
     let Ok(scene) = Scene::new(&mesh, &options) else {
         return;
@@ -110,7 +112,12 @@ fuzz_target!(|data: &[u8]| {
     let map = &mesh.map;
     let kind = MeshKind::of(map);
     let mut drawn = BTreeSet::new();
+    let mut legend_rows = 0;
     for el in svg.split("<circle ").skip(1) {
+        if el.starts_with("class=\"legend\"") {
+            legend_rows += 1;
+            continue;
+        }
         let attr = |name: &str| {
             let key = format!("{name}=\"");
             let start = el.find(&key).expect("attribute") + key.len();
@@ -129,4 +136,12 @@ fuzz_target!(|data: &[u8]| {
         .map(|b| b.vertex.index() as u32)
         .collect();
     assert_eq!(drawn, seen);
+    // The legend: one row per valence of the balls (seen or not), at most eight.
+    let valences: BTreeSet<usize> = scene.balls().iter().map(|b| b.valence).collect();
+    let rows = if options.legend {
+        valences.len().min(8)
+    } else {
+        0
+    };
+    assert_eq!(legend_rows, rows, "legend rows");
 });
