@@ -41,6 +41,11 @@ pub struct OptimizeArgs {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
+    /// As each batch ends, print its row (the object the report's `batches` holds, with
+    /// its `batch` number) as one JSON line on standard output, before the report: for
+    /// tools that follow a long run.
+    #[arg(long)]
+    progress_json: bool,
     /// A file of 0-based face indices, one per line: faces kept bit for bit.
     #[arg(long)]
     protect: Option<PathBuf>,
@@ -146,6 +151,7 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
     let bar = progress(Some(options.max_batches));
     let start = Instant::now();
     let mut rows = Vec::new();
+    let mut stream = Stream::new(args.progress_json);
     let outcome = optimize_triangles(&mut mesh, &options, |b| {
         let mut row = tri_counts(&b.counts);
         if let Value::Object(m) = &mut row {
@@ -158,12 +164,14 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
             m.insert("score".into(), json!(b.score));
         }
         rows.push(row);
+        stream.send(rows.last());
         if let Some(bar) = &bar {
             bar.set_position(b.batch as u64);
             bar.set_message(tri_summary(&b.counts));
         }
     })
     .map_err(|e| InputError(format!("{name}: {e}")))?;
+    stream.result()?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
@@ -315,6 +323,61 @@ fn progress(planned: Option<usize>) -> Option<ProgressBar> {
     Some(bar)
 }
 
+/// `--progress-json`: each batch's row printed as one JSON line as the batch ends. A failed
+/// write (a closed pipe, a full disk) stops the printing and is the run's error once the
+/// batches are done, so that no OUT is written.
+struct Stream {
+    on: bool,
+    failed: Option<out::OutputError>,
+}
+
+impl Stream {
+    fn new(on: bool) -> Self {
+        Stream { on, failed: None }
+    }
+
+    fn send(&mut self, row: Option<&Value>) {
+        if let (true, None, Some(row)) = (self.on, &self.failed, row) {
+            outln!("{row}");
+            self.failed = out::flush().err();
+        }
+    }
+
+    fn result(self) -> Result<(), out::OutputError> {
+        self.failed.map_or(Ok(()), Err)
+    }
+}
+
+/// The progress bar's message on a quad mesh: singularities left (and from how many),
+/// Q-zips so far, and on a closed mesh the time left at the pace so far to the least count
+/// Gauss-Bonnet allows, `4 |chi|` (a rough estimate: the last singularities go slowest).
+struct Pace {
+    from: usize,
+    floor: Option<usize>,
+}
+
+impl Pace {
+    fn new(input: &Mesh) -> Self {
+        let c = zipmesh::invariants::Counts::of(&input.map);
+        Pace {
+            from: SingularityCounts::of(input).singularities(),
+            floor: (c.boundary_loops == 0)
+                .then(|| 4 * c.euler_characteristic.unsigned_abs() as usize),
+        }
+    }
+
+    fn message(&self, now: &SingularityCounts, qzips: usize, elapsed: Duration) -> String {
+        let left = now.singularities();
+        let mut m = format!("singularities {left}/{}, {qzips} Q-zips", self.from);
+        if let Some(floor) = self.floor.filter(|&f| left > f && left < self.from) {
+            let pace = (self.from - left) as f64 / elapsed.as_secs_f64().max(1e-3);
+            let eta = (left - floor) as f64 / pace;
+            m.push_str(&format!(", ~{eta:.0} s to {floor} at this pace"));
+        }
+        m
+    }
+}
+
 /// `--time-limit`: a positive number of seconds that a `Duration` holds.
 fn seconds(s: &str) -> Result<Duration, String> {
     let x: f64 = s.parse().map_err(|_| format!("`{s}` is not a number"))?;
@@ -404,15 +467,21 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     let start = Instant::now();
     let mut last = Instant::now();
     let mut rows = Vec::new();
+    let mut stream = Stream::new(args.progress_json);
+    let pace = Pace::new(&input);
+    let mut qzips = 0;
     let outcome = optimize(&mut mesh, c, quad_options(&args), |b| {
         rows.push(batch_row(b, last.elapsed().as_secs_f64(), args.paths));
         last = Instant::now();
+        stream.send(rows.last());
+        qzips += b.qzips + b.chains.qzips;
         if let Some(bar) = &bar {
             bar.set_position(b.batch as u64);
-            bar.set_message(summary(&b.counts));
+            bar.set_message(pace.message(&b.counts, qzips, start.elapsed()));
         }
     })
     .map_err(|e| InputError(format!("{name}: {e}")))?;
+    stream.result()?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }

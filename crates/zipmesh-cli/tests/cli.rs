@@ -675,8 +675,20 @@ fn every_printing_command(dir: &Path) -> Vec<Vec<String>> {
     moves.extend(pair);
     let v = |a: &[&str]| a.iter().map(|x| x.to_string()).collect::<Vec<_>>();
     let page = dir.join("spot.html").to_str().unwrap().to_string();
+    let amo = shared("quad/amo_quad.obj").to_str().unwrap().to_string();
+    let fewer = dir.join("fewer.obj").to_str().unwrap().to_string();
     vec![
         v(&["view", &spot, "-o", &page]),
+        // Its first write is a batch's line, while the run goes on.
+        v(&[
+            "optimize",
+            &amo,
+            "-o",
+            &fewer,
+            "--batches",
+            "2",
+            "--progress-json",
+        ]),
         v(&["stats"]),
         v(&["stats", "--json"]),
         v(&["hash", &spot]),

@@ -395,3 +395,35 @@ fn the_time_limit_stops_the_run() {
         assert!(!target.exists());
     }
 }
+
+/// `--progress-json` prints each batch's row as one JSON line as the batch ends, the same
+/// object as the report's `batches` entry, then the report: on a quad and a triangle mesh.
+#[test]
+fn progress_json_streams_the_batch_rows() {
+    let dir = temp_dir("optimize-progress-json");
+    let out = dir.join("out.obj");
+    for file in ["quad/amo_quad.obj", "tri/circle_disk.obj"] {
+        let input = shared(file);
+        let o = zipmesh(&[
+            "optimize",
+            s(&input),
+            "-o",
+            s(&out),
+            "--json",
+            "--progress-json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let lines: Vec<Value> = String::from_utf8(o.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        let (report, rows) = lines.split_last().unwrap();
+        let batches = report["batches"].as_array().unwrap();
+        assert!(!batches.is_empty(), "{file}");
+        assert_eq!(rows, batches.as_slice(), "{file}");
+        for (i, row) in rows.iter().enumerate() {
+            assert_eq!(row["batch"].as_u64(), Some(i as u64 + 1), "{file}");
+        }
+    }
+}
