@@ -415,13 +415,15 @@ impl Scene {
     }
 
     /// The picture as SVG text: one `<circle class="vK" data-vertex="N">` per seen ball,
-    /// one `<polyline class="path">` per seen path stretch.
+    /// one `<polyline class="path">` per seen path stretch, and the legend (a `<circle
+    /// class="legend">` per row) unless [`Options::legend`] is off.
     ///
     /// ```
     /// use zipmesh::{gen, render::{Options, Scene}};
     /// let svg = Scene::new(&gen::cube(1), &Options::default()).unwrap().svg();
     /// assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
-    /// assert_eq!(svg.matches("<circle ").count(), 7);
+    /// assert_eq!(svg.matches("<circle class=\"v3\"").count(), 7); // the cube's seen corners
+    /// assert_eq!(svg.matches("<circle class=\"legend\"").count(), 1); // v3: 8
     /// ```
     pub fn svg(&self) -> String {
         svg::write(self)
