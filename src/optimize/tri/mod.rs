@@ -243,7 +243,7 @@ fn vertex_cost(map: &Map, v: Vert) -> Cost {
 }
 
 /// Triangles with a corner under this many degrees get their vertices moved towards shape
-/// after the batches ([`crate::geometry::widen_thin_triangles`]).
+/// after the batches (`geometry::widen_thin_triangles`).
 const WIDEN_BELOW_DEGREES: f64 = 15.0;
 
 /// Reduces the interior irregular vertices of a triangle mesh by batches; `progress` sees
@@ -254,7 +254,7 @@ const WIDEN_BELOW_DEGREES: f64 = 15.0;
 /// fewer irregular vertices; when there are none, it moves each 5-7 pair 2 or 3 edges apart
 /// (Sec. 7.1.1) towards its nearest other irregular vertex; then it relaxes what it touched.
 /// After the batches it widens the triangles with a corner under 15 degrees on the input
-/// surface ([`crate::geometry::widen_thin_triangles`]). An edit that turns a triangle over
+/// surface (`geometry::widen_thin_triangles`). An edit that turns a triangle over
 /// or lets the face count drift past
 /// [`TriOptimizeOptions::face_drift`] is undone. Every edit keeps the map valid; the mesh's
 /// topology (genus, boundary) and its boundary valences are kept. `docs/optimize.md` gives
