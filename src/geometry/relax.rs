@@ -75,7 +75,15 @@ struct Fan {
     worst: f64,
     /// The worst corner term of its triangles alone.
     worst_triangle: f64,
+    /// Its triangles with a true (3D) corner under [`THIN_DEGREES`]: the corner term, read
+    /// in one plane, misses a triangle that turns thin out of that plane (a fan across a
+    /// crease of the surface).
+    thin: usize,
 }
+
+/// A triangle with a corner under this many degrees is thin to the relaxation: a move may
+/// not add one to a vertex's fan.
+const THIN_DEGREES: f64 = 20.0;
 
 /// The corner term of a 20-degree corner: a triangle's worst corner may fall below it only
 /// by rising (thin triangles are what a relaxed triangle mesh must not gain).
@@ -83,12 +91,15 @@ const TRIANGLE_FLOOR: f64 = 0.342_020_143_325_668_7;
 
 impl Fan {
     /// Whether `self` (after a move) is no worse than `before`: no new inverted face, the
-    /// worst corner above 0 or no lower than before, and the worst triangle corner above
-    /// 20 degrees or no lower than before.
+    /// worst corner above 0 or no lower than before, the worst triangle corner above
+    /// 20 degrees or no lower than before, and no more thin triangles.
     fn accepts(&self, before: &Fan) -> bool {
         let triangles =
             self.worst_triangle >= TRIANGLE_FLOOR || self.worst_triangle >= before.worst_triangle;
-        self.bad <= before.bad && (self.worst > 0.0 || self.worst >= before.worst) && triangles
+        self.bad <= before.bad
+            && (self.worst > 0.0 || self.worst >= before.worst)
+            && triangles
+            && self.thin <= before.thin
     }
 }
 
@@ -326,6 +337,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
         bad: 0,
         worst: f64::INFINITY,
         worst_triangle: f64::INFINITY,
+        thin: 0,
     };
     for c in faces_of(mesh, v) {
         let k = c.len();
@@ -343,6 +355,7 @@ fn fan(mesh: &Mesh, v: Vert, n: DVec3) -> Fan {
         f.worst = f.worst.min(worst);
         if k == 3 {
             f.worst_triangle = f.worst_triangle.min(worst);
+            f.thin += usize::from(angles(&c).min < THIN_DEGREES);
         }
     }
     f

@@ -181,12 +181,17 @@ fn run_triangles(args: &OptimizeArgs, mut mesh: Mesh, name: &str) -> Result<Exit
         "input": tri_counts(&outcome.input),
         "batches": rows,
         "final": tri_counts(&outcome.final_counts),
+        "restored_batch": outcome.restored,
         "seconds": seconds,
+    });
+    // A run that went back to an earlier batch says so: its last rows are not the result.
+    let restored = outcome.restored.map_or(String::new(), |b| {
+        format!(" (batch {b}'s output: a later one broke a geometry bound)")
     });
     let lines = [
         format!("{name}: {}", tri_summary(&outcome.input)),
         format!(
-            "{}: {} after {} batches, {seconds:.2} s",
+            "{}: {} after {} batches{restored}, {seconds:.2} s",
             out::escape(&args.output.display().to_string()),
             tri_summary(&outcome.final_counts),
             outcome.batches.len()

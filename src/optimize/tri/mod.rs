@@ -34,6 +34,7 @@ mod lookahead;
 
 use crate::geometry::Surface;
 use crate::ops::tri::{can_collapse_edge, can_flip_edge, TriOp};
+use crate::quality::{Bound, Bounds, Summary};
 use crate::tri_edit::{
     can_cancel_triple, cancel_triple, move_far_pair, move_pair, Direction, FarStart, Moved, Start,
 };
@@ -166,6 +167,11 @@ pub struct TriOutcome {
     pub batches: Vec<TriBatch>,
     /// The counts of the result.
     pub final_counts: TriCounts,
+    /// With the relaxation on, the batch whose output the result is when a later batch's
+    /// broke a geometry bound (a new flipped triangle, or thin triangles past the slack of
+    /// [`crate::quality::Bounds`]) and the run went back to it; 0 is the input. `None`
+    /// when the result is the last batch's output.
+    pub restored: Option<usize>,
 }
 
 /// Why [`optimize_triangles`] refused (the mesh is then unchanged).
@@ -298,6 +304,7 @@ pub fn optimize_triangles(
     };
     let mut batches = Vec::new();
     let mut lookahead = Lookahead::default();
+    let mut keeper = surface.as_ref().map(|s| Keeper::new(mesh, s));
     for batch in 1..=options.max_batches {
         let mut touched = Vec::new();
         let flips = flip_pass(mesh, &mut touched) + collapse_pass(mesh, &budget, &mut touched);
@@ -339,20 +346,90 @@ pub fn optimize_triangles(
             score: tri_score(&mesh.map),
             counts: TriCounts::of(&mesh.map),
         };
+        if let Some(k) = keeper.as_mut() {
+            k.offer(mesh, batch);
+        }
         progress(&row);
         batches.push(row);
         if flips + cancellations + lookaheads + pair_moves + far_pair_moves == 0 {
             break;
         }
     }
-    if let Some(surface) = surface.as_ref() {
-        crate::geometry::widen_thin_triangles(mesh, surface, WIDEN_BELOW_DEGREES, 20);
-    }
+    let restored = keeper.as_mut().and_then(|k| k.finish(mesh));
     Ok(TriOutcome {
         input,
         batches,
         final_counts: TriCounts::of(&mesh.map),
+        restored,
     })
+}
+
+/// The last output of the run that holds the geometry bounds: the result, widened, when the
+/// last batch's breaks one. The passes' guards keep each edit from flipping a triangle, and
+/// the relaxation and widening after them keep most triangles wide, but an edit's thin
+/// triangle can be one no vertex move widens (the campaign found such cases on generated
+/// meshes); going back to an earlier batch keeps the bounds whatever the mesh.
+struct Keeper<'s> {
+    surface: &'s Surface,
+    input: Summary,
+    /// The last batch that held, its output, and whether that copy is widened already.
+    good: (usize, Mesh, bool),
+    /// Whether the last batch offered held (then `good` is its output).
+    last_held: bool,
+}
+
+impl<'s> Keeper<'s> {
+    fn new(mesh: &Mesh, surface: &'s Surface) -> Self {
+        Keeper {
+            surface,
+            input: Summary::of(mesh),
+            good: (0, mesh.clone(), false),
+            last_held: true,
+        }
+    }
+
+    /// Whether `mesh` holds the bounds a run can break: flips and thin triangles (every
+    /// vertex was put on the surface, so the distance is not measured here).
+    fn holds(&self, mesh: &Mesh) -> bool {
+        let failed = Bounds::default().failures(&self.input, &Summary::of(mesh));
+        failed.iter().all(|&b| b == Bound::Distance)
+    }
+
+    fn widen(&self, mesh: &mut Mesh) {
+        crate::geometry::widen_thin_triangles(mesh, self.surface, WIDEN_BELOW_DEGREES, 20);
+    }
+
+    /// Keeps `mesh`, the output of `batch`, if it holds the bounds as it is or once widened
+    /// (widened only then: widening every batch's copy cost more than the batches on Spot).
+    fn offer(&mut self, mesh: &Mesh, batch: usize) {
+        self.last_held = true;
+        if self.holds(mesh) {
+            self.good = (batch, mesh.clone(), false);
+            return;
+        }
+        let mut widened = mesh.clone();
+        self.widen(&mut widened);
+        self.last_held = self.holds(&widened);
+        if self.last_held {
+            self.good = (batch, widened, true);
+        }
+    }
+
+    /// Puts the result into `mesh`, widened: the last batch's output if it held, else the
+    /// last that held, whose batch is returned. Widening never adds a thin triangle or a
+    /// flip, but a result that would break a bound after it is left unwidened.
+    fn finish(&mut self, mesh: &mut Mesh) -> Option<usize> {
+        let (batch, good, widened) = core::mem::take(&mut self.good);
+        *mesh = good;
+        if !widened {
+            let mut w = mesh.clone();
+            self.widen(&mut w);
+            if self.holds(&w) {
+                *mesh = w;
+            }
+        }
+        (!self.last_held).then_some(batch)
+    }
 }
 
 /// The valences of a pass's map by vertex slot, kept up to date across its edits: the
