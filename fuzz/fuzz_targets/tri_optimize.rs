@@ -9,8 +9,10 @@
 //! property's (`campaign::check_optimize_triangles`): a valid all-triangle map with the
 //! input's Euler characteristic, boundary loops, components and boundary valences, an
 //! irregular count that never rises (nor the score while it stays), the face count within
-//! the drift, counts that match, and with the relaxation on every vertex within 0.5 % of
-//! the input's diagonal from its surface.
+//! the drift, counts that match (the last batch's or the restored one's), and with the
+//! relaxation on the geometry bounds: no new flipped triangle, no more thin triangles than
+//! the input's and the slack, every vertex within 0.5 % of the input's diagonal from its
+//! surface.
 //!
 //! The look-ahead is on for one input in 64, chosen by a hash of the whole input, on the
 //! smallest meshes (12 faces asked for, genus 0 or 1). Even there one input with it costs
