@@ -102,27 +102,23 @@ fn check(case: &Case) -> Outcome {
     }
 }
 
-/// The geometry bounds of the optimizer's output ([`Bounds`], docs/results.md). On a pure
-/// quad case all but the scaled Jacobian's 1st percentile fail the case; that one, a
-/// statistic for meshes of thousands of quads (on at most 400 it is the worst quad or two),
-/// is noted unchecked ([`Case::note_unchecked`]) where it breaks: the shrunk counterexamples
-/// of `tests/data/counterexamples/` break it, the default campaign's pure quad cases do not.
-/// On a quad-dominant case (`mixed`) only the distance fails it and the case is noted
-/// unchecked: the triangle stage's merges change the face count of these small meshes by
-/// more than 5 %, and its crawls fold quads between the generator's randomly placed
-/// triangles. `None` when what is asked holds.
+/// The geometry bounds of the optimizer's output ([`Bounds`], docs/results.md). All but the
+/// scaled Jacobian's 1st percentile fail the case; that one, a statistic for meshes of
+/// thousands of quads (on at most 400 it is the worst quad or two), is noted unchecked
+/// ([`Case::note_unchecked`]) where it breaks: the shrunk counterexamples of
+/// `tests/data/counterexamples/` break it, and so do 23 of the default campaign's 180 cases,
+/// all quad-dominant. On a quad-dominant case (`mixed`) the face count is noted likewise: the
+/// triangle stage makes one quad of two triangles and its crawls add quads, so on these small
+/// meshes, many of whose faces are triangles, the count moves by more than 5 % (72 of the
+/// default campaign's 180 cases).
+/// `None` when what is asked holds.
 fn unsound_quads(case: &Case, output: &Mesh, mixed: bool) -> Option<std::string::String> {
     let input = &case.mesh;
     let after = Summary::against(output, &Reference::new(input));
     let mut failed = Bounds::default().failures(&Summary::of(input), &after);
     let asked = failed.len();
-    if mixed {
-        failed.retain(|&b| b == Bound::Distance);
-        case.note_unchecked(1);
-    } else {
-        failed.retain(|&b| b != Bound::JacobianP1);
-        case.note_unchecked(u64::from(failed.len() < asked));
-    }
+    failed.retain(|&b| b != Bound::JacobianP1 && !(mixed && b == Bound::Faces));
+    case.note_unchecked(u64::from(failed.len() < asked));
     (!failed.is_empty()).then(|| {
         let names: std::vec::Vec<&str> = failed.iter().map(|b| b.name()).collect();
         format!("geometry bounds broken: {} ({after:?})", names.join(", "))

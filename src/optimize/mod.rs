@@ -543,7 +543,14 @@ fn relax_edited(mesh: &mut Mesh, before: &Mesh, surface: &Surface, constraints: 
 /// singularities plus boundary defects; the crawls' moved and new vertices are then relaxed
 /// on the input surface. The preprocessing runs only if the result is pure
 /// quad; the batches' Q-zips wind around the triangles left
-/// ([`crate::qzip::avoid_triangles`]), which they never change.
+/// ([`crate::qzip::avoid_triangles`]), which they never change. Under the fold guard, a run
+/// whose output has more folded quads than the input ([`folded_quads`] and the other fold
+/// tests of [`crate::quality`]) is made again from the input with each merged crawl relaxed
+/// at once and undone if it folds a quad ([`TriangleStage::guarded`]; `progress` then
+/// hears the second run's batches from 1 again). The crawls between randomly placed
+/// triangles can fold quads that the joint relaxation does not mend; guarding every merge
+/// always would refuse crawls that later batches mend (the OpenSubdiv rook would keep 6 of
+/// its 44 triangles instead of 2).
 ///
 /// ```
 /// use zipmesh::{gen, optimize::{optimize, Constraints, OptimizeOptions}};
@@ -557,37 +564,71 @@ pub fn optimize(
     mesh: &mut Mesh,
     constraints: Constraints,
     mut options: OptimizeOptions,
-    progress: impl FnMut(&BatchReport),
+    mut progress: impl FnMut(&BatchReport),
 ) -> Result<Outcome, OptimizeError> {
     check_input(mesh, &constraints)?;
-    let input = SingularityCounts::of(mesh);
-    let input_faces = mesh.map.num_faces();
     let surface = Surface::new(mesh);
+    let mut terms = core::mem::take(&mut options.terms);
     let with_triangles = mesh.map.faces().any(|f| mesh.map.degree(f) == 3);
-    let before = with_triangles.then(|| mesh.clone());
-    let triangles = quad_dominant::pair_triangles(mesh, &constraints);
-    if let (Some(before), true) = (&before, triangles.merged > 0) {
-        // The crawls' moved and new vertices go onto the surface, as a Q-zip's scar does.
-        relax_edited(mesh, before, &surface, &constraints);
-    }
-    let mut preprocessed = false;
-    // Nothing can lower the total defect: leave the mesh as it is (no v6 splits either).
-    let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
-    let minimal = quad && at_defect_minimum(mesh);
-    if options.preprocess && quad && !minimal {
-        let before = mesh.clone();
-        if let Ok(p) = preprocess(mesh) {
-            preprocessed = constraints.holds(mesh);
-            if !preprocessed {
-                let _ = p.undo(mesh);
-            } else {
-                // The splits' new vertices go onto the surface, as a Q-zip's scar does.
-                relax_edited(mesh, &before, &surface, &constraints);
-            }
+    let start =
+        (options.fold_guard && with_triangles).then(|| (mesh.clone(), folds::unsound_quads(mesh)));
+    let c = constraints.clone();
+    let mut out = run(
+        mesh,
+        c,
+        &options,
+        &mut terms,
+        &surface,
+        false,
+        &mut progress,
+    );
+    if let Some((start, folds)) = start {
+        if out.triangles.merged > 0 && folds::unsound_quads(mesh).rises_from(folds) {
+            *mesh = start;
+            out = run(
+                mesh,
+                constraints,
+                &options,
+                &mut terms,
+                &surface,
+                true,
+                progress,
+            );
+            out.triangles.guarded = true;
         }
     }
+    Ok(out)
+}
+
+/// One run of [`optimize`] on checked input: the triangle stage (each merge guarded by the
+/// fold tests if `guard`), the preprocessing, the batches and the settle. `terms` are the
+/// score's terms, handed back at the end.
+fn run(
+    mesh: &mut Mesh,
+    constraints: Constraints,
+    options: &OptimizeOptions,
+    terms: &mut Vec<(f64, Box<dyn ScoreTerm + Send>)>,
+    surface: &Surface,
+    guard: bool,
+    progress: impl FnMut(&BatchReport),
+) -> Outcome {
+    let input = SingularityCounts::of(mesh);
+    let input_faces = mesh.map.num_faces();
+    let with_triangles = input.triangles > 0;
+    let before = with_triangles.then(|| mesh.clone());
+    let triangles = quad_dominant::pair_triangles(mesh, &constraints, guard.then_some(surface));
+    if let (Some(before), true) = (&before, triangles.merged > 0 && !guard) {
+        // The crawls' moved and new vertices go onto the surface, as a Q-zip's scar does
+        // (a guarded stage relaxed each at its merge: relaxing them again together folds
+        // the quads the guard kept unfolded).
+        relax_edited(mesh, before, surface, &constraints);
+    }
+    let quad = MeshKind::of(&mesh.map) == MeshKind::Quad;
+    // Nothing can lower the total defect: leave the mesh as it is (no v6 splits either).
+    let minimal = quad && at_defect_minimum(mesh);
+    let preprocessed = quad && !minimal && preprocess_kept(mesh, options, &constraints, surface);
     let scorer = score::Scorer {
-        terms: core::mem::take(&mut options.terms),
+        terms: core::mem::take(terms),
         features: Vec::new(),
         target_area: mean_face_area(mesh),
         target_faces: input_faces,
@@ -604,7 +645,7 @@ pub fn optimize(
         search_radius: options.search_radius,
         eps: 1e-9,
         fold_guard: options.fold_guard,
-        surface: Some(&surface),
+        surface: Some(surface),
         copies: Vec::new(),
         window: Default::default(),
         marks: Default::default(),
@@ -618,13 +659,14 @@ pub fn optimize(
         (Vec::new(), false)
     } else {
         let chi = Counts::of(&mesh.map).euler_characteristic;
-        let run = run_batches(&mut b, mesh, &surface, &options, initial_score, progress);
+        let run = run_batches(&mut b, mesh, surface, options, initial_score, progress);
         debug_assert_eq!(Counts::of(&mesh.map).euler_characteristic, chi);
         run
     };
     b.refresh_constraints(mesh);
-    settle(mesh, &surface, &b.locked);
-    Ok(Outcome {
+    settle(mesh, surface, &b.locked);
+    *terms = core::mem::take(&mut b.scorer.terms);
+    Outcome {
         input,
         triangles,
         initial_score,
@@ -633,7 +675,31 @@ pub fn optimize(
         batches,
         stopped,
         final_counts: SingularityCounts::of(mesh),
-    })
+    }
+}
+
+/// Runs the preprocessing on a pure quad `mesh` not at the defect minimum, if `options` ask
+/// for it, and keeps it (its new vertices relaxed on `surface`) if `constraints` still hold.
+fn preprocess_kept(
+    mesh: &mut Mesh,
+    options: &OptimizeOptions,
+    constraints: &Constraints,
+    surface: &Surface,
+) -> bool {
+    if !options.preprocess {
+        return false;
+    }
+    let before = mesh.clone();
+    let Ok(p) = preprocess(mesh) else {
+        return false;
+    };
+    if !constraints.holds(mesh) {
+        let _ = p.undo(mesh);
+        return false;
+    }
+    // The splits' new vertices go onto the surface, as a Q-zip's scar does.
+    relax_edited(mesh, &before, surface, constraints);
+    true
 }
 
 /// Puts every vertex that is off the input `surface` (by more than a part in 1e9 of the

@@ -18,6 +18,7 @@ use alloc::vec::Vec;
 use hashbrown::HashMap;
 
 use super::{Constraints, SingularityCounts};
+use crate::geometry::Surface;
 use crate::map::{Dart, Face, Map, Vert};
 use crate::mesh::Edited;
 use crate::quad_dominant::{self, Move, TriangleMove};
@@ -50,6 +51,9 @@ pub struct TriangleStage {
     pub moves: usize,
     /// Pairs whose crawl or merge failed or was not kept (each tried once).
     pub refused: usize,
+    /// Whether the run was made again from the input with each merge guarded: the first
+    /// run's output had more folded quads than the input ([`super::optimize`]).
+    pub guarded: bool,
 }
 
 /// Breadth-first search from the vertices of `from`, up to [`RADIUS`] edges: the first
@@ -153,9 +157,11 @@ fn crawl_and_merge(
     i: usize,
     j: usize,
     constraints: &Constraints,
+    guard: Option<&Surface>,
 ) -> Option<usize> {
     let saved = tips.clone();
     let before = irregularity(mesh);
+    let guarded = guard.map(|s| (s, mesh.clone(), super::folds::unsound_quads(mesh)));
     let start = potential(&mesh.map, tips[i], tips[j]).0;
     let limit = 4 * start.min(RADIUS) + 16;
     let mut edits = Vec::new();
@@ -185,6 +191,14 @@ fn crawl_and_merge(
     if quad_dominant::collision(&mesh.map, tips[i], tips[j]).is_some() {
         if let Ok(rec) = quad_dominant::merge_collision(&mut mesh.map, tips[i], tips[j]) {
             if constraints.holds(mesh) && irregularity(mesh) <= before {
+                if let Some((surface, before_mesh, folds)) = guarded {
+                    super::relax_edited(mesh, &before_mesh, surface, constraints);
+                    if super::folds::unsound_quads(mesh).rises_from(folds) {
+                        *mesh = before_mesh;
+                        *tips = saved;
+                        return None;
+                    }
+                }
                 let rest = tips.iter().enumerate().filter(|&(k, _)| k != i && k != j);
                 *tips = rest.map(|(_, &t)| rec.follow(t)).collect();
                 return Some(edits.len());
@@ -229,8 +243,14 @@ fn closest_pair(map: &Map, tips: &[Dart], tried: &[(Face, Face)]) -> Option<(usi
     best.map(|(_, i, j)| (i, j))
 }
 
-/// Merges pairs of triangles of `mesh`, closest first, each pair tried once.
-pub(crate) fn pair_triangles(mesh: &mut Mesh, constraints: &Constraints) -> TriangleStage {
+/// Merges pairs of triangles of `mesh`, closest first, each pair tried once. With a `guard`
+/// (the input surface), each merged crawl is relaxed on it at once and undone if more quads
+/// of the mesh are folded than before it ([`super::folds::FoldCount`]).
+pub(crate) fn pair_triangles(
+    mesh: &mut Mesh,
+    constraints: &Constraints,
+    guard: Option<&Surface>,
+) -> TriangleStage {
     let map = &mesh.map;
     let mut tips: Vec<Dart> = quad_dominant::triangles(map)
         .into_iter()
@@ -243,7 +263,7 @@ pub(crate) fn pair_triangles(mesh: &mut Mesh, constraints: &Constraints) -> Tria
     let mut tried = Vec::new();
     while let Some((i, j)) = closest_pair(&mesh.map, &tips, &tried) {
         let faces = (mesh.map.face(tips[i]), mesh.map.face(tips[j]));
-        match crawl_and_merge(mesh, &mut tips, i, j, constraints) {
+        match crawl_and_merge(mesh, &mut tips, i, j, constraints, guard) {
             Some(moves) => {
                 stage.merged += 1;
                 stage.moves += moves;

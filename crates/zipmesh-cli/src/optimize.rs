@@ -490,6 +490,8 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
+    // A guarded second run reported its batches after the first run's: keep its own.
+    rows.drain(..rows.len().saturating_sub(outcome.batches.len()));
     let seconds = start.elapsed().as_secs_f64();
     let mut report = json!({
         "input": counts(&outcome.input),
@@ -498,6 +500,7 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
             "merged_pairs": outcome.triangles.merged,
             "moves": outcome.triangles.moves,
             "refused_pairs": outcome.triangles.refused,
+            "guarded": outcome.triangles.guarded,
         },
         "preprocessed": outcome.preprocessed,
         "minimal": outcome.minimal,
@@ -522,10 +525,15 @@ pub fn run(args: OptimizeArgs) -> Result<ExitCode, InputError> {
     } else {
         ""
     };
+    let guarded = if outcome.triangles.guarded {
+        " (made again with each triangle merge guarded: the first run folded quads)"
+    } else {
+        ""
+    };
     let lines = [
         format!("{name}: {}{minimal}", summary(&outcome.input)),
         format!(
-            "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s{limit}",
+            "{}: {} after {} batches, {qzips} Q-zips, {seconds:.2} s{limit}{guarded}",
             out::escape(&args.output.display().to_string()),
             summary(&outcome.final_counts),
             outcome.batches.len()

@@ -427,3 +427,36 @@ fn progress_json_streams_the_batch_rows() {
         }
     }
 }
+
+/// A quad-dominant input whose first run folds quads (case 1501 of the default campaign, a
+/// torus of 105 faces, 36 of them triangles) is optimized again with each triangle merge
+/// guarded: the report says so, its `batches` are the second run's (numbered from 1, the
+/// last rows `--progress-json` streamed), the text line says so too, and OUT adds no
+/// folded quad.
+#[test]
+fn a_guarded_second_run_reports_its_own_batches() {
+    let dir = temp_dir("optimize-guarded");
+    let (inp, out) = (dir.join("in.obj"), dir.join("out.obj"));
+    let case = zipmesh::campaign::Case::generate(0, 1501, 1000);
+    io::write_mesh(&inp, &case.mesh).unwrap();
+    let args = ["optimize", s(&inp), "-o", s(&out), "--batches", "8"];
+    let o = zipmesh(&[&args[..], &["--seed", "1501", "--json", "--progress-json"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let lines: Vec<Value> = String::from_utf8(o.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let (report, rows) = lines.split_last().unwrap();
+    assert_eq!(report["triangle_stage"]["guarded"], true);
+    let batches = report["batches"].as_array().unwrap();
+    assert!(rows.len() > batches.len(), "both runs stream their rows");
+    assert_eq!(&rows[rows.len() - batches.len()..], batches.as_slice());
+    assert_eq!(batches[0]["batch"], 1);
+    let (before, after) = (case.mesh.clone(), io::read_mesh(&out).unwrap().0);
+    let reference = Reference::new(&before);
+    let [q0, q1] = [&before, &after].map(|m| Summary::against(m, &reference));
+    assert!(q1.folded_quads <= q0.folded_quads, "{q0:?} -> {q1:?}");
+    let text = zipmesh(&[&args[..], &["--seed", "1501"]].concat());
+    assert!(String::from_utf8_lossy(&text.stdout).contains("each triangle merge guarded"));
+}
